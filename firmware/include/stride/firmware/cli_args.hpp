@@ -1,0 +1,47 @@
+// CliArgs: a small command-line parser shared by stride-fw and the stride subcommands.
+//
+// Grammar: `--name value`, `--name=value`, `--flag`, and positional words. Options are declared
+// first, so an unknown option, a missing value or a bad number is a one-line error naming it.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "stride/hal/status.hpp"
+
+namespace stride::fw {
+
+class CliArgs {
+ public:
+  /// Declares `--name VALUE` (takes_value) or `--name` (flag) with a help line.
+  CliArgs& option(const std::string& name, const std::string& help, bool takes_value = true,
+                  std::optional<std::string> default_value = std::nullopt);
+  /// Parses argv[first..argc). Returns an error naming the bad word.
+  Status parse(int argc, const char* const* argv, int first = 1);
+
+  bool has(const std::string& name) const;
+  std::string get(const std::string& name, const std::string& fallback = {}) const;
+  /// Typed getters: the error names the option and the bad text.
+  Status get_double(const std::string& name, double& out) const;
+  Status get_int(const std::string& name, std::int64_t& out) const;
+  const std::vector<std::string>& positional() const { return positional_; }
+
+  /// "Options:" help text listing every declared option.
+  std::string help() const;
+
+ private:
+  struct Spec {
+    std::string help;
+    bool takes_value = true;
+    std::optional<std::string> default_value;
+  };
+  std::map<std::string, Spec> specs_;
+  std::vector<std::string> order_;
+  std::map<std::string, std::string> values_;
+  std::vector<std::string> positional_;
+};
+
+}  // namespace stride::fw

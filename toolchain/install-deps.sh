@@ -1,0 +1,40 @@
+#!/usr/bin/env bash
+# Installs every Debian package Stride needs to build, test and run on the host (Debian 12).
+# Idempotent: packages already present are skipped; safe to run again. Needs root (or sudo).
+#
+#   toolchain/install-deps.sh            host build, tests, benchmarks, MPI
+#   toolchain/install-deps.sh --cross    also the aarch64 cross compiler and qemu-user
+set -euo pipefail
+
+packages=(
+  build-essential cmake ninja-build pkg-config ccache git
+  libeigen3-dev nlohmann-json3-dev libserialport-dev
+  libsimbody-dev liburdfdom-dev liburdfdom-headers-dev
+  libgtest-dev libgmock-dev libbenchmark-dev
+  libopenmpi-dev openmpi-bin
+  clang libclang-rt-14-dev clang-format
+  python3
+)
+if [[ "${1:-}" == "--cross" ]]; then
+  packages+=(g++-aarch64-linux-gnu qemu-user qemu-user-static)
+fi
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if ((${#missing[@]} == 0)); then
+  echo "install-deps: all ${#packages[@]} packages present"
+  exit 0
+fi
+
+sudo_cmd=()
+if [[ $(id -u) -ne 0 ]]; then sudo_cmd=(sudo); fi
+echo "install-deps: installing ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+"${sudo_cmd[@]}" apt-get update -qq
+"${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
+echo "install-deps: done"
