@@ -96,6 +96,7 @@ struct SimWorld::Impl {
   bool has_ball = false;
   SimTK::State state;
   SimTK::Vector u_next, qdot;
+  std::vector<int> quaternion_q;  ///< first q index of each free body's quaternion
 
   // Per model joint.
   std::vector<int> joint_servo;  ///< servo index or -1
@@ -113,6 +114,8 @@ struct SimWorld::Impl {
   ContactPoint ball_point;  ///< the ball against the field
   std::vector<LinkShape> shapes;
   std::vector<SpatialVec> body_force;  ///< per model link, accumulated each step
+  std::vector<Real> link_mass;         ///< after randomisation [kg]
+  std::vector<Vec3> link_com;          ///< link frame [m]
   SpatialVec ball_force{Vec3(0), Vec3(0)};
   int left_foot = -1, right_foot = -1;
   FootContact left_contact, right_contact;
@@ -237,12 +240,15 @@ void SimWorld::Impl::build() {
   system = std::make_unique<SimTK::MultibodySystem>();
   matter = std::make_unique<SimTK::SimbodyMatterSubsystem>(*system);
   SimTK::GeneralForceSubsystem forces(*system);
-  SimTK::Force::Gravity(forces, *matter, -SimTK::ZAxis, options.gravity_mps2);
   SimTK::Force::Custom(forces, new AppliedForces(this));
   bodies.clear();
+  link_mass.assign(model.links().size(), 0.0);
+  link_com.assign(model.links().size(), Vec3(0));
   for (std::size_t l = 0; l < model.links().size(); ++l) {
     const LinkSpec& link = model.links()[l];
     const Real scale = mass_scale[l];
+    link_mass[l] = scale * link.mass;
+    link_com[l] = to_vec3(link.com);
     SimTK::Mat33 inertia;
     for (int r = 0; r < 3; ++r)
       for (int c = 0; c < 3; ++c) inertia(r, c) = scale * link.inertia(r, c);
@@ -280,6 +286,9 @@ void SimWorld::Impl::build() {
   system->realizeTopology();
   state = system->getDefaultState();
   system->realizeModel(state);
+  quaternion_q.clear();
+  quaternion_q.push_back(static_cast<int>(bodies[0].getFirstQIndex(state)));
+  if (has_ball) quaternion_q.push_back(static_cast<int>(ball.getFirstQIndex(state)));
   u_next.resize(state.getNU());
   qdot.resize(state.getNQ());
 }
@@ -388,8 +397,15 @@ void SimWorld::Impl::compute_forces() {
   left_contact = {};
   right_contact = {};
   other_contacts = 0;
-  for (SpatialVec& f : body_force) f = SpatialVec(Vec3(0), Vec3(0));
-  ball_force = SpatialVec(Vec3(0), Vec3(0));
+  // Gravity at each centre of mass (applied here rather than by Force::Gravity, whose cache
+  // crashed on this Simbody build when driven by the fixed-step loop).
+  const Real g = options.gravity_mps2;
+  for (std::size_t l = 0; l < body_force.size(); ++l) {
+    const Vec3 weight(0, 0, -g * link_mass[l]);
+    const Vec3 r = bodies[l].getBodyTransform(state).R() * link_com[l];
+    body_force[l] = SpatialVec(r % weight, weight);
+  }
+  ball_force = SpatialVec(Vec3(0), Vec3(0, 0, has_ball ? -g * options.ball.mass_kg : 0.0));
   for (ContactPoint& point : points) {
     const auto l = static_cast<std::size_t>(point.link);
     ground_contact(point, bodies[l].getBodyTransform(state), bodies[l].getBodyVelocity(state),
@@ -414,10 +430,16 @@ bool SimWorld::Impl::step_once() {
     u_next = matter->getU(state);
     u_next += h * udot;
     matter->multiplyByN(state, false, u_next, qdot);
-    matter->updQ(state) += h * qdot;
+    SimTK::Vector& q_all = matter->updQ(state);
+    q_all += h * qdot;
+    for (int first : quaternion_q) {  // keep the free bodies' quaternions unit length
+      Real norm = 0.0;
+      for (int k = 0; k < 4; ++k) norm += q_all[first + k] * q_all[first + k];
+      norm = std::sqrt(norm);
+      for (int k = 0; k < 4; ++k) q_all[first + k] /= norm;
+    }
     matter->updU(state) = u_next;
     state.updTime() += h;
-    matter->normalizeQuaternions(state);
   } catch (const std::exception& e) {
     std::string what = e.what();
     std::replace(what.begin(), what.end(), '\n', ' ');
@@ -541,10 +563,22 @@ Status SimWorld::reset(const ResetSpec& spec) {
     w.bodies[link].setOneQ(s, 0, spec.joint_angles[i]);
   }
   const Eigen::Quaterniond qt = spec.torso_orientation.normalized();
-  const SimTK::Rotation rot(SimTK::Quaternion(qt.w(), qt.x(), qt.y(), qt.z()));
+  SimTK::Rotation rot(SimTK::Quaternion(qt.w(), qt.x(), qt.y(), qt.z()));
   Vec3 torso(spec.torso_position.x(), spec.torso_position.y(), 0.0);
   w.bodies[0].setQToFitTransform(s, Transform(rot, torso));
   w.system->realize(s, Stage::Position);
+  if (spec.level_feet && w.left_foot >= 0 && w.right_foot >= 0) {
+    const Vec3 up = w.bodies[static_cast<std::size_t>(w.left_foot)].getBodyRotation(s).z() +
+                    w.bodies[static_cast<std::size_t>(w.right_foot)].getBodyRotation(s).z();
+    const SimTK::UnitVec3 n(up);
+    const Vec3 axis = n % Vec3(0, 0, 1);
+    const Real angle = std::atan2(axis.norm(), n[2]);
+    if (axis.norm() > 1e-12) {
+      rot = SimTK::Rotation(angle, SimTK::UnitVec3(axis)) * rot;
+      w.bodies[0].setQToFitTransform(s, Transform(rot, torso));
+      w.system->realize(s, Stage::Position);
+    }
+  }
   if (std::isfinite(spec.torso_position.z())) {
     torso[2] = spec.torso_position.z();
   } else {
@@ -702,6 +736,14 @@ std::vector<double> SimWorld::joint_angles() const {
   for (const JointSpec& j : w.model.joints())
     out.push_back(w.bodies[static_cast<std::size_t>(j.child_link)].getOneQ(w.state, 0));
   return out;
+}
+
+double SimWorld::servo_joint_angle(std::size_t index) const {
+  const Impl& w = *impl_;
+  if (index >= hal::kServoCount) return 0.0;
+  const auto link = static_cast<std::size_t>(
+      w.model.joints()[static_cast<std::size_t>(w.servo_joint[index])].child_link);
+  return w.bodies[link].getOneQ(w.state, 0);
 }
 
 void SimWorld::set_joint_speed(std::size_t joint, double speed) {

@@ -114,6 +114,9 @@ struct ResetSpec {
   /// Torso (root link) position; a NaN z means "lowest contact point resting on the grass".
   Eigen::Vector3d torso_position{0.0, 0.0, std::numeric_limits<double>::quiet_NaN()};
   Eigen::Quaterniond torso_orientation = Eigen::Quaterniond::Identity();
+  /// Tilt the torso (after torso_orientation) so that the mean sole normal points straight up:
+  /// the Stand pose carries a forward body tilt, so this is how the robot stands on both feet.
+  bool level_feet = true;
   Eigen::Vector3d ball_position{0.3, 0.0, std::numeric_limits<double>::quiet_NaN()};  ///< NaN z: on the grass
   Eigen::Vector3d ball_velocity = Eigen::Vector3d::Zero();
   /// The robot standing in the Stand pose of igus.md 3.4.
@@ -201,6 +204,8 @@ class SimWorld {
   std::vector<Eigen::Isometry3d> link_poses() const;
   /// Present angles of the model's joints (all of them, in model().joints() order).
   std::vector<double> joint_angles() const;
+  /// True (unquantised) angle of servo `index`'s joint [rad].
+  double servo_joint_angle(std::size_t index) const;
   /// Test hook: sets the speed of a model joint (to provoke an exploding state).
   void set_joint_speed(std::size_t joint, double speed);
 
