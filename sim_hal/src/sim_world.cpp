@@ -97,6 +97,9 @@ struct SimWorld::Impl {
   SimTK::State state;
   SimTK::Vector u_next, qdot;
   std::vector<int> quaternion_q;  ///< first q index of each free body's quaternion
+  std::vector<int> joint_q, joint_u;
+  std::vector<int> body_index;  ///< per model link: its MobilizedBodyIndex
+  int ball_index = 0;  ///< per model joint: index into the matter's q and u
 
   // Per model joint.
   std::vector<int> joint_servo;  ///< servo index or -1
@@ -116,6 +119,10 @@ struct SimWorld::Impl {
   std::vector<SpatialVec> body_force;  ///< per model link, accumulated each step
   std::vector<Real> link_mass;         ///< after randomisation [kg]
   std::vector<Vec3> link_com;          ///< link frame [m]
+  std::vector<Real> link_reach;        ///< farthest contact point from the link origin [m]
+  std::vector<Transform> link_x;       ///< per step: link poses
+  std::vector<SpatialVec> link_v;      ///< per step: link velocities
+  std::vector<char> link_near;         ///< per step: link may touch the field
   SpatialVec ball_force{Vec3(0), Vec3(0)};
   int left_foot = -1, right_foot = -1;
   FootContact left_contact, right_contact;
@@ -160,13 +167,10 @@ class AppliedForces final : public SimTK::Force::Custom::Implementation {
   void calcForce(const SimTK::State& state, SimTK::Vector_<SpatialVec>& body_forces,
                  SimTK::Vector_<Vec3>&, SimTK::Vector& mobility_forces) const override {
     const SimWorld::Impl& w = *world_;
-    for (std::size_t j = 0; j < w.model.joints().size(); ++j) {
-      const auto child = static_cast<std::size_t>(w.model.joints()[j].child_link);
-      w.bodies[child].applyOneMobilityForce(state, 0, w.joint_tau[j], mobility_forces);
-    }
-    for (std::size_t l = 0; l < w.bodies.size(); ++l)
-      body_forces[w.bodies[l].getMobilizedBodyIndex()] += w.body_force[l];
-    if (w.has_ball) body_forces[w.ball.getMobilizedBodyIndex()] += w.ball_force;
+    (void)state;
+    for (std::size_t j = 0; j < w.joint_u.size(); ++j) mobility_forces[w.joint_u[j]] += w.joint_tau[j];
+    for (std::size_t l = 0; l < w.body_index.size(); ++l) body_forces[w.body_index[l]] += w.body_force[l];
+    if (w.has_ball) body_forces[w.ball_index] += w.ball_force;
   }
   Real calcPotentialEnergy(const SimTK::State&) const override { return 0.0; }
 
@@ -228,6 +232,14 @@ Status SimWorld::Impl::configure() {
     }
   }
   body_force.assign(model.links().size(), SpatialVec(Vec3(0), Vec3(0)));
+  link_reach.assign(model.links().size(), 0.0);
+  for (const ContactPoint& p : points) {
+    const auto l = static_cast<std::size_t>(p.link);
+    link_reach[l] = std::max(link_reach[l], p.station.norm() + p.radius + 1e-3);
+  }
+  link_x.assign(model.links().size(), Transform());
+  link_v.assign(model.links().size(), SpatialVec(Vec3(0), Vec3(0)));
+  link_near.assign(model.links().size(), 0);
   mass_scale.assign(model.links().size(), 1.0);
   strength.fill(1.0);
   return Status::ok();
@@ -286,6 +298,16 @@ void SimWorld::Impl::build() {
   system->realizeTopology();
   state = system->getDefaultState();
   system->realizeModel(state);
+  joint_q.clear();
+  joint_u.clear();
+  body_index.clear();
+  for (const SimTK::MobilizedBody& b : bodies) body_index.push_back(static_cast<int>(b.getMobilizedBodyIndex()));
+  if (has_ball) ball_index = static_cast<int>(ball.getMobilizedBodyIndex());
+  for (const JointSpec& j : model.joints()) {
+    const SimTK::MobilizedBody& mb = bodies[static_cast<std::size_t>(j.child_link)];
+    joint_q.push_back(static_cast<int>(mb.getFirstQIndex(state)));
+    joint_u.push_back(static_cast<int>(mb.getFirstUIndex(state)));
+  }
   quaternion_q.clear();
   quaternion_q.push_back(static_cast<int>(bodies[0].getFirstQIndex(state)));
   if (has_ball) quaternion_q.push_back(static_cast<int>(ball.getFirstQIndex(state)));
@@ -344,10 +366,11 @@ void SimWorld::Impl::ball_robot_contact() {
   const ContactOptions& c = options.contact;
   const Real radius = options.ball.radius_m;
   const Transform& xb = ball.getBodyTransform(state);
+  if ((xb.p() - link_x[0].p()).normSqr() > 1.2 * 1.2) return;  // far from the robot
   const SpatialVec& vb = ball.getBodyVelocity(state);
   for (const LinkShape& shape : shapes) {
     const auto l = static_cast<std::size_t>(shape.link);
-    const Transform& xl = bodies[l].getBodyTransform(state);
+    const Transform& xl = link_x[l];
     if ((xb.p() - xl.p()).normSqr() > 0.5 * 0.5) continue;
     const Transform x_shape = xl * shape.pose;
     const Vec3 local = ~x_shape * xb.p();  // ball centre in the shape frame
@@ -366,7 +389,7 @@ void SimWorld::Impl::ball_robot_contact() {
     const Vec3 normal = x_shape.R() * (gap / dist);  // from link to ball, world frame
     const Vec3 at = x_shape * closest + (shape.is_box ? Vec3(0) : normal * shape.radius);
     const Vec3 v_ball = vb[1] + (vb[0] % (at - xb.p()));
-    const SpatialVec& vl = bodies[l].getBodyVelocity(state);
+    const SpatialVec& vl = link_v[l];
     const Vec3 v_link = vl[1] + (vl[0] % (at - xl.p()));
     const Real approach = ~(v_ball - v_link) * normal;
     const Real fn = std::max<Real>(0.0, c.ball_robot_stiffness_n_m * (reach - dist) -
@@ -381,10 +404,11 @@ void SimWorld::Impl::ball_robot_contact() {
 
 void SimWorld::Impl::compute_forces() {
   // Servo and passive joint torques.
+  const SimTK::Vector& q_all = matter->getQ(state);
+  const SimTK::Vector& u_all = matter->getU(state);
   for (std::size_t j = 0; j < model.joints().size(); ++j) {
-    const SimTK::MobilizedBody& mb = bodies[static_cast<std::size_t>(model.joints()[j].child_link)];
-    const Real q = mb.getOneQ(state, 0);
-    const Real w = mb.getOneU(state, 0);
+    const Real q = q_all[joint_q[j]];
+    const Real w = u_all[joint_u[j]];
     const int servo = joint_servo[j];
     if (servo >= 0) {
       joint_tau[j] = servos[static_cast<std::size_t>(servo)].step(q, w, h);
@@ -397,19 +421,28 @@ void SimWorld::Impl::compute_forces() {
   left_contact = {};
   right_contact = {};
   other_contacts = 0;
+  // Body kinematics fetched once per link; links far above the grass are skipped whole.
+  for (std::size_t l = 0; l < bodies.size(); ++l) {
+    link_x[l] = bodies[l].getBodyTransform(state);
+    link_v[l] = bodies[l].getBodyVelocity(state);
+    link_near[l] = link_x[l].p()[2] - link_reach[l] <= grass_top();
+  }
   // Gravity at each centre of mass (applied here rather than by Force::Gravity, whose cache
   // crashed on this Simbody build when driven by the fixed-step loop).
   const Real g = options.gravity_mps2;
   for (std::size_t l = 0; l < body_force.size(); ++l) {
     const Vec3 weight(0, 0, -g * link_mass[l]);
-    const Vec3 r = bodies[l].getBodyTransform(state).R() * link_com[l];
+    const Vec3 r = link_x[l].R() * link_com[l];
     body_force[l] = SpatialVec(r % weight, weight);
   }
   ball_force = SpatialVec(Vec3(0), Vec3(0, 0, has_ball ? -g * options.ball.mass_kg : 0.0));
   for (ContactPoint& point : points) {
     const auto l = static_cast<std::size_t>(point.link);
-    ground_contact(point, bodies[l].getBodyTransform(state), bodies[l].getBodyVelocity(state),
-                   body_force[l]);
+    if (!link_near[l]) {
+      point.touching = false;
+      continue;
+    }
+    ground_contact(point, link_x[l], link_v[l], body_force[l]);
   }
   if (has_ball) {
     const SpatialVec& vb = ball.getBodyVelocity(state);
