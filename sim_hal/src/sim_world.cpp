@@ -728,6 +728,13 @@ GroundTruth SimWorld::ground_truth() const {
   return g;
 }
 
+Eigen::Isometry3d SimWorld::torso_pose() const {
+  Impl& w = *impl_;
+  if (w.status == WorldStatus::kNonFinite) return Eigen::Isometry3d::Identity();
+  w.system->realize(w.state, Stage::Position);
+  return to_isometry(w.bodies[0].getBodyTransform(w.state));
+}
+
 std::uint64_t SimWorld::state_hash() const {
   const Impl& w = *impl_;
   std::uint64_t hash = 0xcbf29ce484222325ULL;
