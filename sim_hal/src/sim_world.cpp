@@ -472,7 +472,7 @@ bool SimWorld::Impl::step_once() {
       for (int k = 0; k < 4; ++k) q_all[first + k] /= norm;
     }
     matter->updU(state) = u_next;
-    state.updTime() += h;
+    state.updTime() = static_cast<Real>(steps + 1) * h;  // no round-off drift
   } catch (const std::exception& e) {
     std::string what = e.what();
     std::replace(what.begin(), what.end(), '\n', ' ');
