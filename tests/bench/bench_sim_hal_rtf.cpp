@@ -115,7 +115,7 @@ void BM_SteppingThreads(benchmark::State& state) {
     if (!world->advance_period()) (void)world->reset(stride::sim::ResetSpec::standing());
     sim_seconds += 0.01;
   }
-  state.counters["rtf"] = benchmark::Counter(sim_seconds, benchmark::Counter::kIsRate);
+  state.counters["rtf"] = benchmark::Counter(sim_seconds, benchmark::Counter::kIsRate | benchmark::Counter::kAvgThreads);
   state.counters["rtf_total"] = benchmark::Counter(sim_seconds, benchmark::Counter::kIsRate);
 }
 
