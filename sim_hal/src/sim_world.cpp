@@ -289,12 +289,8 @@ void SimWorld::Impl::build() {
     if (servo >= 0) {
       const MotorCurve curve =
           motor_curve(servo_models[static_cast<std::size_t>(servo)], options.battery_voltage_v);
-      // Backward-Euler treatment of the viscous joint friction b: (M + h D) du = h (f - D u)
-      // is the explicit step with h*b added to the joint's armature (D = diag(b)), and f
-      // still carrying the full -b u. It vanishes as h -> 0 and keeps b stable at large steps.
-      const Real implicit = options.servo.implicit_viscous_friction ? h * options.servo.viscous_friction : 0.0;
       const Real reflected =
-          options.servo.rotor_inertia_kg_m2 * curve.gear_ratio * curve.gear_ratio + implicit;
+          options.servo.rotor_inertia_kg_m2 * curve.gear_ratio * curve.gear_ratio;
       about_origin = add_rotor_inertia(about_origin, axis, reflected);
     }
     SimTK::Body::Rigid body(SimTK::MassProperties(mass, com, about_origin));
@@ -599,8 +595,7 @@ Status SimWorld::reset(const ResetSpec& spec) {
     p.kp_per_register = w.options.servo.kp_per_register;
     p.viscous_friction = w.options.servo.viscous_friction;
     p.coulomb_friction = w.options.servo.coulomb_friction;
-    p.reflected_inertia = w.options.servo.rotor_inertia_kg_m2 * curve.gear_ratio * curve.gear_ratio +
-                          (w.options.servo.implicit_viscous_friction ? w.h * w.options.servo.viscous_friction : 0.0);
+    p.reflected_inertia = w.options.servo.rotor_inertia_kg_m2 * curve.gear_ratio * curve.gear_ratio;
     p.limited = joint.limited;
     p.lower = joint.lower;
     p.upper = joint.upper;

@@ -78,9 +78,6 @@ struct ServoOptions {
   double coulomb_friction = 0.5;        ///< seed 0.5 [N m]
   /// Motor rotor inertia before the gearbox [kg m^2]; reflected as J N^2 (N = 200 or 225).
   double rotor_inertia_kg_m2 = 6.0e-8;
-  /// Treat the viscous friction implicitly (backward Euler): adds h * viscous_friction to the
-  /// joint's armature while the explicit force keeps the full -b w (see README).
-  bool implicit_viscous_friction = true;
 };
 
 /// Seeded randomisation applied at every reset (relative ranges are uniform +-range).
