@@ -83,7 +83,7 @@ void draw_robot(std::string& svg, const View& v, const RobotModel& model, const 
     if (cx > left - 40 && cx < right + 40)
       svg += "<circle cx=\"" + num(cx) + "\" cy=\"" + num(v.py(s.ball)) + "\" r=\"" +
              num(kScale * ball_radius) +
-             "\" fill=\"#ffffff\" stroke=\"#000000\" stroke-width=\"1.5\"/>\n";
+             "\" fill=\"#ffffff\" fill-opacity=\"0.3\" stroke=\"#000000\" stroke-width=\"1.5\"/>\n";
   }
 }
 
