@@ -294,7 +294,11 @@ void DynamixelRobot::read(SensorFrame& out) noexcept {
         }
         if (received == count) break;
         const std::ptrdiff_t r = stream_->read_some(rx_, deadline);
-        if (r <= 0) break;
+        if (r <= 0) {
+          // Nothing more will come: a damaged length may hide complete packets behind it.
+          if (parser_.skip_incomplete()) continue;
+          break;
+        }
         diagnostics_.bytes_rx += static_cast<std::uint64_t>(r);
         (void)parser_.feed(std::span<const std::uint8_t>(rx_.data(), static_cast<std::size_t>(r)));
       }

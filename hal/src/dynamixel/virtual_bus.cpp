@@ -199,7 +199,10 @@ std::uint8_t VirtualBus::status_error(Device& device) {
     const int load = std::abs(units::signed_from_bit10(
         static_cast<std::uint16_t>(load_value(device.mem, mx1::kPresentLoad, 2))));
     const int limit = static_cast<int>(load_value(device.mem, mx1::kTorqueLimit, 2));
-    if (device.mem[mx1::kTorqueEnable] != 0 && limit > 0 && load >= limit) {
+    // Overload: the load sits at the torque limit and the servo cannot move (stalled).
+    const int speed = std::abs(units::signed_from_bit10(
+        static_cast<std::uint16_t>(load_value(device.mem, mx1::kPresentSpeed, 2))));
+    if (device.mem[mx1::kTorqueEnable] != 0 && limit > 0 && load >= limit && speed == 0) {
       e |= error_bits::kOverload;
     }
   }
@@ -338,9 +341,11 @@ void VirtualBus::handle(const Packet& packet, std::vector<std::uint8_t>& out,
     return;
   }
   if (packet.instruction == instruction::kBulkRead && broadcast) {
-    ++counters_.bulk_reads;
     if (options_.lockstep) physics_->advance(static_cast<double>(options_.period_ns) * 1e-9);
-    if (params.empty() || (params.size() - 1) % 3 != 0) return;
+    if (params.empty() || (params.size() - 1) % 3 != 0) {
+      ++counters_.bulk_reads;
+      return;
+    }
     for (std::size_t k = 1; k + 3 <= params.size(); k += 3) {
       Device* d = find(params[k + 1]);
       if (d == nullptr || d->mem[mx1::kStatusReturnLevel] == 0) break;  // the chain stops here
@@ -357,6 +362,7 @@ void VirtualBus::handle(const Packet& packet, std::vector<std::uint8_t>& out,
       }
       if (!sent) break;  // the next device waits for this one's status packet forever
     }
+    ++counters_.bulk_reads;
     return;
   }
   if (broadcast) {

@@ -42,6 +42,15 @@ class PacketParser {
   /// needed. Call repeatedly after each feed().
   bool next(Packet& out) noexcept;
 
+  /// Gives up on the incomplete packet at the front of the buffer (its declared length may have
+  /// been damaged) by dropping one byte, so that next() searches again. Call when no more bytes
+  /// will come (a read timed out). Returns false when the buffer is empty.
+  bool skip_incomplete() noexcept {
+    if (head_ == tail_) return false;
+    drop(1);
+    return true;
+  }
+
   /// Drops buffered bytes (e.g. before a new transaction).
   void reset() noexcept { head_ = tail_ = 0; }
 
