@@ -182,6 +182,10 @@ Status DynamixelRobot::start() {
 }
 
 Tick DynamixelRobot::sleep_until(Tick tick) noexcept {
+  if (!options_.self_paced) {
+    tick_ = tick;
+    return tick;
+  }
   if (start_ns_ < 0) start_ns_ = monotonic_ns() - tick * options_.period_ns;
   const std::int64_t target = start_ns_ + tick * options_.period_ns;
   const timespec ts{static_cast<time_t>(target / 1'000'000'000LL),
@@ -190,9 +194,6 @@ Tick DynamixelRobot::sleep_until(Tick tick) noexcept {
   }
   const std::int64_t late = monotonic_ns() - target;
   tick_ = tick + (late > 0 ? late / options_.period_ns : 0);
-  cycle_start_ns_ = monotonic_ns();
-  diagnostics_.last_tx_ns = 0;
-  diagnostics_.last_rx_ns = 0;
   return tick_;
 }
 
@@ -220,10 +221,10 @@ void DynamixelRobot::decode_cm730(const std::uint8_t* data) noexcept {
 }
 
 void DynamixelRobot::read(SensorFrame& out) noexcept {
-  if (start_ns_ < 0) {
-    start_ns_ = monotonic_ns();
-    cycle_start_ns_ = start_ns_;
-  }
+  // The cycle's bus budget starts with its first transaction, the BULK_READ.
+  cycle_start_ns_ = monotonic_ns();
+  diagnostics_.last_tx_ns = 0;
+  diagnostics_.last_rx_ns = 0;
   // Bulk-read list: active devices in order_, then skipped devices due for a retry.
   std::array<BulkReadEntry, kDevices> entries{};
   std::array<std::uint8_t, kDevices> entry_index{};

@@ -20,6 +20,7 @@
 // retry_interval_ticks. Every transaction's deadline is its bytes' wire time at the baud rate
 // plus the devices' return delays plus margin_ns, and never later than bus_budget_fraction of
 // the period after the cycle started: the loop is never held past its budget.
+// The budget of a cycle starts at read(); TX/RX times of the cycle are in diagnostics().
 // Real-time: after create(), no allocation, no exceptions; blocking is bounded by deadlines.
 #pragma once
 
@@ -50,6 +51,9 @@ class DynamixelRobot final : public Robot {
     std::uint32_t refresh_interval_ticks = 100;
     int ping_retries = 3;
     bool allow_missing = false;
+    /// true: sleep_until() waits on CLOCK_MONOTONIC itself. false: it only records the tick
+    /// (an outer pacer such as the firmware's RealtimeRobot does the waiting).
+    bool self_paced = true;
   };
 
   /// Runs the start-up sequence on `stream`. The error names missing devices / wrong models.
