@@ -349,31 +349,32 @@ void DynamixelRobot::read(SensorFrame& out) noexcept {
 
 void DynamixelRobot::write(const CommandFrame& commands) noexcept {
   std::array<std::uint8_t, kServoCount*(kSyncLength + 1)> records{};
+  std::array<std::uint8_t, kServoCount * 3> gain_records{};
   std::array<std::uint8_t, kServoCount * 2> torque_records{};
   std::size_t used = 0;
+  std::size_t gains_used = 0;
   std::size_t torque_used = 0;
   const Tick tick = commands.tick;
   for (std::size_t i = 0; i < kServoCount; ++i) {
     const ServoCommand& c = commands.servos[i];
+    const ServoCalibration& cal = options_.calibration[i];
     const bool finite = std::isfinite(c.position_rad);
+    // [P, reserved, goal L, goal H, speed L, speed H, torque limit L, torque limit H]
     std::array<std::uint8_t, kSyncLength> bytes = sent_bytes_[i];
-    bytes[0] = units::gain_to_register(c.d_gain);
-    bytes[1] = units::gain_to_register(c.i_gain);
-    bytes[2] = units::gain_to_register(c.p_gain);
-    bytes[3] = 0;
+    bytes[0] = units::gain_to_register(c.p_gain);
+    bytes[1] = 0;
     if (finite || !sent_once_[i]) {
       const std::uint16_t goal =
-          finite ? units::position_to_ticks(c.position_rad, options_.calibration[i])
-                 : units::position_to_ticks(state_.servos[i].position_rad, options_.calibration[i]);
-      bytes[4] = static_cast<std::uint8_t>(goal & 0xFFU);
-      bytes[5] = static_cast<std::uint8_t>(goal >> 8);
+          units::position_to_ticks(finite ? c.position_rad : state_.servos[i].position_rad, cal);
+      bytes[2] = static_cast<std::uint8_t>(goal & 0xFFU);
+      bytes[3] = static_cast<std::uint8_t>(goal >> 8);
     }
     const std::uint16_t speed = units::moving_speed_to_register(c.moving_speed_rad_s);
-    bytes[6] = static_cast<std::uint8_t>(speed & 0xFFU);
-    bytes[7] = static_cast<std::uint8_t>(speed >> 8);
+    bytes[4] = static_cast<std::uint8_t>(speed & 0xFFU);
+    bytes[5] = static_cast<std::uint8_t>(speed >> 8);
     const std::uint16_t limit = units::torque_limit_to_register(c.torque_limit);
-    bytes[8] = static_cast<std::uint8_t>(limit & 0xFFU);
-    bytes[9] = static_cast<std::uint8_t>(limit >> 8);
+    bytes[6] = static_cast<std::uint8_t>(limit & 0xFFU);
+    bytes[7] = static_cast<std::uint8_t>(limit >> 8);
     const bool refresh = options_.refresh_interval_ticks > 0 &&
                          tick - sent_tick_[i] >= static_cast<Tick>(options_.refresh_interval_ticks);
     if (!sent_once_[i] || bytes != sent_bytes_[i] || refresh) {
@@ -383,6 +384,15 @@ void DynamixelRobot::write(const CommandFrame& commands) noexcept {
       sent_tick_[i] = tick;
       sent_once_[i] = true;
     }
+    const std::array<std::uint8_t, 2> gains{units::gain_to_register(c.d_gain),
+                                            units::gain_to_register(c.i_gain)};
+    if (!gains_sent_once_[i] || gains != gains_sent_[i]) {
+      gain_records[gains_used++] = device_id(i);
+      gain_records[gains_used++] = gains[0];
+      gain_records[gains_used++] = gains[1];
+      gains_sent_[i] = gains;
+      gains_sent_once_[i] = true;
+    }
     const std::int8_t torque = (c.torque_enable && finite) ? 1 : 0;
     if (torque != torque_sent_[i]) {
       torque_records[torque_used++] = device_id(i);
@@ -390,27 +400,24 @@ void DynamixelRobot::write(const CommandFrame& commands) noexcept {
       torque_sent_[i] = torque;
     }
     ServoState& s = state_.servos[i];
-    s.goal_position_rad =
-        units::ticks_to_position(read_u16(bytes.data() + 4), options_.calibration[i]);
-    s.d_gain = bytes[0];
-    s.i_gain = bytes[1];
-    s.p_gain = bytes[2];
-    s.torque_limit = units::torque_limit_from_register(read_u16(bytes.data() + 8));
-    s.torque_enabled = torque == 1;
+    s.goal_position_rad = units::ticks_to_position(read_u16(bytes.data() + 2), cal);
+    s.p_gain = bytes[0];
+    s.d_gain = gains_sent_[i][0];
+    s.i_gain = gains_sent_[i][1];
+    s.torque_limit = units::torque_limit_from_register(read_u16(bytes.data() + 6));
+    s.torque_enabled = torque_sent_[i] == 1;
   }
   const std::uint32_t baud = stream_->baud();
-  if (used > 0) {
-    const std::size_t n =
-        v1::encode_sync_write(tx_, kSyncAddress, kSyncLength, std::span(records.data(), used));
+  auto sync_write = [&](std::uint8_t address, std::uint8_t length, std::size_t count,
+                        const std::uint8_t* data) {
+    if (count == 0) return;
+    const std::size_t n = v1::encode_sync_write(tx_, address, length, std::span(data, count));
     (void)send(std::span(tx_.data(), n),
                monotonic_ns() + wire_time_ns(n, baud) + options_.margin_ns);
-  }
-  if (torque_used > 0) {
-    const std::size_t n = v1::encode_sync_write(tx_, mx1::kTorqueEnable, 1,
-                                                std::span(torque_records.data(), torque_used));
-    (void)send(std::span(tx_.data(), n),
-               monotonic_ns() + wire_time_ns(n, baud) + options_.margin_ns);
-  }
+  };
+  sync_write(kGainAddress, 2, gains_used, gain_records.data());
+  sync_write(kSyncAddress, kSyncLength, used, records.data());
+  sync_write(mx1::kTorqueEnable, 1, torque_used, torque_records.data());
   diagnostics_.max_tx_ns = std::max(diagnostics_.max_tx_ns, diagnostics_.last_tx_ns);
   ++diagnostics_.cycles;
 }

@@ -97,9 +97,18 @@ TEST(DynamixelRobot, SyncWriteCarriesOnlyChangedServos) {
   command.servos[9].p_gain = 40;
   command.tick = 3;
   rig.robot->write(command);
-  // One SYNC_WRITE with 2 records: 6 + 2 + 2 * 11 = 30 bytes.
-  EXPECT_EQ(rig.robot->diagnostics().bytes_tx - before, 30U);
+  // One SYNC_WRITE from P gain with 2 records: 6 + 2 + 2 * 9 = 26 bytes.
+  EXPECT_EQ(rig.robot->diagnostics().bytes_tx - before, 26U);
   EXPECT_EQ(rig.bus->peek(10, 28), 40);
+  EXPECT_EQ(rig.bus->peek(5, 30) | (rig.bus->peek(5, 31) << 8),
+            units::position_to_ticks(0.5, rig.options.calibration[4]));
+  // A D gain change goes in its own 2-byte SYNC_WRITE: 6 + 2 + 3 = 11 bytes.
+  before = rig.robot->diagnostics().bytes_tx;
+  command.servos[2].d_gain = 8;
+  command.tick = 4;
+  rig.robot->write(command);
+  EXPECT_EQ(rig.robot->diagnostics().bytes_tx - before, 11U);
+  EXPECT_EQ(rig.bus->peek(3, 26), 8);
 }
 
 TEST(DynamixelRobot, NamesMissingDevicesAtStartUp) {
