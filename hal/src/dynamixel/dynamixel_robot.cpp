@@ -293,7 +293,9 @@ void DynamixelRobot::read(SensorFrame& out) noexcept {
             if (entries[k].id == parser_.last_bad_id()) corrupt[k] = true;
           }
         }
-        if (received == count) break;
+        // Replies come in list order: once the last device has answered, a missing earlier
+        // reply is lost for good, so there is nothing left to wait for.
+        if (received == count || got[count - 1]) break;
         const std::ptrdiff_t r = stream_->read_some(rx_, deadline);
         if (r <= 0) {
           // Nothing more will come: a damaged length may hide complete packets behind it.
