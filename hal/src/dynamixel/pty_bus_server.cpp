@@ -50,7 +50,7 @@ Status PtyBusServer::create(const std::string& link_path, std::unique_ptr<PtyBus
   std::unique_ptr<PtyBusServer> server(new PtyBusServer());
   server->master_fd_ = open_master(server->slave_path_);
   if (server->master_fd_ < 0) {
-    return Status::error(std::string("vbus: cannot open a pseudo-terminal: ") +
+    return Status::error(std::string("cannot open a pseudo-terminal: ") +
                          std::strerror(errno));
   }
   server->slave_keepalive_fd_ = ::open(server->slave_path_.c_str(), O_RDWR | O_NOCTTY | O_CLOEXEC);
@@ -64,12 +64,12 @@ Status PtyBusServer::create(const std::string& link_path, std::unique_ptr<PtyBus
   struct stat st {};
   if (::lstat(link_path.c_str(), &st) == 0) {
     if (!S_ISLNK(st.st_mode)) {
-      return Status::error("vbus: " + link_path + " exists and is not a symlink");
+      return Status::error(link_path + " exists and is not a symlink");
     }
     ::unlink(link_path.c_str());
   }
   if (::symlink(server->slave_path_.c_str(), link_path.c_str()) != 0) {
-    return Status::error("vbus: cannot create link " + link_path + ": " + std::strerror(errno));
+    return Status::error("cannot create link " + link_path + ": " + std::strerror(errno));
   }
   server->link_path_ = link_path;
   out = std::move(server);
@@ -91,13 +91,13 @@ Status PtyBusServer::serve(VirtualBus& bus, const std::atomic<bool>& stop) {
     const int r = ::poll(&pfd, 1, 50);
     if (r < 0) {
       if (errno == EINTR) continue;
-      return Status::error(std::string("vbus: poll: ") + std::strerror(errno));
+      return Status::error(std::string("pseudo-terminal poll: ") + std::strerror(errno));
     }
     if (r == 0 || (pfd.revents & POLLIN) == 0) continue;
     const ssize_t n = ::read(master_fd_, in.data(), in.size());
     if (n < 0) {
       if (errno == EINTR || errno == EAGAIN || errno == EIO) continue;
-      return Status::error(std::string("vbus: read: ") + std::strerror(errno));
+      return Status::error(std::string("pseudo-terminal read: ") + std::strerror(errno));
     }
     out.clear();
     std::int64_t delay_us = 0;
@@ -115,7 +115,7 @@ Status PtyBusServer::serve(VirtualBus& bus, const std::atomic<bool>& stop) {
       const ssize_t w = ::write(master_fd_, out.data() + done, out.size() - done);
       if (w < 0) {
         if (errno == EINTR || errno == EAGAIN) continue;
-        return Status::error(std::string("vbus: write: ") + std::strerror(errno));
+        return Status::error(std::string("pseudo-terminal write: ") + std::strerror(errno));
       }
       done += static_cast<std::size_t>(w);
     }
