@@ -82,7 +82,7 @@ PtyBusServer::~PtyBusServer() {
   if (master_fd_ >= 0) ::close(master_fd_);
 }
 
-Status PtyBusServer::serve(VirtualBus& bus, const std::atomic<bool>& stop) {
+Status PtyBusServer::serve(BusResponder& bus, const std::atomic<bool>& stop) {
   std::array<std::uint8_t, 4096> in{};
   std::vector<std::uint8_t> out;
   out.reserve(8192);

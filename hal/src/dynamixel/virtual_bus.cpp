@@ -291,7 +291,7 @@ void VirtualBus::advance_time() {
   }
   double dt = static_cast<double>(now - last_advance_ns_) * 1e-9;
   last_advance_ns_ = now;
-  dt = std::min(dt, 0.1);  // after a long idle gap, do not integrate seconds at once
+  dt = std::min(dt, 2.0);  // after a long idle gap, do not integrate minutes at once
   while (dt > 1e-9) {
     const double step = std::min(dt, 0.005);
     physics_->advance(step);

@@ -17,6 +17,7 @@
 #include "stride/firmware/dynamixel_config.hpp"
 #include "stride/hal/dynamixel/pty_bus_server.hpp"
 #include "stride/hal/dynamixel/virtual_bus.hpp"
+#include "stride/hal/dynamixel/virtual_bus_v2.hpp"
 #include "stride/host_tools/command.hpp"
 
 namespace {
@@ -65,6 +66,9 @@ int run_vbus(int argc, char** argv) {
           "fault",
           "inject a fault (repeatable, or comma-separated): drop:P, corrupt:P (per reply), "
           "silent:ID, overheat:ID, start:CYCLES (faults act after that many BULK_READs), seed:N")
+      .option("protocol",
+              "1: CM730 + 20 MX servos (the robot's bus); 2: 20 MX(2.0) servos, no CM730", true,
+              "1")
       .option("lockstep",
               "advance the servo model one period per BULK_READ (deterministic); "
               "default: by wall-clock time",
@@ -84,7 +88,8 @@ int run_vbus(int argc, char** argv) {
         "usage: stride vbus --link PATH [--fault KIND:VALUE]... [--lockstep] [--json]\n\n"
         "Serves an emulated CM730 (ID 200) and 20 MX-64/MX-106 servos (IDs 1-20, models from\n"
         "the servo table) with their protocol 1.0 control tables on a pseudo-terminal until\n"
-        "SIGINT/SIGTERM. Servo motion: first-order model.\n\n%s",
+        "SIGINT/SIGTERM (--protocol 2: 20 MX(2.0) servos, no CM730; faults other than\n"
+        "overheat apply to protocol 1 only). Servo motion: first-order model.\n\n%s",
         args.help().c_str());
     return 0;
   }
@@ -97,6 +102,9 @@ int run_vbus(int argc, char** argv) {
   if (Status s = args.get_double("period-ms", period_ms); !s) return bad(s.message());
   if (!(period_ms > 0.0 && period_ms <= 1000.0))
     return bad("option --period-ms: must be in (0, 1000]");
+  std::int64_t protocol = 1;
+  if (Status s = args.get_int("protocol", protocol); !s) return bad(s.message());
+  if (protocol != 1 && protocol != 2) return bad("option --protocol: must be 1 or 2");
   fw::ServoTable table;
   if (Status s = fw::ServoTable::load(args.get("servo-table"), table); !s) return bad(s.message());
   options.calibration = fw::servo_calibrations(table);
@@ -105,7 +113,22 @@ int run_vbus(int argc, char** argv) {
   dxl::FirstOrderPhysics::Options physics;
   for (std::size_t i = 0; i < hal::kServoCount; ++i)
     physics.models[i] = options.calibration[i].model;
-  dxl::VirtualBus bus(options, std::make_unique<dxl::FirstOrderPhysics>(physics));
+  std::unique_ptr<dxl::BusResponder> responder;
+  dxl::VirtualBus* bus_v1 = nullptr;
+  if (protocol == 1) {
+    auto bus = std::make_unique<dxl::VirtualBus>(options,
+                                                 std::make_unique<dxl::FirstOrderPhysics>(physics));
+    bus_v1 = bus.get();
+    responder = std::move(bus);
+  } else {
+    dxl::VirtualBusV2::Options v2;
+    v2.calibration = options.calibration;
+    v2.lockstep = options.lockstep;
+    v2.period_ns = options.period_ns;
+    v2.overheat = options.faults.overheat;
+    responder =
+        std::make_unique<dxl::VirtualBusV2>(v2, std::make_unique<dxl::FirstOrderPhysics>(physics));
+  }
 
   std::unique_ptr<dxl::PtyBusServer> server;
   if (Status s = dxl::PtyBusServer::create(args.get("link"), server); !s) {
@@ -129,17 +152,20 @@ int run_vbus(int argc, char** argv) {
   sigaction(SIGTERM, &action, nullptr);
   std::fprintf(stderr, "stride vbus: serving on %s -> %s (%s)\n", server->link_path().c_str(),
                server->slave_path().c_str(), options.lockstep ? "lockstep" : "wall clock");
-  const Status served = server->serve(bus, g_vbus_stop);
-  const auto& c = bus.counters();
-  std::fprintf(
-      stderr,
-      "stride vbus: %llu instructions, %llu bulk reads, %llu sync writes, %llu replies; "
-      "faults: %llu dropped, %llu corrupted, %llu silenced; %llu bad packets received\n",
-      static_cast<unsigned long long>(c.instructions),
-      static_cast<unsigned long long>(c.bulk_reads), static_cast<unsigned long long>(c.sync_writes),
-      static_cast<unsigned long long>(c.replies), static_cast<unsigned long long>(c.dropped),
-      static_cast<unsigned long long>(c.corrupted), static_cast<unsigned long long>(c.silenced),
-      static_cast<unsigned long long>(c.bad_packets));
+  const Status served = server->serve(*responder, g_vbus_stop);
+  const dxl::VirtualBusCounters c =
+      bus_v1 != nullptr ? bus_v1->counters() : dxl::VirtualBusCounters{};
+  if (bus_v1 != nullptr)
+    std::fprintf(
+        stderr,
+        "stride vbus: %llu instructions, %llu bulk reads, %llu sync writes, %llu replies; "
+        "faults: %llu dropped, %llu corrupted, %llu silenced; %llu bad packets received\n",
+        static_cast<unsigned long long>(c.instructions),
+        static_cast<unsigned long long>(c.bulk_reads),
+        static_cast<unsigned long long>(c.sync_writes), static_cast<unsigned long long>(c.replies),
+        static_cast<unsigned long long>(c.dropped), static_cast<unsigned long long>(c.corrupted),
+        static_cast<unsigned long long>(c.silenced),
+        static_cast<unsigned long long>(c.bad_packets));
   if (args.has("json")) {
     const nlohmann::json report = {
         {"instructions", c.instructions}, {"bulk_reads", c.bulk_reads},

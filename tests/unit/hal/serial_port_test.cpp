@@ -11,6 +11,7 @@
 #include "stride/hal/dynamixel/packet_parser.hpp"
 #include "stride/hal/dynamixel/pty_bus_server.hpp"
 #include "stride/hal/dynamixel/serial_port.hpp"
+#include "stride/hal/dynamixel/virtual_bus.hpp"
 #include "temp_dir.hpp"
 
 namespace stride::hal::dxl {

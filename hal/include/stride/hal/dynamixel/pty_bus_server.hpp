@@ -1,5 +1,6 @@
-// PtyBusServer: serves a VirtualBus on a pseudo-terminal, so that any program that opens a
-// serial port (stride-fw --hal serial, stride dxl) can talk to the emulated robot.
+// PtyBusServer: serves an emulated bus (VirtualBus, VirtualBusV2) on a pseudo-terminal, so that any
+// program that opens a serial port (stride-fw --hal serial, stride dxl) can talk to the emulated
+// robot.
 //
 // create() opens a pty master (posix_openpt; where /dev/ptmx belongs to another devpts
 // instance than the one mounted on /dev/pts, as in some containers, /dev/pts/ptmx instead),
@@ -12,7 +13,7 @@
 #include <memory>
 #include <string>
 
-#include "stride/hal/dynamixel/virtual_bus.hpp"
+#include "stride/hal/dynamixel/bus_responder.hpp"
 #include "stride/hal/status.hpp"
 
 namespace stride::hal::dxl {
@@ -26,7 +27,7 @@ class PtyBusServer {
 
   /// Serves `bus` until `stop` is set (checked at least every 50 ms). Returns an error only if
   /// the pty itself fails.
-  Status serve(VirtualBus& bus, const std::atomic<bool>& stop);
+  Status serve(BusResponder& bus, const std::atomic<bool>& stop);
 
   const std::string& slave_path() const { return slave_path_; }
   const std::string& link_path() const { return link_path_; }

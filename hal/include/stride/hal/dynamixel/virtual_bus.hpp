@@ -24,6 +24,7 @@
 #include <string>
 #include <vector>
 
+#include "stride/hal/dynamixel/bus_responder.hpp"
 #include "stride/hal/dynamixel/control_table.hpp"
 #include "stride/hal/dynamixel/packet_parser.hpp"
 #include "stride/hal/dynamixel/units.hpp"
@@ -57,7 +58,7 @@ struct VirtualBusCounters {
   std::uint64_t silenced = 0;   ///< replies withheld because a device is silent
 };
 
-class VirtualBus {
+class VirtualBus final : public BusResponder {
  public:
   struct Options {
     std::array<ServoCalibration, kServoCount> calibration{};  ///< per servo, index = id - 1
@@ -71,7 +72,7 @@ class VirtualBus {
   /// Consumes bytes from the host and appends any replies to `out`. `reply_delay_us` receives
   /// the summed return delay time of the replies produced (0 after start-up configuration).
   void receive(std::span<const std::uint8_t> bytes, std::vector<std::uint8_t>& out,
-               std::int64_t& reply_delay_us);
+               std::int64_t& reply_delay_us) override;
 
   const VirtualBusCounters& counters() const { return counters_; }
   VirtualBusPhysics& physics() { return *physics_; }

@@ -1,19 +1,21 @@
-// VirtualBusStream: an in-process ByteStream connected to a VirtualBus, for tests and benches.
-// write() hands the bytes to the bus at once; its replies are queued for read_some(), which
-// never waits (nothing else can arrive in-process), so a missing reply is a timeout at once.
+// VirtualBusStream: an in-process ByteStream connected to an emulated bus (VirtualBus,
+// VirtualBusV2), for tests and benches. write() hands the bytes to the bus at once; its replies are
+// queued for read_some(), which never waits (nothing else can arrive in-process), so a missing
+// reply is a timeout at once.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
+#include "stride/hal/dynamixel/bus_responder.hpp"
 #include "stride/hal/dynamixel/byte_stream.hpp"
-#include "stride/hal/dynamixel/virtual_bus.hpp"
 
 namespace stride::hal::dxl {
 
 class VirtualBusStream final : public ByteStream {
  public:
-  VirtualBusStream(VirtualBus& bus, std::uint32_t baud) : bus_(bus), baud_(baud) {
+  VirtualBusStream(BusResponder& bus, std::uint32_t baud) : bus_(bus), baud_(baud) {
     pending_.reserve(4096);
   }
   bool write(std::span<const std::uint8_t> bytes, std::int64_t) noexcept override {
@@ -38,7 +40,7 @@ class VirtualBusStream final : public ByteStream {
   std::uint32_t baud() const noexcept override { return baud_; }
 
  private:
-  VirtualBus& bus_;
+  BusResponder& bus_;
   std::uint32_t baud_;
   std::vector<std::uint8_t> pending_;
   std::size_t read_pos_ = 0;
