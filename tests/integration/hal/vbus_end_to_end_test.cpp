@@ -210,4 +210,31 @@ TEST(VirtualBusEndToEnd, DxlToolScansReadsAndWrites) {
   (void)written;
 }
 
+TEST(VirtualBusEndToEnd, DxlToolSpeaksProtocol2ToTheMx2Bus) {
+  stride::test::TempDir dir;
+  VirtualBusProcess vbus(dir, {"--protocol", "2"});
+  ASSERT_TRUE(std::filesystem::exists(vbus.link()));
+  const auto out = dir.path() / "dxl.out";
+  const auto err = dir.path() / "dxl.err";
+  auto dxl = [&](std::vector<std::string> extra) {
+    std::vector<std::string> argv{kBin + "/stride", "dxl", "--port", vbus.link().string(),
+                                  "--protocol",     "2",   "--json"};
+    argv.insert(argv.end(), extra.begin(), extra.end());
+    const int code = wait_exit(spawn(argv, out, err));
+    const std::string text = slurp(out);
+    return std::make_pair(code, text.empty() ? nlohmann::json{} : nlohmann::json::parse(text));
+  };
+  auto [code, scan] = dxl({"--max-id", "30", "--timeout-ms", "10", "scan"});
+  ASSERT_EQ(code, 0) << slurp(err);
+  ASSERT_EQ(scan["devices"].size(), 20U);
+  EXPECT_EQ(scan["devices"][6]["name"], "MX-106(2.0)");
+  auto [rcode, gain] = dxl({"read", "7", "position_p_gain"});
+  ASSERT_EQ(rcode, 0);
+  EXPECT_EQ(gain["value"], 850);
+  auto [wcode, unused] = dxl({"write", "7", "present_position", "5"});
+  EXPECT_EQ(wcode, 1);  // read-only: the servo refuses with an access error
+  EXPECT_NE(slurp(err).find("error 0x07"), std::string::npos);
+  (void)unused;
+}
+
 }  // namespace
