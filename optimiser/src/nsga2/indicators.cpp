@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <set>
 
 namespace stride::opt {
 namespace {
@@ -97,11 +96,11 @@ Points normalise(const Points& points, const std::vector<double>& ideal,
 Points non_dominated(const Points& points) {
   const std::vector<int> ranks = pareto_ranks(points);
   Points out;
-  std::set<std::vector<double>> seen;
   for (std::size_t i = 0; i < points.size(); ++i) {
-    if (ranks[i] != 0 || !seen.insert(points[i]).second) continue;
-    out.push_back(points[i]);
+    if (ranks[i] == 0) out.push_back(points[i]);
   }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
   return out;
 }
 

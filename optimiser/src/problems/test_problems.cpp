@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <functional>
+#include <mutex>
 #include <numbers>
 
 #include "stride/optimiser/nsga2/indicators.hpp"
@@ -30,6 +31,12 @@ class TestProblem final : public Problem {
   EvaluationOutcome evaluate(const Genome& genome) const override { return eval_(genome.reals); }
 
   std::optional<FrontReference> reference() const override {
+    std::call_once(reference_once_, [this] { reference_ = compute_reference(); });
+    return reference_;
+  }
+
+ private:
+  FrontReference compute_reference() const {
     const Points dense = non_dominated(front_());
     FrontReference ref;
     const auto m = static_cast<std::size_t>(shape_.objectives);
@@ -52,12 +59,13 @@ class TestProblem final : public Problem {
     return ref;
   }
 
- private:
   std::string name_;
   ProblemShape shape_;
   EvalFn eval_;
   FrontFn front_;
   std::optional<double> analytic_hv_;
+  mutable std::once_flag reference_once_;
+  mutable FrontReference reference_;
 };
 
 ProblemShape box(int n, double lo, double hi, int objectives, int constraints) {
@@ -121,7 +129,7 @@ std::unique_ptr<Problem> zdt(int which) {
             return two(x[0], g * (1 - std::sqrt(r) - r * std::sin(10 * kPi * x[0])));
           },
           [] {
-            return curve(0, 1, 200001, [](double f) {
+            return curve(0, 1, 50001, [](double f) {
               return 1 - std::sqrt(f) - f * std::sin(10 * kPi * f);
             });
           });
@@ -278,16 +286,16 @@ std::unique_ptr<Problem> constrained(const std::string& name) {
   }
   if (name == "srn") {
     return std::make_unique<TestProblem>(name, box(2, -20, 20, 2, 2), srn, [] {
-      Points xs;  // x1 = -2.5, x2 in [-14.79, 2.5]
-      for (int i = 0; i <= 20000; ++i) xs.push_back({-2.5, -14.79 + 17.29 * i / 20000});
+      Points xs;  // x1 = -2.5, x2 in [2.5, 14.79]
+      for (int i = 0; i <= 20000; ++i) xs.push_back({-2.5, 2.5 + 12.29 * i / 20000});
       return feasible_objectives(xs, srn);
     });
   }
   if (name == "tnk") {
     return std::make_unique<TestProblem>(name, box(2, 0, kPi, 2, 2), tnk, [] {
       Points xs;  // the boundary r^2 = 1 + 0.1 cos(16 t) of the first constraint
-      for (int i = 0; i <= 200000; ++i) {
-        const double t = kPi / 2 * i / 200000;
+      for (int i = 0; i <= 50000; ++i) {
+        const double t = kPi / 2 * i / 50000;
         const double r = std::sqrt(1 + 0.1 * std::cos(16 * t));
         xs.push_back({r * std::cos(t), r * std::sin(t)});
       }

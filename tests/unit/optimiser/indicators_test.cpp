@@ -73,7 +73,7 @@ TEST(Igd, ByHand) {
 TEST(Indicators, NormaliseAndNonDominated) {
   const Points n = normalise({{1, 10}, {3, 30}}, {1, 10}, {3, 30});
   EXPECT_EQ(n, (Points{{0, 0}, {1, 1}}));
-  EXPECT_EQ(non_dominated({{1, 2}, {2, 1}, {2, 2}, {1, 2}}), (Points{{1, 2}, {2, 1}}));
+  EXPECT_EQ(non_dominated({{2, 1}, {1, 2}, {2, 2}, {1, 2}}), (Points{{1, 2}, {2, 1}}));
 }
 
 }  // namespace

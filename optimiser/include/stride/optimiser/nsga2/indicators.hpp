@@ -23,7 +23,7 @@ double hypervolume(const Points& points, const std::vector<double>& reference);
 double igd(const Points& set, const Points& reference_front);
 Points normalise(const Points& points, const std::vector<double>& ideal,
                  const std::vector<double>& nadir);
-/// The non-dominated members of a set (duplicates kept once), in input order.
+/// The non-dominated members of a set, duplicates kept once, sorted lexicographically.
 Points non_dominated(const Points& points);
 
 }  // namespace stride::opt
