@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <numeric>
+#include <string_view>
 
 #include "stride/optimiser/nsga2/operators.hpp"
 #include "stride/optimiser/nsga2/sorting.hpp"
@@ -88,18 +89,20 @@ void Nsga2::make_initial_batch(const std::optional<Genome>& start) {
 
 void Nsga2::resolve_batch() {
   alias_of_.assign(batch_.size(), -1);
-  std::unordered_map<std::string, int> first_with_key;
+  batch_keys_.resize(batch_.size());
+  std::unordered_map<std::string_view, int> first_with_key;
+  first_with_key.reserve(batch_.size());
   for (std::size_t i = 0; i < batch_.size(); ++i) {
     Individual& ind = batch_[i];
+    batch_keys_[i] = genome_key(ind.genome);
     if (ind.evaluated) continue;
-    const std::string key = genome_key(ind.genome);
-    if (const auto hit = cache_.find(key); hit != cache_.end()) {
+    if (const auto hit = cache_.find(batch_keys_[i]); hit != cache_.end()) {
       ind.result = hit->second;
       ind.evaluated = true;
       ind.from_cache = true;
       continue;
     }
-    const auto [it, inserted] = first_with_key.emplace(key, static_cast<int>(i));
+    const auto [it, inserted] = first_with_key.emplace(batch_keys_[i], static_cast<int>(i));
     if (!inserted) alias_of_[i] = it->second;
   }
 }
@@ -137,7 +140,7 @@ Status Nsga2::tell(std::uint64_t id, const EvaluationOutcome& outcome) {
   const Result result = sanitise(shape_, outcome);
   ++counters_.evaluations;
   if (result.failed) ++counters_.failures;
-  cache_[genome_key(batch_[index].genome)] = result;
+  cache_.insert_or_assign(batch_keys_[index], result);
   batch_[index].result = result;
   batch_[index].evaluated = true;
   for (std::size_t j = 0; j < batch_.size(); ++j) {
@@ -172,6 +175,7 @@ Status Nsga2::advance() {
   }
   batch_.clear();
   alias_of_.clear();
+  batch_keys_.clear();
   ++completed_;
   if (!finished()) make_children();
   return {};

@@ -109,6 +109,7 @@ class Nsga2 {
   std::vector<Individual> population_;
   std::vector<Individual> batch_;
   std::vector<int> alias_of_;  ///< per batch member: index of the identical member told for it
+  std::vector<std::string> batch_keys_;  ///< per batch member: genome_key()
   std::unordered_map<std::string, Result> cache_;
 };
 
