@@ -32,7 +32,9 @@ TEST_P(WalkLipm, MeetsBoundaryConditionsAndThePendulumEquation) {
     const double lhs = axis.acceleration(t);
     const double rhs = (axis.position(t) - axis.zmp(t)) / (c.tau * c.tau);
     ASSERT_NEAR(lhs, rhs, 1e-9 * (1.0 + std::abs(rhs))) << "t " << t;
-    if (t > h && t < c.step_time - h) {
+    const bool near_break = std::abs(t - c.phi1 * c.step_time) < 2 * h ||
+                            std::abs(t - c.phi2 * c.step_time) < 2 * h;  // x''' jumps there
+    if (t > h && t < c.step_time - h && !near_break) {
       const double fd_velocity = (axis.position(t + h) - axis.position(t - h)) / (2 * h);
       ASSERT_NEAR(axis.velocity(t), fd_velocity, 1e-6);
       const double fd_accel =
