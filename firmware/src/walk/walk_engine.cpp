@@ -36,7 +36,9 @@ Eigen::Matrix3d yaw_pitch(double yaw, double pitch) {
 }  // namespace
 
 WalkEngine::WalkEngine(ParameterStore& store, const ServoTable& servos, std::int64_t period_ns)
-    : parameter_set_(store), period_s_(static_cast<double>(period_ns) * 1e-9) {
+    : parameter_set_(store),
+      period_s_(static_cast<double>(period_ns) * 1e-9),
+      balance_(store, period_s_) {
   if (period_ns <= 0) throw std::invalid_argument("walk engine: control period must be > 0");
   left_leg_index_ = {servo_index(servos, "l_hip_yaw"),     servo_index(servos, "l_hip_roll"),
                      servo_index(servos, "l_hip_pitch"),   servo_index(servos, "l_knee"),
@@ -79,6 +81,7 @@ void WalkEngine::start(const hal::SensorFrame& sensors, const hal::CommandFrame&
   stop_requested_ = false;
   start_tick_ = tick;
   step_begin_s_ = 0.0;
+  balance_.reset();
   for (std::size_t k = 0; k < kDriven; ++k) {
     const std::size_t i = driven_index_[k];
     const double from = last_sent.servos[i].torque_enable ? last_sent.servos[i].position_rad
@@ -136,9 +139,10 @@ void WalkEngine::begin_step() noexcept {
                 p.single_support_start, p.single_support_end);
 }
 
-void WalkEngine::step(const hal::SensorFrame& /*sensors*/, hal::Tick tick,
+void WalkEngine::step(const hal::SensorFrame& sensors, hal::Tick tick,
                       hal::CommandFrame& out) noexcept {
   tick_clamped_ = false;
+  balance_shift_ = balance_.update(sensors.cm730);
   const double t = static_cast<double>(std::max<hal::Tick>(0, tick - start_tick_)) * period_s_;
   double blend = 1.0;
   if (state_ == State::kStarting) {
@@ -228,8 +232,11 @@ void WalkEngine::compute_targets(double time_in_step, bool standing) noexcept {
       left_roll = compensation;
     }
   }
-  solve_leg(left_leg_, left, left_lift, torso, left_roll, left_leg_index_);
-  solve_leg(right_leg_, right, right_lift, torso, right_roll, right_leg_index_);
+  // The support leg takes the balance feedback (both legs while standing).
+  const bool left_supports = standing || swing_ == Foot::kRight;
+  const bool right_supports = standing || swing_ == Foot::kLeft;
+  solve_leg(left_leg_, left, left_lift, torso, left_roll, left_supports, left_leg_index_);
+  solve_leg(right_leg_, right, right_lift, torso, right_roll, right_supports, right_leg_index_);
   write_arms(phase, torso, left, right);
   snapshot_.phase = phase;
   snapshot_.torso = torso;
@@ -240,7 +247,7 @@ void WalkEngine::compute_targets(double time_in_step, bool standing) noexcept {
 }
 
 void WalkEngine::solve_leg(const walk::LegKinematics& leg, const Pose2& foot, double lift,
-                           const Pose2& torso, double hip_roll_offset,
+                           const Pose2& torso, double hip_roll_offset, bool support,
                            const std::array<std::size_t, 6>& servo_index) noexcept {
   const Eigen::Matrix3d trunk_rotation = yaw_pitch(torso.theta, params_.body_tilt);
   const Eigen::Vector3d torso_position(torso.x, torso.y, params_.body_height);
@@ -253,9 +260,16 @@ void WalkEngine::solve_leg(const walk::LegKinematics& leg, const Pose2& foot, do
                     Eigen::AngleAxisd(foot.theta, Eigen::Vector3d::UnitZ()).toRotationMatrix();
   const walk::LegIkResult ik = leg.inverse(target);
   tick_clamped_ = tick_clamped_ || ik.clamped;
-  const walk::LegJoints& q = ik.joints;
+  walk::LegJoints q = ik.joints;
+  q.hip_roll += hip_roll_offset;
+  if (support) {
+    q.hip_roll += balance_shift_.hip_roll;
+    q.hip_pitch += balance_shift_.hip_pitch;
+    q.ankle_pitch += balance_shift_.ankle_pitch;
+    q.ankle_roll += balance_shift_.ankle_roll;
+  }
   targets_[servo_index[0]] = q.hip_yaw;
-  targets_[servo_index[1]] = q.hip_roll + hip_roll_offset;
+  targets_[servo_index[1]] = q.hip_roll;
   targets_[servo_index[2]] = q.hip_pitch;
   targets_[servo_index[3]] = q.knee;
   targets_[servo_index[4]] = q.ankle_pitch;

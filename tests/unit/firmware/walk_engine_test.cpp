@@ -34,7 +34,8 @@ std::size_t index(const char* name) {
 TEST(WalkEngine, RegistersTheParametersWithIndODefaults) {
   ParameterStore store;
   WalkEngine engine(store, ServoTable::defaults(), kPeriodNs);
-  EXPECT_EQ(store.list("walk.").size(), walk::kWalkParameterCount);
+  EXPECT_EQ(store.list("walk.").size() - store.list("walk.balance.").size(),
+            walk::kWalkParameterCount);
   int genome = 0;
   for (const auto& row : walk::walk_parameter_table()) {
     const auto h = store.find(row.name);
@@ -174,6 +175,28 @@ TEST(WalkEngine, ParameterChangesApplyAtTheNextStep) {
   EXPECT_EQ(rig.engine.parameters().step_time, 0.85);
   rig.run(85);
   EXPECT_EQ(rig.engine.parameters().step_time, 0.6);
+}
+
+TEST(WalkEngine, BalanceFeedbackIsOffByDefaultAndShiftsTheSupportLeg) {
+  Rig still, shaken, fed_back;
+  for (Rig* r : {&still, &shaken, &fed_back}) r->engine.start(r->sensors, r->out, 0);
+  shaken.sensors.cm730.gyro_rad_s = {0.5, 0.8, 0.0};
+  fed_back.sensors.cm730.gyro_rad_s = {0.5, 0.8, 0.0};
+  ASSERT_TRUE(fed_back.store
+                  .set_now({{"walk.balance.ankle_pitch_gain", 0.2},
+                            {"walk.balance.ankle_roll_gain", 0.1},
+                            {"walk.balance.hip_roll_gain", 0.1}})
+                  .is_ok());
+  still.run(150);  // first step: the left leg swings, the right supports
+  shaken.run(150);
+  fed_back.run(150);
+  const std::size_t ankle = index("r_ankle_pitch");
+  const std::size_t roll = index("r_ankle_roll");
+  EXPECT_EQ(shaken.out.servos[ankle].position_rad, still.out.servos[ankle].position_rad);
+  EXPECT_NEAR(fed_back.out.servos[ankle].position_rad - still.out.servos[ankle].position_rad,
+              0.2 * 0.8, 1e-6);
+  EXPECT_NEAR(fed_back.out.servos[roll].position_rad - still.out.servos[roll].position_rad,
+              0.1 * 0.5, 1e-6);
 }
 
 TEST(WalkEngine, IsDeterministic) {

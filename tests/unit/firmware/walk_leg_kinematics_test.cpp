@@ -67,7 +67,11 @@ TEST(WalkLegKinematics, RoundTripOverTheReachableWorkspace) {
                           {r.knee, q.knee},
                           {r.ankle_pitch, q.ankle_pitch},
                           {r.ankle_roll, q.ankle_roll}}) {
-        ASSERT_NEAR(a, b, 1e-4) << "sample " << i << " q " << q.hip_yaw << " " << q.hip_roll << " " << q.hip_pitch << " " << q.knee << " " << q.ankle_pitch << " " << q.ankle_roll << " ik " << r.hip_yaw << " " << r.hip_roll << " " << r.hip_pitch << " " << r.knee << " " << r.ankle_pitch << " " << r.ankle_roll;
+        ASSERT_NEAR(a, b, 1e-4) << "sample " << i << " q " << q.hip_yaw << " " << q.hip_roll << " "
+                                << q.hip_pitch << " " << q.knee << " " << q.ankle_pitch << " "
+                                << q.ankle_roll << " ik " << r.hip_yaw << " " << r.hip_roll << " "
+                                << r.hip_pitch << " " << r.knee << " " << r.ankle_pitch << " "
+                                << r.ankle_roll;
       }
       ++tested;
     }

@@ -18,6 +18,8 @@
 // walks; the first two steps have zero velocity and no lift. request_stop() makes the next
 // step the last (the swing foot lands beside the support foot); then the engine stands still
 // (phase 0.5, both feet down) and done() is true. Parameters are latched at each step start.
+// Optional gyro feedback (walk.balance.*, off by default) shifts the support leg's ankle and
+// hip joints (balance_feedback.hpp).
 // Pure: no I/O, no clock, no allocation and no exceptions in start()/step().
 #pragma once
 
@@ -27,6 +29,7 @@
 #include "stride/firmware/motion_engine.hpp"
 #include "stride/firmware/parameter_store.hpp"
 #include "stride/firmware/servo_table.hpp"
+#include "stride/firmware/walk/balance_feedback.hpp"
 #include "stride/firmware/walk/footstep_planner.hpp"
 #include "stride/firmware/walk/leg_kinematics.hpp"
 #include "stride/firmware/walk/lipm_trajectory.hpp"
@@ -87,7 +90,7 @@ class WalkEngine final : public WalkControl {
   void begin_step() noexcept;
   void compute_targets(double time_in_step, bool standing) noexcept;
   void solve_leg(const walk::LegKinematics& leg, const walk::Pose2& foot, double lift,
-                 const walk::Pose2& torso, double hip_roll_offset,
+                 const walk::Pose2& torso, double hip_roll_offset, bool support,
                  const std::array<std::size_t, 6>& servo_index) noexcept;
   void write_arms(double phase, const walk::Pose2& torso, const walk::Pose2& left_foot,
                   const walk::Pose2& right_foot) noexcept;
@@ -95,6 +98,8 @@ class WalkEngine final : public WalkControl {
   walk::WalkParameterSet parameter_set_;
   walk::WalkParameters params_;
   double period_s_;
+  walk::BalanceFeedback balance_;
+  walk::BalanceShift balance_shift_;
   walk::LegKinematics left_leg_{walk::LegSide::kLeft};
   walk::LegKinematics right_leg_{walk::LegSide::kRight};
   std::array<std::size_t, 6> left_leg_index_{}, right_leg_index_{};
