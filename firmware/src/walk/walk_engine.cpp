@@ -82,12 +82,45 @@ void WalkEngine::start(const hal::SensorFrame& sensors, const hal::CommandFrame&
   start_tick_ = tick;
   step_begin_s_ = 0.0;
   balance_.reset();
+  std::array<double, hal::kServoCount> pose{};
   for (std::size_t k = 0; k < kDriven; ++k) {
     const std::size_t i = driven_index_[k];
     const double from = last_sent.servos[i].torque_enable ? last_sent.servos[i].position_rad
                                                           : sensors.servos[i].position_rad;
     blend_from_[k] = std::isfinite(from) ? from : 0.0;
+    pose[i] = blend_from_[k];
   }
+  adopt_stance(pose);
+}
+
+void WalkEngine::adopt_stance(const std::array<double, hal::kServoCount>& pose) noexcept {
+  // Where the feet are now (forward kinematics of the pose being held), projected into the
+  // walk plane with the torso reference point at the origin: the walk starts from these feet
+  // (the start blend moves only the torso), so nothing has to slide while both feet are down.
+  const Eigen::Matrix3d trunk = yaw_pitch(0.0, params_.body_tilt);
+  const Eigen::Vector3d reference(walk::LegGeometry::kHipX, 0.0,
+                                  walk::LegGeometry::kHipZ + kTorsoAboveHip);
+  auto foot_in_plane = [&](const walk::LegKinematics& leg,
+                           const std::array<std::size_t, 6>& index) {
+    const walk::LegJoints q{pose[index[0]], pose[index[1]], pose[index[2]],
+                            pose[index[3]], pose[index[4]], pose[index[5]]};
+    const walk::Pose3 foot = leg.forward(q);
+    const Eigen::Vector3d p = trunk * (foot.position - reference);
+    const Eigen::Matrix3d r = trunk * foot.rotation;
+    return Pose2{p.x(), p.y(), std::atan2(r(1, 0), r(0, 0))};
+  };
+  const Pose2 left = foot_in_plane(left_leg_, left_leg_index_);
+  const Pose2 right = foot_in_plane(right_leg_, right_leg_index_);
+  const walk::Pose2 rel = walk::relative(right, left);
+  const bool plausible = std::isfinite(rel.x) && std::isfinite(rel.y) && std::isfinite(rel.theta) &&
+                         std::abs(rel.x) < 0.15 && rel.y > 0.08 && rel.y < 0.4 &&
+                         std::abs(rel.theta) < 0.5;
+  if (!plausible) return;  // keep the nominal stance of reset_stance()
+  left_destination_ = left_source_ = left;
+  right_destination_ = right_source_ = right;
+  torso_destination_ = walk::torso_between(left, right, params_);
+  torso_source_ = torso_destination_;
+  support_ = torso_destination_;
 }
 
 bool WalkEngine::done() const noexcept {

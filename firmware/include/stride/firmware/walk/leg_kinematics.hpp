@@ -56,8 +56,10 @@ struct LegGeometry {
   static constexpr double kThigh = 0.200;
   static constexpr double kShankZ = 0.200;
   static constexpr double kShankX = 0.0055;
-  /// Ankle crossing above the flat sole (URDF foot_plane_joint z).
-  static constexpr double kAnkleHeight = 0.039;
+  /// Ankle crossing above the ground the foot stands on: the tips of the 18 mm studs of the
+  /// studded igus foot (igus.md 1.3: stud tips at z = -0.0565 in the foot frame; the seed's
+  /// simulator and Stride's use the studded foot). The flat sole alone would be 0.039.
+  static constexpr double kAnkleHeight = 0.0565;
   /// Hip roll/pitch crossing z in the trunk frame at any yaw.
   static constexpr double kHipZ = kHipYawZ + kYawToHipZ;
   /// Hip roll/pitch crossing x in the trunk frame at zero yaw.

@@ -14,7 +14,8 @@
 // (NUbots' chest-to-origin 0.135 + hip offset 0.045), at height walk.stance.body_height and
 // pitched by walk.stance.body_tilt. The ankles sit 0.039 m above the sole (URDF foot plane).
 //
-// Start: start() blends from the last commands to the walk's standing pose over 1 s, then
+// Start: the feet stay where the last commands put them (forward kinematics); start() blends
+// from the last commands to the walk's standing pose on those feet over 1 s, then
 // walks; the first two steps have zero velocity and no lift. request_stop() makes the next
 // step the last (the swing foot lands beside the support foot); then the engine stands still
 // (phase 0.5, both feet down) and done() is true. Parameters are latched at each step start.
@@ -87,6 +88,7 @@ class WalkEngine final : public WalkControl {
   static constexpr std::size_t kDriven = 18;  // arm and leg servos
 
   void reset_stance() noexcept;
+  void adopt_stance(const std::array<double, hal::kServoCount>& pose) noexcept;
   void begin_step() noexcept;
   void compute_targets(double time_in_step, bool standing) noexcept;
   void solve_leg(const walk::LegKinematics& leg, const walk::Pose2& foot, double lift,
