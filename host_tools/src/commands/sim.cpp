@@ -7,6 +7,8 @@
 
 #include "stride/firmware/atomic_file.hpp"
 #include "stride/firmware/cli_args.hpp"
+#include "stride/firmware/firmware.hpp"
+#include "stride/firmware/motion_request.hpp"
 #include "stride/host_tools/command.hpp"
 #include "stride/sim_hal/episode.hpp"
 #include "stride/sim_hal/pose_svg.hpp"
@@ -17,6 +19,7 @@ namespace {
 
 using stride::Status;
 namespace sim = stride::sim;
+namespace hal = stride::hal;
 
 int bad_input(const std::string& message) {
   std::fprintf(stderr, "stride sim: %s\n", message.c_str());
@@ -45,9 +48,10 @@ int run_sim(int argc, char** argv) {
   stride::fw::CliArgs args;
   args.option("help", "show this help", false);
   args.option("params", "parameter file (JSON) loaded into the controller", true);
-  args.option("vx", "walk forward speed command [m/s]", true, "0");
-  args.option("vy", "walk sideways speed command [m/s]", true, "0");
-  args.option("vth", "walk turning speed command [rad/s]", true, "0");
+  args.option("vx", "walk forward command, normalised [-1, 1]", true, "0");
+  args.option("vy", "walk sideways command, normalised [-1, 1]", true, "0");
+  args.option("vth", "walk turning command, normalised [-1, 1]", true, "0");
+  args.option("script", "kick: the script to play", true, "kick_right");
   args.option("duration", "episode length [s]", true, "10");
   args.option("record", "write the trajectory (JSON lines, see trajectory_recorder.hpp)", true);
   args.option("snapshot", "write an SVG picture of the robot's pose at --snapshot-times", true);
@@ -73,9 +77,16 @@ int run_sim(int argc, char** argv) {
   if (Status s = parse_times(args.get("snapshot-times"), snapshot_times); !s) return bad_input(s.message());
   sim::WorldOptions world_options;
   if (Status s = sim::read_world_options(args, world_options); !s) return bad_input(s.message());
-  if (args.has("params")) return bad_input("--params: needs the firmware Controller (not yet available)");
-  if (motion == "walk") return bad_input("walk: walk engine not available yet");
-  if (motion == "kick") return bad_input("kick: kick script engine not available yet");
+  if (motion == "walk")
+    for (double v : {vx, vy, vth})
+      if (!(v >= -1.0 && v <= 1.0)) return bad_input("--vx/--vy/--vth: must be in [-1, 1]");
+
+  // The firmware exactly as stride-fw builds it (parameters, servo table, engines).
+  stride::fw::FirmwareOptions fw_options;
+  if (args.has("params")) fw_options.params_file = args.get("params");
+  std::unique_ptr<stride::fw::Firmware> firmware;
+  if (Status s = stride::fw::Firmware::create(fw_options, firmware); !s) return bad_input(s.message());
+  world_options.control_period_ns = firmware->period_ns();
 
   std::unique_ptr<sim::SimWorld> world;
   if (Status s = sim::SimWorld::create(world_options, world); !s) {
@@ -88,8 +99,27 @@ int run_sim(int argc, char** argv) {
   episode.duration_s = duration;
   episode.recorder = args.has("record") ? &recorder : nullptr;
   if (args.has("snapshot")) episode.snapshot_times_s = snapshot_times;
-  const sim::StepFunction controller = sim::hold_pose_controller(sim::igus_stand_pose());
-  const sim::EpisodeResult result = sim::run_episode(robot, controller, episode);
+
+  stride::fw::Controller& controller = firmware->controller();
+  if (motion == "walk") controller.request(stride::fw::MotionRequest::walk(vx, vy, vth));
+  if (motion == "kick") controller.request(stride::fw::MotionRequest::play(args.get("script")));
+  if (motion != "stand") {
+    // The request is taken at the next step: a refusal means the engine or script is missing.
+    stride::hal::SensorFrame probe;
+    robot.read(probe);
+    (void)controller.step(probe, 0);
+    if (controller.motion().refused_requests() > 0) {
+      std::fprintf(stderr, "stride sim: %s\n",
+                   motion == "walk" ? "walk engine not available"
+                                    : ("kick script '" + args.get("script") + "' not available (script engine or file missing)").c_str());
+      return 1;
+    }
+  }
+  const sim::StepFunction step = [&controller](const stride::hal::SensorFrame& sensors,
+                                               stride::hal::Tick tick) {
+    return controller.step(sensors, tick);
+  };
+  const sim::EpisodeResult result = sim::run_episode(robot, step, episode);
 
   if (args.has("record")) {
     if (Status s = recorder.save(args.get("record")); !s) {
