@@ -44,7 +44,8 @@ TEST(WalkInSimTrace, DISABLED_Trace) {
       const double roll = std::atan2(r(2, 1), r(2, 2));
       std::printf(
           "t %.2f st %d torso (%.3f %.3f %.3f) pitch %.3f roll %.3f com (%.3f %.3f) "
-          "feet L(%.3f %.3f %.3f %d) R(%.3f %.3f %.3f %d) knee cmd %.3f act %.3f\n",
+          "feet L(%.3f %.3f %.3f %d) R(%.3f %.3f %.3f %d) knee cmd %.3f act %.3f rhr %.3f/%.3f rar "
+          "%.3f/%.3f lhr %.3f/%.3f\n",
           t * 0.01, static_cast<int>(controller.motion().state()), gt.torso.translation().x(),
           gt.torso.translation().y(), gt.torso.translation().z(), pitch, roll,
           gt.center_of_mass.x(), gt.center_of_mass.y(), gt.left_foot.translation().x(),
@@ -52,7 +53,9 @@ TEST(WalkInSimTrace, DISABLED_Trace) {
           gt.left_contact.points_in_contact, gt.right_foot.translation().x(),
           gt.right_foot.translation().y(), gt.right_foot.translation().z(),
           gt.right_contact.points_in_contact, c.servos[12].position_rad,
-          sensors.servos[12].position_rad);
+          sensors.servos[12].position_rad, c.servos[8].position_rad, sensors.servos[8].position_rad,
+          c.servos[16].position_rad, sensors.servos[16].position_rad, c.servos[9].position_rad,
+          sensors.servos[9].position_rad);
     }
   }
 }
