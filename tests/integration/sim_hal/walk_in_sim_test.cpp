@@ -71,5 +71,19 @@ TEST(WalkInSim, ForwardTwoAndAHalfMetresInTenOfTenSeeds) {
   std::printf("  forward 2.5 m reached in %d of 10 seeds\n", reached);
 }
 
+TEST(WalkInSim, BackwardSidewaysAndTurningTwentySecondsEach) {
+  struct Case {
+    const char* name;
+    WalkCommand command;
+  };
+  for (const Case& c : {Case{"backward", {-1.0, 0.0, 0.0}}, Case{"sideways", {0.0, 1.0, 0.0}},
+                        Case{"turning", {0.0, 0.0, 1.0}}}) {
+    const sim::EpisodeResult r = walk_in_sim(1, c.command, 20.0);
+    print(c.name, 1, r);
+    EXPECT_FALSE(r.fell) << c.name;
+    EXPECT_GE(r.sim_time_s, 20.0 - 0.011) << c.name;
+  }
+}
+
 }  // namespace
 }  // namespace stride
