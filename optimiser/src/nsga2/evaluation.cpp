@@ -20,7 +20,7 @@ bool out_of_range(double v) { return !std::isfinite(v) || std::fabs(v) > kMaxMag
 
 }  // namespace
 
-Result sanitise(const ProblemShape& shape, const EvaluationOutcome& outcome) {
+Result sanitise(const ProblemShape& shape, EvaluationOutcome outcome) {
   if (outcome.failed) {
     return failed_result(shape, outcome.reason.empty() ? "evaluation failed" : outcome.reason);
   }
@@ -39,10 +39,10 @@ Result sanitise(const ProblemShape& shape, const EvaluationOutcome& outcome) {
     }
   }
   Result r;
-  r.objectives = outcome.objectives;
-  r.constraints = outcome.constraints;
-  for (std::size_t i = 0; i < outcome.constraints.size(); ++i) {
-    const double g = outcome.constraints[i];
+  r.objectives = std::move(outcome.objectives);
+  r.constraints = std::move(outcome.constraints);
+  for (std::size_t i = 0; i < r.constraints.size(); ++i) {
+    const double g = r.constraints[i];
     if (out_of_range(g)) {
       return failed_result(shape, "constraint " + std::to_string(i) + " is not finite or beyond 1e30");
     }

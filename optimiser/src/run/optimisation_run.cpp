@@ -309,7 +309,7 @@ Status run_optimisation(const Problem& problem, const RunConfig& config, Evaluat
     Status failure;
     evaluator.evaluate(problem, batch, [&](std::size_t index, EvaluationOutcome outcome) {
       if (!failure.is_ok() || index >= batch.size() || told[index]) return;
-      if (auto st = engine->tell(batch[index].id, outcome); !st) {
+      if (auto st = engine->tell(batch[index].id, std::move(outcome)); !st) {
         failure = st;
         return;
       }

@@ -46,6 +46,6 @@ struct Result {
 };
 
 /// Checks counts and values and computes the violation (see the file comment).
-Result sanitise(const ProblemShape& shape, const EvaluationOutcome& outcome);
+Result sanitise(const ProblemShape& shape, EvaluationOutcome outcome);
 
 }  // namespace stride::opt
