@@ -16,7 +16,9 @@ Result failed_result(const ProblemShape& shape, std::string reason) {
   return r;
 }
 
-bool out_of_range(double v) { return !std::isfinite(v) || std::fabs(v) > kMaxMagnitude; }
+bool out_of_range(double v) {
+  return !std::isfinite(v) || std::fabs(v) > kMaxMagnitude;
+}
 
 }  // namespace
 
@@ -29,13 +31,13 @@ Result sanitise(const ProblemShape& shape, EvaluationOutcome outcome) {
                                     " objectives, expected " + std::to_string(shape.objectives));
   }
   if (outcome.constraints.size() != static_cast<std::size_t>(shape.constraints)) {
-    return failed_result(shape, "evaluator returned " +
-                                    std::to_string(outcome.constraints.size()) +
+    return failed_result(shape, "evaluator returned " + std::to_string(outcome.constraints.size()) +
                                     " constraints, expected " + std::to_string(shape.constraints));
   }
   for (std::size_t i = 0; i < outcome.objectives.size(); ++i) {
     if (out_of_range(outcome.objectives[i])) {
-      return failed_result(shape, "objective " + std::to_string(i) + " is not finite or beyond 1e30");
+      return failed_result(shape,
+                           "objective " + std::to_string(i) + " is not finite or beyond 1e30");
     }
   }
   Result r;
@@ -44,7 +46,8 @@ Result sanitise(const ProblemShape& shape, EvaluationOutcome outcome) {
   for (std::size_t i = 0; i < r.constraints.size(); ++i) {
     const double g = r.constraints[i];
     if (out_of_range(g)) {
-      return failed_result(shape, "constraint " + std::to_string(i) + " is not finite or beyond 1e30");
+      return failed_result(shape,
+                           "constraint " + std::to_string(i) + " is not finite or beyond 1e30");
     }
     if (g < 0.0) r.violation -= g;
   }

@@ -66,9 +66,8 @@ void Nsga2::make_initial_batch(const std::optional<Genome>& start) {
       if (i == 0) continue;  // the start genome itself, unmutated
       for (std::size_t k = 0; k < g.reals.size(); ++k) {
         if (!rng_.chance(settings_.seed_mutation_fraction)) continue;
-        g.reals[k] = polynomial_mutation_value(g.reals[k], shape_.reals[k].min,
-                                               shape_.reals[k].max, settings_.eta_m,
-                                               rng_.uniform01());
+        g.reals[k] = polynomial_mutation_value(g.reals[k], shape_.reals[k].min, shape_.reals[k].max,
+                                               settings_.eta_m, rng_.uniform01());
       }
       std::size_t first_bit = 0;
       for (const BinaryGene& gene : shape_.binaries) {
@@ -243,8 +242,8 @@ void Nsga2::make_children() {
     }
   }
   for (Individual& child : batch_) {
-    polynomial_mutation(child.genome.reals, shape_.reals, settings_.real_mut_prob,
-                        settings_.eta_m, rng_);
+    polynomial_mutation(child.genome.reals, shape_.reals, settings_.real_mut_prob, settings_.eta_m,
+                        rng_);
     bit_flip_mutation(child.genome.bits, settings_.bin_mut_prob, rng_);
     child.id = next_id_++;
   }

@@ -129,9 +129,8 @@ std::unique_ptr<Problem> zdt(int which) {
             return two(x[0], g * (1 - std::sqrt(r) - r * std::sin(10 * kPi * x[0])));
           },
           [] {
-            return curve(0, 1, 50001, [](double f) {
-              return 1 - std::sqrt(f) - f * std::sin(10 * kPi * f);
-            });
+            return curve(0, 1, 50001,
+                         [](double f) { return 1 - std::sqrt(f) - f * std::sin(10 * kPi * f); });
           });
     case 4: {
       ProblemShape s = box(10, -5, 5, 2, 0);
@@ -233,8 +232,7 @@ std::unique_ptr<Problem> dtlz(int which) {
 }
 
 EvaluationOutcome bnh(const std::vector<double>& x) {
-  return two(4 * x[0] * x[0] + 4 * x[1] * x[1],
-             (x[0] - 5) * (x[0] - 5) + (x[1] - 5) * (x[1] - 5),
+  return two(4 * x[0] * x[0] + 4 * x[1] * x[1], (x[0] - 5) * (x[0] - 5) + (x[1] - 5) * (x[1] - 5),
              {25 - (x[0] - 5) * (x[0] - 5) - x[1] * x[1],
               (x[0] - 8) * (x[0] - 8) + (x[1] + 3) * (x[1] + 3) - 7.7});
 }
@@ -256,8 +254,8 @@ EvaluationOutcome osy(const std::vector<double>& x) {
   EvaluationOutcome o;
   o.objectives = {-(25 * sq(x[0] - 2) + sq(x[1] - 2) + sq(x[2] - 1) + sq(x[3] - 4) + sq(x[4] - 1)),
                   sq(x[0]) + sq(x[1]) + sq(x[2]) + sq(x[3]) + sq(x[4]) + sq(x[5])};
-  o.constraints = {x[0] + x[1] - 2,       6 - x[0] - x[1],          2 - x[1] + x[0],
-                   2 - x[0] + 3 * x[1],   4 - sq(x[2] - 3) - x[3],  sq(x[4] - 3) + x[5] - 4};
+  o.constraints = {x[0] + x[1] - 2,     6 - x[0] - x[1],         2 - x[1] + x[0],
+                   2 - x[0] + 3 * x[1], 4 - sq(x[2] - 3) - x[3], sq(x[4] - 3) + x[5] - 4};
   return o;
 }
 
@@ -328,9 +326,8 @@ std::unique_ptr<Problem> constrained(const std::string& name) {
 }  // namespace
 
 const std::vector<std::string>& test_problem_names() {
-  static const std::vector<std::string> names = {"zdt1",  "zdt2", "zdt3", "zdt4",
-                                                 "zdt6",  "dtlz1", "dtlz2", "bnh",
-                                                 "srn",   "tnk",  "osy"};
+  static const std::vector<std::string> names = {"zdt1",  "zdt2", "zdt3", "zdt4", "zdt6", "dtlz1",
+                                                 "dtlz2", "bnh",  "srn",  "tnk",  "osy"};
   return names;
 }
 
