@@ -44,7 +44,9 @@ Status CliArgs::parse(int argc, const char* const* argv, int first) {
   return {};
 }
 
-bool CliArgs::has(const std::string& name) const { return values_.count(name) != 0; }
+bool CliArgs::has(const std::string& name) const {
+  return values_.count(name) != 0;
+}
 
 std::string CliArgs::get(const std::string& name, const std::string& fallback) const {
   if (const auto it = values_.find(name); it != values_.end()) return it->second;

@@ -15,9 +15,12 @@ namespace stride::fw {
 
 std::string_view to_string(ParamType type) {
   switch (type) {
-    case ParamType::kReal: return "real";
-    case ParamType::kInt: return "int";
-    case ParamType::kBool: return "bool";
+    case ParamType::kReal:
+      return "real";
+    case ParamType::kInt:
+      return "int";
+    case ParamType::kBool:
+      return "bool";
   }
   return "?";
 }
@@ -48,13 +51,12 @@ ParamHandle ParameterStore::add(ParamSpec spec) {
     spec.max = 1.0;
   }
   if (!(spec.min <= spec.max)) {
-    throw std::invalid_argument("parameter " + n + ": min " + format_number(spec.min) +
-                                " > max " + format_number(spec.max));
+    throw std::invalid_argument("parameter " + n + ": min " + format_number(spec.min) + " > max " +
+                                format_number(spec.max));
   }
   if (!(spec.default_value >= spec.min && spec.default_value <= spec.max)) {
     throw std::invalid_argument("parameter " + n + ": default " +
-                                format_number(spec.default_value) + " outside " +
-                                range_text(spec));
+                                format_number(spec.default_value) + " outside " + range_text(spec));
   }
   if (spec.type != ParamType::kReal && std::floor(spec.default_value) != spec.default_value) {
     throw std::invalid_argument("parameter " + n + ": default must be integral");
@@ -69,8 +71,8 @@ ParamHandle ParameterStore::add(ParamSpec spec) {
   return handle;
 }
 
-ParamHandle ParameterStore::add_real(std::string name, double default_value, double min,
-                                     double max, std::string unit, std::string description) {
+ParamHandle ParameterStore::add_real(std::string name, double default_value, double min, double max,
+                                     std::string unit, std::string description) {
   ParamSpec spec;
   spec.name = std::move(name);
   spec.type = ParamType::kReal;
@@ -221,8 +223,8 @@ Status ParameterStore::parse_json(const nlohmann::json& doc, std::vector<ParamWr
     } else if (node->is_number()) {
       value = node->get<double>();
     } else {
-      return Status::error(where + name + ": expects a number (" + std::string(to_string(spec.type)) +
-                           "), got " + node->dump());
+      return Status::error(where + name + ": expects a number (" +
+                           std::string(to_string(spec.type)) + "), got " + node->dump());
     }
     if (spec.read_only && value == live_[*handle]) continue;  // saved files may echo them
     if (Status s = validate(*handle, value); !s) return Status::error(where + s.message());

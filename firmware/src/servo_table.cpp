@@ -9,11 +9,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "stride/firmware/firmware.hpp"         // data_dir
 #include "stride/firmware/parameter_store.hpp"  // format_number
-
-#ifndef STRIDE_FIRMWARE_DATA_DIR
-#define STRIDE_FIRMWARE_DATA_DIR "."
-#endif
 
 namespace stride::fw {
 
@@ -104,8 +101,8 @@ Status ServoTable::load(const std::filesystem::path& path, ServoTable& out) {
     if (Status s = read_number(servo, where, "max_rad", spec.max_rad); !s) return s;
     if (!(spec.min_rad < spec.max_rad)) {
       return field_error(where + ".min_rad", "must be below max_rad (" +
-                                                 format_number(spec.min_rad) + " >= " +
-                                                 format_number(spec.max_rad) + ")");
+                                                 format_number(spec.min_rad) +
+                                                 " >= " + format_number(spec.max_rad) + ")");
     }
     const std::size_t index = hal::servo_index(spec.id);
     table.servos_[index] = std::move(spec);
@@ -115,7 +112,7 @@ Status ServoTable::load(const std::filesystem::path& path, ServoTable& out) {
 }
 
 std::filesystem::path ServoTable::default_path() {
-  return std::filesystem::path(STRIDE_FIRMWARE_DATA_DIR) / "config" / "servo_table.json";
+  return data_dir() / "config" / "servo_table.json";
 }
 
 const ServoTable& ServoTable::defaults() {

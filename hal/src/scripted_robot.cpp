@@ -63,7 +63,9 @@ void ScriptedRobot::write(const CommandFrame& commands) noexcept {
   if (recorded_.size() < options_.record_capacity) recorded_.push_back(commands);
 }
 
-void ScriptedRobot::set_torque_enable(bool enabled) noexcept { torque_enabled_ = enabled; }
+void ScriptedRobot::set_torque_enable(bool enabled) noexcept {
+  torque_enabled_ = enabled;
+}
 
 SensorFrame ScriptedRobot::standing_frame(const std::array<double, kServoCount>& position_rad) {
   SensorFrame frame;

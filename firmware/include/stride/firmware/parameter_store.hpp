@@ -41,10 +41,10 @@ struct ParamSpec {
   std::string name;  ///< dotted name, e.g. "walk.step_time"
   ParamType type = ParamType::kReal;
   double default_value = 0.0;
-  double min = 0.0;  ///< inclusive lower bound (bool: 0)
-  double max = 0.0;  ///< inclusive upper bound (bool: 1)
-  std::string unit;  ///< SI unit or "" (e.g. "s", "m", "rad", "1")
-  std::string description;  ///< one line
+  double min = 0.0;            ///< inclusive lower bound (bool: 0)
+  double max = 0.0;            ///< inclusive upper bound (bool: 1)
+  std::string unit;            ///< SI unit or "" (e.g. "s", "m", "rad", "1")
+  std::string description;     ///< one line
   bool read_only = false;      ///< cannot be written after registration (only by defaults)
   bool needs_restart = false;  ///< written values take effect after a restart of stride-fw
 };

@@ -24,13 +24,13 @@ struct DeviceDiagnostics {
 struct Diagnostics {
   static constexpr std::size_t kCm730DiagIndex = kServoCount;
   std::array<DeviceDiagnostics, kServoCount + 1> devices{};
-  std::uint64_t cycles = 0;           ///< completed read/write cycles
-  std::int64_t last_tx_ns = 0;        ///< time spent transmitting in the last cycle [ns]
-  std::int64_t last_rx_ns = 0;        ///< time spent waiting for/receiving replies [ns]
+  std::uint64_t cycles = 0;     ///< completed read/write cycles
+  std::int64_t last_tx_ns = 0;  ///< time spent transmitting in the last cycle [ns]
+  std::int64_t last_rx_ns = 0;  ///< time spent waiting for/receiving replies [ns]
   std::int64_t max_tx_ns = 0;
   std::int64_t max_rx_ns = 0;
-  std::uint64_t bytes_tx = 0;         ///< bytes written to the bus
-  std::uint64_t bytes_rx = 0;         ///< bytes read from the bus
+  std::uint64_t bytes_tx = 0;  ///< bytes written to the bus
+  std::uint64_t bytes_rx = 0;  ///< bytes read from the bus
 };
 
 }  // namespace stride::hal

@@ -19,7 +19,9 @@ inline constexpr std::size_t kServoCount = 20;
 inline constexpr std::uint8_t kCm730Id = 200;
 
 /// Servo index 0..19 for Dynamixel ID 1..20 (index = id - 1).
-constexpr std::size_t servo_index(std::uint8_t dynamixel_id) { return dynamixel_id - 1U; }
+constexpr std::size_t servo_index(std::uint8_t dynamixel_id) {
+  return dynamixel_id - 1U;
+}
 
 /// Health of one bus device as seen by the HAL in the latest cycle.
 enum class DeviceHealth : std::uint8_t {

@@ -30,6 +30,6 @@ bool register_command(Command command);
 
 }  // namespace stride::tools
 
-#define STRIDE_COMMAND(name, summary, fn)                                                 \
-  [[maybe_unused]] static const bool stride_command_registered_##name =                   \
+#define STRIDE_COMMAND(name, summary, fn)                               \
+  [[maybe_unused]] static const bool stride_command_registered_##name = \
       ::stride::tools::register_command(::stride::tools::Command{#name, summary, fn})

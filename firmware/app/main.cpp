@@ -1,0 +1,143 @@
+// stride-fw: the robot binary. Builds the firmware, picks a HAL backend, runs the fixed-rate
+// loop until --ticks have run or SIGINT/SIGTERM, then prints the loop statistics.
+#include <csignal>
+#include <cstdio>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "stride/firmware/control_loop.hpp"
+#include "stride/firmware/firmware.hpp"
+#include "stride/firmware/hal_registry.hpp"
+#include "stride/firmware/realtime_robot.hpp"
+
+namespace {
+
+std::atomic<bool> g_stop{false};
+
+void on_signal(int) {
+  g_stop.store(true);
+}
+
+int fail(int code, const std::string& message) {
+  std::fprintf(stderr, "stride-fw: %s\n", message.c_str());
+  return code;
+}
+
+double us(std::int64_t ns) {
+  return static_cast<double>(ns) / 1000.0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace stride;
+  fw::CliArgs args;
+  std::string backends;
+  for (const auto& b : fw::hal_backends())
+    backends += (backends.empty() ? "" : "|") + std::string(b.name);
+  args.option("hal", "HAL backend: " + backends, true, "test")
+      .option("params", "parameter file (JSON) applied at start-up")
+      .option("servo-table", "servo table file", true, fw::ServoTable::default_path().string())
+      .option("ticks", "stop after N ticks (default: run until SIGINT)")
+      .option("no-rt", "do not ask for SCHED_FIFO and mlockall", false)
+      .option("json", "print the final report as one JSON object on stdout", false)
+      .option("help", "show this help", false);
+  for (const auto& b : fw::hal_backends()) b.declare_options(args);
+  if (Status s = args.parse(argc, argv); !s) return fail(2, s.message());
+  if (args.has("help")) {
+    std::printf("usage: stride-fw --hal NAME [options]\n\nbackends:\n");
+    for (const auto& b : fw::hal_backends()) {
+      std::printf("  %-8.*s %.*s\n", static_cast<int>(b.name.size()), b.name.data(),
+                  static_cast<int>(b.help.size()), b.help.data());
+    }
+    std::printf("\n%s", args.help().c_str());
+    return 0;
+  }
+  std::int64_t ticks = -1;
+  if (Status s = args.get_int("ticks", ticks); !s) return fail(2, s.message());
+
+  const fw::HalBackend* backend = nullptr;
+  for (const auto& b : fw::hal_backends()) {
+    if (b.name == args.get("hal")) backend = &b;
+  }
+  if (backend == nullptr) {
+    return fail(2, "unknown --hal '" + args.get("hal") + "' (available: " + backends + ")");
+  }
+
+  fw::FirmwareOptions options;
+  options.servo_table = args.get("servo-table");
+  if (args.has("params")) options.params_file = args.get("params");
+  std::unique_ptr<fw::Firmware> firmware;
+  if (Status s = fw::Firmware::create(options, firmware); !s) return fail(2, s.message());
+
+  fw::HalInstance instance;
+  if (Status s = backend->make(args, firmware->period_ns(), instance); !s) {
+    return fail(1, s.message());
+  }
+  hal::Robot* robot = instance.robot.get();
+  std::unique_ptr<fw::RealtimeRobot> paced;
+  if (instance.paced_by_clock) {
+    paced = std::make_unique<fw::RealtimeRobot>(*instance.robot);
+    if (!args.has("no-rt")) {
+      for (const auto& warning : paced->start({})) {
+        std::fprintf(stderr, "stride-fw: warning: %s\n", warning.c_str());
+      }
+    }
+    robot = paced.get();
+  }
+
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
+  const double rate_hz = 1e9 / static_cast<double>(firmware->period_ns());
+  std::fprintf(stderr, "stride-fw: hal=%s rate=%.0f Hz %s\n", std::string(backend->name).c_str(),
+               rate_hz, ticks >= 0 ? ("ticks=" + std::to_string(ticks)).c_str() : "(Ctrl-C stops)");
+
+  fw::ControlLoop loop(*robot, firmware->controller(), firmware->params());
+  loop.run(ticks, &g_stop);
+
+  const auto& c = loop.counters();
+  const auto status = firmware->controller().status();
+  nlohmann::json report = {{"hal", std::string(backend->name)},
+                           {"rate_hz", rate_hz},
+                           {"cycles", c.cycles},
+                           {"missed_ticks", c.missed_ticks + (paced ? paced->skipped_ticks() : 0)},
+                           {"param_batches", c.param_batches},
+                           {"motion_state", std::string(fw::to_string(status.state))},
+                           {"fallen", status.safety.fallen}};
+  if (paced) {
+    const auto& j = paced->jitter();
+    const auto& k = paced->compute();
+    report["jitter_us"] = {
+        {"p50", us(j.percentile(0.5))}, {"p99", us(j.percentile(0.99))}, {"max", us(j.max())}};
+    report["compute_us"] = {
+        {"p50", us(k.percentile(0.5))}, {"p99", us(k.percentile(0.99))}, {"max", us(k.max())}};
+  }
+  const auto& d = robot->diagnostics();
+  report["bus"] = {{"last_tx_us", us(d.last_tx_ns)},
+                   {"last_rx_us", us(d.last_rx_ns)},
+                   {"max_tx_us", us(d.max_tx_ns)},
+                   {"max_rx_us", us(d.max_rx_ns)}};
+  if (instance.report) instance.report(report);
+
+  if (args.has("json")) {
+    std::printf("%s\n", report.dump().c_str());
+  } else {
+    std::printf("loop: %llu cycles at %.0f Hz, %llu missed ticks, motion %s\n",
+                static_cast<unsigned long long>(c.cycles), rate_hz,
+                static_cast<unsigned long long>(report["missed_ticks"].get<std::uint64_t>()),
+                std::string(fw::to_string(status.state)).c_str());
+    if (paced) {
+      std::printf("period jitter: p50 %.1f us, p99 %.1f us, max %.1f us\n",
+                  report["jitter_us"]["p50"].get<double>(),
+                  report["jitter_us"]["p99"].get<double>(),
+                  report["jitter_us"]["max"].get<double>());
+      std::printf("compute time:  p50 %.1f us, p99 %.1f us, max %.1f us\n",
+                  report["compute_us"]["p50"].get<double>(),
+                  report["compute_us"]["p99"].get<double>(),
+                  report["compute_us"]["max"].get<double>());
+    }
+    std::printf("bus: last tx %.1f us, last rx %.1f us\n", us(d.last_tx_ns), us(d.last_rx_ns));
+  }
+  return 0;
+}

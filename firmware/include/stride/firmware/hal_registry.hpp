@@ -1,0 +1,48 @@
+// HAL backends of stride-fw: each implementation of the HAL registers itself from a source
+// file compiled into the stride-fw executable, so the firmware never depends on a backend:
+//
+//   STRIDE_HAL_BACKEND(serial, "Dynamixel bus on a serial port", declare_fn, make_fn);
+//
+// declare_fn(CliArgs&) declares the backend's own options; make_fn builds the robot for the
+// given loop period. `paced_by_clock` tells stride-fw to wrap the robot in RealtimeRobot
+// (true for hardware; a simulation sets it only with --realtime).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string_view>
+#include <vector>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include "stride/firmware/cli_args.hpp"
+#include "stride/hal/robot.hpp"
+#include "stride/hal/status.hpp"
+
+namespace stride::fw {
+
+struct HalInstance {
+  std::unique_ptr<hal::Robot> robot;
+  bool paced_by_clock = true;
+  /// Optional: adds backend-specific results to stride-fw's final report.
+  std::function<void(nlohmann::json& report)> report;
+};
+
+struct HalBackend {
+  std::string_view name;
+  std::string_view help;
+  void (*declare_options)(CliArgs& args);
+  Status (*make)(const CliArgs& args, std::int64_t period_ns, HalInstance& out);
+};
+
+/// All registered backends, sorted by name.
+const std::vector<HalBackend>& hal_backends();
+bool register_hal_backend(HalBackend backend);
+
+}  // namespace stride::fw
+
+#define STRIDE_HAL_BACKEND(name, help, declare_fn, make_fn)                 \
+  [[maybe_unused]] static const bool stride_hal_backend_registered_##name = \
+      ::stride::fw::register_hal_backend(                                   \
+          ::stride::fw::HalBackend{#name, help, declare_fn, make_fn})

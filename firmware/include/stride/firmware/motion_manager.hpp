@@ -1,0 +1,85 @@
+// MotionManager: decides which motion engine drives the servos, and switches between them
+// without jumps.
+//
+// States and transitions:
+//   kStand   -> kWalk     on a walk request once the stand pose is reached
+//   kWalk    -> kStand    on a stand request: the walk finishes its step, stops, then stand
+//   kStand   -> kScript   on a script request once the stand pose is reached; a script request
+//                         while walking first stops the walk (kWalk -> kStand -> kScript)
+//   kScript  -> kStand    when the script has finished
+//   any      -> kFallen   when the safety layer reports a fall (not during a get-up)
+//   kFallen  -> kGetUp    after motion.fallen_settle_time, with get_up_front (lying on the
+//                         front: torso x axis down, accel x < 0) or get_up_back (accel x > 0)
+//   kGetUp   -> kStand    when the get-up script has finished and the robot is upright,
+//                         otherwise back to kFallen and try again
+// Without a walk or script engine the corresponding requests are refused (counted).
+// While fallen the servos are held soft (motion.fallen_gain) at their measured positions.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string_view>
+
+#include "stride/firmware/motion_engine.hpp"
+#include "stride/firmware/motion_request.hpp"
+#include "stride/firmware/parameter_store.hpp"
+#include "stride/firmware/stand_engine.hpp"
+
+namespace stride::fw {
+
+enum class MotionState : std::uint8_t { kStand, kWalk, kScript, kFallen, kGetUp };
+
+std::string_view to_string(MotionState state);
+
+class MotionManager {
+ public:
+  /// `walk` and `script` may be null (that motion is then unavailable). Engines must outlive
+  /// the manager.
+  MotionManager(ParameterStore& params, double period_s, WalkControl* walk, ScriptControl* script);
+
+  /// Takes a request; it is acted on in the next step(). Real-time: yes.
+  void request(const MotionRequest& request) noexcept;
+
+  /// Runs the active engine for this tick, writing targets into `out` (which holds the
+  /// previous tick's commands). `fallen` comes from the safety layer. Real-time: yes.
+  void step(const hal::SensorFrame& sensors, hal::Tick tick, bool fallen,
+            hal::CommandFrame& out) noexcept;
+
+  MotionState state() const noexcept { return state_; }
+  /// Requests refused because the engine or script was not available.
+  std::uint32_t refused_requests() const noexcept { return refused_; }
+  /// Name of the script playing (kScript/kGetUp), or "".
+  std::string_view active_script() const noexcept { return active_script_name_.data(); }
+  StandEngine& stand() noexcept { return stand_; }
+
+ private:
+  void enter(MotionState state, MotionEngine& engine, const hal::SensorFrame& sensors,
+             const hal::CommandFrame& last, hal::Tick tick) noexcept;
+  bool start_script(int index, std::string_view name, const hal::SensorFrame& sensors,
+                    const hal::CommandFrame& last, hal::Tick tick) noexcept;
+  void hold_soft(const hal::SensorFrame& sensors, hal::CommandFrame& out) noexcept;
+
+  ParameterStore& params_;
+  double period_s_;
+  StandEngine stand_;
+  WalkControl* walk_;
+  ScriptControl* script_;
+  ParamHandle fallen_settle_time_, fallen_gain_, get_up_enabled_;
+
+  MotionState state_ = MotionState::kStand;
+  bool started_ = false;
+  bool have_request_ = false;
+  MotionRequest pending_{};
+  bool want_walk_ = false;
+  double walk_vx_ = 0.0, walk_vy_ = 0.0, walk_vtheta_ = 0.0;
+  int want_script_ = -1;  // script index to play once standing, -1 for none
+  hal::Tick fallen_since_ = 0;
+  std::uint32_t refused_ = 0;
+  // Script names the manager itself plays; resolved once at construction.
+  int get_up_front_ = -1;
+  int get_up_back_ = -1;
+  std::array<char, 32> want_script_name_{};
+  std::array<char, 32> active_script_name_{};
+};
+
+}  // namespace stride::fw

@@ -1,0 +1,75 @@
+// Firmware composition root: registration order, parameter file, loop period.
+#include "stride/firmware/firmware.hpp"
+
+#include <cmath>
+#include <cstdlib>
+
+#ifndef STRIDE_FIRMWARE_DATA_DIR
+#define STRIDE_FIRMWARE_DATA_DIR "."
+#endif
+
+namespace stride::fw {
+
+std::filesystem::path data_dir() {
+  if (const char* env = std::getenv("STRIDE_DATA_DIR"); env != nullptr && *env != '\0') {
+    return env;
+  }
+  return STRIDE_FIRMWARE_DATA_DIR;
+}
+
+// The motion engines the controller drives. Each engine registers its parameters in its
+// constructor, before the parameter file is applied.
+struct Firmware::Engines {
+  WalkControl* walk = nullptr;
+  ScriptControl* script = nullptr;
+};
+
+Firmware::~Firmware() = default;
+
+Status Firmware::create(const FirmwareOptions& options, std::unique_ptr<Firmware>& out) {
+  std::unique_ptr<Firmware> fw(new Firmware());
+  if (Status s = ServoTable::load(options.servo_table, fw->servos_); !s) return s;
+
+  ParamSpec rate{"loop.rate_hz",
+                 ParamType::kInt,
+                 100,
+                 10,
+                 1000,
+                 "Hz",
+                 "control loop rate (ticks per second)",
+                 false,
+                 true};
+  const ParamHandle rate_handle = fw->params_.add(rate);
+  // The period must be known before the engines are built, so the rate is read from the
+  // parameter file first (validated again with everything else below).
+  if (options.params_file) {
+    std::vector<ParamWrite> early;
+    if (Status s = fw->params_.parse_json_file(*options.params_file, early); !s) {
+      // Unknown names are expected here (engines not registered yet); only a bad rate or a
+      // broken file matters now, and the full check below reports everything else.
+      if (s.message().find("unknown parameter") == std::string::npos) return s;
+    }
+    for (const auto& [name, value] : early) {
+      if (name == "loop.rate_hz") (void)fw->params_.set_now({{name, value}});
+    }
+  }
+  const double rate_hz = fw->params_.value(rate_handle);
+  fw->period_ns_ = static_cast<std::int64_t>(std::llround(1e9 / rate_hz));
+  const double period_s = static_cast<double>(fw->period_ns_) * 1e-9;
+  (void)period_s;
+
+  fw->engines_ = std::make_unique<Engines>();
+  // Walk and script engines are constructed here once they exist (issues 5 and 6).
+
+  fw->controller_ =
+      std::make_unique<Controller>(fw->params_, fw->servos_, fw->period_ns_,
+                                   ControllerEngines{fw->engines_->walk, fw->engines_->script});
+
+  if (options.params_file) {
+    if (Status s = fw->params_.load_file_now(*options.params_file); !s) return s;
+  }
+  out = std::move(fw);
+  return {};
+}
+
+}  // namespace stride::fw

@@ -1,0 +1,218 @@
+// MotionManager implementation (see the header for the state machine).
+#include "stride/firmware/motion_manager.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "stride/firmware/stand_pose.hpp"
+
+namespace stride::fw {
+
+std::string_view to_string(MotionState state) {
+  switch (state) {
+    case MotionState::kStand:
+      return "stand";
+    case MotionState::kWalk:
+      return "walk";
+    case MotionState::kScript:
+      return "script";
+    case MotionState::kFallen:
+      return "fallen";
+    case MotionState::kGetUp:
+      return "get_up";
+  }
+  return "?";
+}
+
+namespace {
+void copy_name(std::array<char, 32>& to, std::string_view name) {
+  to.fill('\0');
+  std::memcpy(to.data(), name.data(), std::min(name.size(), to.size() - 1));
+}
+}  // namespace
+
+MotionManager::MotionManager(ParameterStore& params, double period_s, WalkControl* walk,
+                             ScriptControl* script)
+    : params_(params), period_s_(period_s), stand_(params, period_s), walk_(walk), script_(script) {
+  fallen_settle_time_ = params.add_real("motion.fallen_settle_time", 1.0, 0.0, 10.0, "s",
+                                        "time lying still before a get-up starts");
+  fallen_gain_ = params.add_real("motion.fallen_gain", 5.0, 0.0, 100.0, "1",
+                                 "servo gain while fallen (0-100), soft to protect the robot");
+  get_up_enabled_ = params.add({"motion.get_up", ParamType::kBool, 1, 0, 1, "",
+                                "get up automatically after a fall", false, false});
+  if (script_ != nullptr) {
+    get_up_front_ = script_->find("get_up_front");
+    get_up_back_ = script_->find("get_up_back");
+  }
+}
+
+void MotionManager::request(const MotionRequest& request) noexcept {
+  pending_ = request;
+  have_request_ = true;
+}
+
+void MotionManager::enter(MotionState state, MotionEngine& engine, const hal::SensorFrame& sensors,
+                          const hal::CommandFrame& last, hal::Tick tick) noexcept {
+  state_ = state;
+  engine.start(sensors, last, tick);
+  if (state != MotionState::kScript && state != MotionState::kGetUp) active_script_name_.fill(0);
+}
+
+bool MotionManager::start_script(int index, std::string_view name, const hal::SensorFrame& sensors,
+                                 const hal::CommandFrame& last, hal::Tick tick) noexcept {
+  if (script_ == nullptr || !script_->select(index)) return false;
+  copy_name(active_script_name_, name);
+  const MotionState next =
+      (index == get_up_front_ || index == get_up_back_) && state_ == MotionState::kFallen
+          ? MotionState::kGetUp
+          : MotionState::kScript;
+  state_ = next;
+  script_->start(sensors, last, tick);
+  return true;
+}
+
+void MotionManager::hold_soft(const hal::SensorFrame& sensors, hal::CommandFrame& out) noexcept {
+  const double p_gain = gain_to_p_register(params_.value(fallen_gain_));
+  for (std::size_t i = 0; i < hal::kServoCount; ++i) {
+    hal::ServoCommand& c = out.servos[i];
+    const double measured = sensors.servos[i].position_rad;
+    if (std::isfinite(measured)) c.position_rad = measured;
+    c.moving_speed_rad_s = 0.0;
+    c.p_gain = p_gain;
+    c.torque_enable = true;
+  }
+}
+
+void MotionManager::step(const hal::SensorFrame& sensors, hal::Tick tick, bool fallen,
+                         hal::CommandFrame& out) noexcept {
+  const hal::CommandFrame& last = out;  // holds the previous tick's commands
+  if (!started_) {
+    started_ = true;
+    enter(MotionState::kStand, stand_, sensors, last, tick);
+  }
+
+  // 1. Requests.
+  if (have_request_) {
+    have_request_ = false;
+    switch (pending_.kind) {
+      case MotionRequest::Kind::kStand:
+        want_walk_ = false;
+        want_script_ = -1;
+        if (state_ == MotionState::kWalk) walk_->request_stop();
+        break;
+      case MotionRequest::Kind::kWalk:
+        if (walk_ == nullptr) {
+          ++refused_;
+          break;
+        }
+        walk_vx_ = std::clamp(pending_.vx, -1.0, 1.0);
+        walk_vy_ = std::clamp(pending_.vy, -1.0, 1.0);
+        walk_vtheta_ = std::clamp(pending_.vtheta, -1.0, 1.0);
+        want_walk_ = true;
+        want_script_ = -1;
+        if (state_ == MotionState::kWalk) walk_->set_velocity(walk_vx_, walk_vy_, walk_vtheta_);
+        break;
+      case MotionRequest::Kind::kScript: {
+        const int index = script_ != nullptr ? script_->find(pending_.script_name()) : -1;
+        if (index < 0 || state_ == MotionState::kFallen || state_ == MotionState::kGetUp) {
+          ++refused_;
+          break;
+        }
+        want_script_ = index;
+        copy_name(want_script_name_, pending_.script_name());
+        want_walk_ = false;
+        if (state_ == MotionState::kWalk) walk_->request_stop();
+        break;
+      }
+    }
+  }
+
+  // 2. Falls pre-empt everything but a get-up in progress.
+  if (fallen && state_ != MotionState::kFallen && state_ != MotionState::kGetUp) {
+    state_ = MotionState::kFallen;
+    fallen_since_ = tick;
+    want_walk_ = false;
+    want_script_ = -1;
+    active_script_name_.fill(0);
+  }
+
+  // 3. Transitions and the active engine.
+  switch (state_) {
+    case MotionState::kStand:
+      if (stand_.done() && want_script_ >= 0) {
+        const int index = want_script_;
+        want_script_ = -1;
+        if (start_script(index, want_script_name_.data(), sensors, last, tick)) {
+          script_->step(sensors, tick, out);
+          return;
+        }
+        ++refused_;
+      } else if (stand_.done() && want_walk_) {
+        enter(MotionState::kWalk, *walk_, sensors, last, tick);
+        walk_->set_velocity(walk_vx_, walk_vy_, walk_vtheta_);
+        walk_->step(sensors, tick, out);
+        return;
+      }
+      stand_.step(sensors, tick, out);
+      return;
+
+    case MotionState::kWalk:
+      if (!want_walk_ && walk_->done()) {
+        enter(MotionState::kStand, stand_, sensors, last, tick);
+        stand_.step(sensors, tick, out);
+        return;
+      }
+      walk_->step(sensors, tick, out);
+      return;
+
+    case MotionState::kScript:
+      if (script_->done()) {
+        enter(MotionState::kStand, stand_, sensors, last, tick);
+        stand_.step(sensors, tick, out);
+        return;
+      }
+      script_->step(sensors, tick, out);
+      return;
+
+    case MotionState::kFallen: {
+      const double lying = static_cast<double>(tick - fallen_since_) * period_s_;
+      if (!fallen) {  // righted by someone: stand up from here
+        enter(MotionState::kStand, stand_, sensors, last, tick);
+        stand_.step(sensors, tick, out);
+        return;
+      }
+      if (params_.value(get_up_enabled_) != 0.0 && lying >= params_.value(fallen_settle_time_)) {
+        const auto& a = sensors.cm730.accel_mps2;
+        const bool on_front = a[0] < 0.0;                    // torso x axis points down
+        const bool clear = std::abs(a[0]) > std::abs(a[1]);  // not lying on a side
+        const int index = on_front ? get_up_front_ : get_up_back_;
+        if (clear && index >= 0 &&
+            start_script(index, on_front ? "get_up_front" : "get_up_back", sensors, last, tick)) {
+          script_->step(sensors, tick, out);
+          return;
+        }
+      }
+      hold_soft(sensors, out);
+      return;
+    }
+
+    case MotionState::kGetUp:
+      if (script_->done()) {
+        if (fallen) {
+          state_ = MotionState::kFallen;
+          fallen_since_ = tick;
+          active_script_name_.fill(0);
+          hold_soft(sensors, out);
+        } else {
+          enter(MotionState::kStand, stand_, sensors, last, tick);
+          stand_.step(sensors, tick, out);
+        }
+        return;
+      }
+      script_->step(sensors, tick, out);
+      return;
+  }
+}
+
+}  // namespace stride::fw
