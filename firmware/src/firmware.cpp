@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdlib>
 
+#include "stride/firmware/script/script_engine.hpp"
+
 #ifndef STRIDE_FIRMWARE_DATA_DIR
 #define STRIDE_FIRMWARE_DATA_DIR "."
 #endif
@@ -22,6 +24,7 @@ std::filesystem::path data_dir() {
 struct Firmware::Engines {
   WalkControl* walk = nullptr;
   ScriptControl* script = nullptr;
+  std::unique_ptr<ScriptEngine> script_engine;
 };
 
 Firmware::~Firmware() = default;
@@ -60,6 +63,13 @@ Status Firmware::create(const FirmwareOptions& options, std::unique_ptr<Firmware
 
   fw->engines_ = std::make_unique<Engines>();
   // Walk and script engines are constructed here once they exist (issues 5 and 6).
+  // Scripts are loaded before the controller: the motion manager resolves the get-up scripts.
+  fw->engines_->script_engine =
+      std::make_unique<ScriptEngine>(fw->period_ns_, fw->params_, fw->servos_);
+  const std::filesystem::path scripts_dir =
+      options.scripts_dir.empty() ? data_dir() / "scripts" : options.scripts_dir;
+  if (Status s = fw->engines_->script_engine->load_folder(scripts_dir); !s) return s;
+  fw->engines_->script = fw->engines_->script_engine.get();
 
   fw->controller_ =
       std::make_unique<Controller>(fw->params_, fw->servos_, fw->period_ns_,

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "stride/firmware/script/script_genome.hpp"
+#include "stride/firmware/stand_pose.hpp"
 
 namespace stride::fw {
 
@@ -155,7 +156,7 @@ void ScriptEngine::step(const hal::SensorFrame& sensors, hal::Tick tick,
     }
     cmd.position_rad = goal;
     cmd.moving_speed_rad_s = p.speed_rad_s;
-    cmd.p_gain = p_register_from_gain(target.gain);
+    cmd.p_gain = gain_to_p_register(target.gain);
     cmd.i_gain = 0.0;
     cmd.d_gain = 0.0;
     cmd.torque_limit = torque_limit_from_percent(target.torque);

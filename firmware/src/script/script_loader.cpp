@@ -21,10 +21,6 @@ int Script::total_duration_ms() const {
   return total;
 }
 
-double p_register_from_gain(double gain) {
-  return std::min(254.0, std::round(2.54 * std::clamp(gain, 0.0, 100.0)));
-}
-
 double torque_limit_from_percent(double torque) {
   return std::clamp(torque, 0.0, 100.0) / 100.0;
 }

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "stride/firmware/script/script_engine.hpp"
+#include "stride/firmware/stand_pose.hpp"
 #include "stride/hal/scripted_robot.hpp"
 
 namespace stride::fw {
@@ -259,11 +260,11 @@ TEST(ScriptEngine, SameInputsSameCommands) {
 }
 
 TEST(ScriptGainMapping, MatchesTheIgusRegisterConversion) {
-  EXPECT_DOUBLE_EQ(p_register_from_gain(0), 0);
-  EXPECT_DOUBLE_EQ(p_register_from_gain(20), 51);
-  EXPECT_DOUBLE_EQ(p_register_from_gain(30), 76);
-  EXPECT_DOUBLE_EQ(p_register_from_gain(99.9), 254);
-  EXPECT_DOUBLE_EQ(p_register_from_gain(100), 254);
+  EXPECT_DOUBLE_EQ(gain_to_p_register(0), 0);
+  EXPECT_DOUBLE_EQ(gain_to_p_register(20), 51);
+  EXPECT_DOUBLE_EQ(gain_to_p_register(30), 76);
+  EXPECT_DOUBLE_EQ(gain_to_p_register(99.9), 254);
+  EXPECT_DOUBLE_EQ(gain_to_p_register(100), 254);
   EXPECT_DOUBLE_EQ(torque_limit_from_percent(100), 1.0);
   EXPECT_DOUBLE_EQ(torque_limit_from_percent(25), 0.25);
 }

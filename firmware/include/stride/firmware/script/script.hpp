@@ -2,10 +2,10 @@
 //
 // A script is a list of frames. Each frame lasts `duration_ms` milliseconds and lists the
 // servos it moves: for each, the target position (URDF joint angle [rad]), the gain g (0-100,
-// mapped to the MX P register by p_register_from_gain) and the torque (0-100 % of the servo's
-// maximum, 0 = limp). Servos a frame does not list keep moving towards their next listed target.
-// This is the NUbots/igus script model (igus.md section 3) with URDF angles; the file format is
-// documented in firmware/scripts/README.md.
+// mapped to the MX P register by gain_to_p_register in stand_pose.hpp) and the torque (0-100 % of
+// the servo's maximum, 0 = limp). Servos a frame does not list keep moving towards their next
+// listed target. This is the NUbots/igus script model (igus.md section 3) with URDF angles; the
+// file format is documented in firmware/scripts/README.md.
 #pragma once
 
 #include <cstddef>
@@ -48,8 +48,6 @@ struct Script {
 inline constexpr int kMaxFrameDurationMs = 60'000;
 inline constexpr std::size_t kMaxScriptFrames = 64;
 
-/// MX protocol 1.0 P register for a script gain g in [0, 100]: round(2.54 g), capped at 254.
-double p_register_from_gain(double gain);
 /// Torque limit fraction [0, 1] for a script torque in [0, 100] %.
 double torque_limit_from_percent(double torque);
 
