@@ -3,7 +3,7 @@
 
 add_library(stride_warnings INTERFACE)
 target_compile_options(stride_warnings INTERFACE
-  -Wall -Wextra -Wpedantic -Wshadow -Wnon-virtual-dtor -Wcast-align -Wnull-dereference
+  -Wall -Wextra -Wpedantic -Wshadow -Wnon-virtual-dtor -Wcast-align
   -Wimplicit-fallthrough $<$<BOOL:${STRIDE_WERROR}>:-Werror>
   # GCC 12 reports false -Wrestrict/-Wstringop-overflow in libstdc++'s std::string at -O2/-O3
   # (GCC bugs 105329, 105651); they are not in project code.
