@@ -10,6 +10,7 @@
 #include "stride/host_tools/command.hpp"
 #include "stride/sim_hal/episode.hpp"
 #include "stride/sim_hal/pose_svg.hpp"
+#include "stride/sim_hal/script_episodes.hpp"
 #include "stride/sim_hal/sim_cli.hpp"
 #include "stride/sim_hal/trajectory_recorder.hpp"
 
@@ -53,43 +54,67 @@ int run_sim(int argc, char** argv) {
   args.option("snapshot", "write an SVG picture of the robot's pose at --snapshot-times", true);
   args.option("snapshot-times", "comma-separated times [s] for --snapshot", true, "0,1,2,5,10");
   args.option("json", "print the result as one JSON object", false);
+  args.option("script",
+              "kick: the kick script (kick_right|kick_left); the ball lies in front of that foot",
+              true, "kick_right");
   sim::declare_world_options(args);
   if (Status s = args.parse(argc, argv); !s) return bad_input(s.message());
   if (args.has("help")) {
     std::printf("usage: stride sim stand|walk|kick [options]\n\n%s", args.help().c_str());
     return 0;
   }
-  if (args.positional().size() != 1)
-    return bad_input("expected one motion: stand, walk or kick");
+  if (args.positional().size() != 1) return bad_input("expected one motion: stand, walk or kick");
   const std::string motion = args.positional()[0];
   if (motion != "stand" && motion != "walk" && motion != "kick")
     return bad_input("unknown motion '" + motion + "' (expected stand, walk or kick)");
   double duration = 10, vx = 0, vy = 0, vth = 0;
-  for (auto [name, out] : {std::pair{"duration", &duration}, {"vx", &vx}, {"vy", &vy}, {"vth", &vth}})
+  for (auto [name, out] :
+       {std::pair{"duration", &duration}, {"vx", &vx}, {"vy", &vy}, {"vth", &vth}})
     if (Status s = args.get_double(name, *out); !s) return bad_input(s.message());
   if (!(duration > 0.0) || duration > 3600.0)
     return bad_input("--duration: must be in (0, 3600] s, got " + args.get("duration"));
   std::vector<double> snapshot_times;
-  if (Status s = parse_times(args.get("snapshot-times"), snapshot_times); !s) return bad_input(s.message());
+  if (Status s = parse_times(args.get("snapshot-times"), snapshot_times); !s)
+    return bad_input(s.message());
   sim::WorldOptions world_options;
   if (Status s = sim::read_world_options(args, world_options); !s) return bad_input(s.message());
-  if (args.has("params")) return bad_input("--params: needs the firmware Controller (not yet available)");
+  if (args.has("params") && motion != "kick")
+    return bad_input("--params: needs the firmware Controller (not yet available)");
   if (motion == "walk") return bad_input("walk: walk engine not available yet");
-  if (motion == "kick") return bad_input("kick: kick script engine not available yet");
+  const std::string kick_script = args.get("script");
+  if (kick_script != "kick_right" && kick_script != "kick_left")
+    return bad_input("--script: expected kick_right or kick_left, got '" + kick_script + "'");
 
-  std::unique_ptr<sim::SimWorld> world;
-  if (Status s = sim::SimWorld::create(world_options, world); !s) {
-    std::fprintf(stderr, "stride sim: %s\n", s.message().c_str());
-    return 1;
-  }
-  sim::SimRobot robot(std::move(world));
   sim::TrajectoryRecorder recorder;
   sim::EpisodeOptions episode;
   episode.duration_s = duration;
   episode.recorder = args.has("record") ? &recorder : nullptr;
   if (args.has("snapshot")) episode.snapshot_times_s = snapshot_times;
-  const sim::StepFunction controller = sim::hold_pose_controller(sim::igus_stand_pose());
-  const sim::EpisodeResult result = sim::run_episode(robot, controller, episode);
+  std::unique_ptr<sim::SimRobot> robot_ptr;
+  sim::EpisodeResult result;
+  if (motion == "kick") {
+    // The firmware (script engine, motion manager) plays the kick; see script_episodes.hpp.
+    sim::KickEpisodeOptions kick;
+    kick.script = kick_script;
+    kick.duration_s = args.has("duration") ? duration : kick.duration_s;
+    if (kick_script == "kick_left") kick.ball_position.y() = -kick.ball_position.y();
+    if (args.has("params")) kick.firmware.params_file = args.get("params");
+    kick.episode = episode;
+    if (Status s = sim::run_kick_episode(world_options, kick, result, &robot_ptr); !s) {
+      std::fprintf(stderr, "stride sim: %s\n", s.message().c_str());
+      return 1;
+    }
+  } else {
+    std::unique_ptr<sim::SimWorld> world;
+    if (Status s = sim::SimWorld::create(world_options, world); !s) {
+      std::fprintf(stderr, "stride sim: %s\n", s.message().c_str());
+      return 1;
+    }
+    robot_ptr = std::make_unique<sim::SimRobot>(std::move(world));
+    const sim::StepFunction controller = sim::hold_pose_controller(sim::igus_stand_pose());
+    result = sim::run_episode(*robot_ptr, controller, episode);
+  }
+  sim::SimRobot& robot = *robot_ptr;
 
   if (args.has("record")) {
     if (Status s = recorder.save(args.get("record")); !s) {
@@ -98,9 +123,9 @@ int run_sim(int argc, char** argv) {
     }
   }
   if (args.has("snapshot")) {
-    const std::string svg = sim::render_pose_svg(robot.world().model(), result.snapshots,
-                                                 world_options.contact.grass_thickness_m,
-                                                 world_options.ball.present ? world_options.ball.radius_m : 0.0);
+    const std::string svg = sim::render_pose_svg(
+        robot.world().model(), result.snapshots, world_options.contact.grass_thickness_m,
+        world_options.ball.present ? world_options.ball.radius_m : 0.0);
     if (Status s = stride::fw::write_file_atomically(args.get("snapshot"), svg); !s) {
       std::fprintf(stderr, "stride sim: %s\n", s.message().c_str());
       return 1;
@@ -110,9 +135,12 @@ int run_sim(int argc, char** argv) {
     std::printf("%s\n", sim::to_json(result).dump().c_str());
   } else {
     std::printf("%s: %s after %.2f s sim (%.2f s wall, %.1fx real time)\n", motion.c_str(),
-                result.fell ? "FELL" : "standing", result.sim_time_s, result.wall_time_s, result.rtf);
+                result.fell ? "FELL" : "standing", result.sim_time_s, result.wall_time_s,
+                result.rtf);
+    if (motion == "kick") std::printf("ball moved %.3f m\n", result.ball_distance_m);
     std::printf("distance %.3f m, max |a| %.2f m/s^2, max field-plane sway %.2f m/s^2, state %s\n",
-                result.distance_m, result.max_accel, result.max_fps, sim::hash_hex(result.state_hash).c_str());
+                result.distance_m, result.max_accel, result.max_fps,
+                sim::hash_hex(result.state_hash).c_str());
   }
   if (result.status != sim::WorldStatus::kRunning) {
     std::fprintf(stderr, "stride sim: episode ended: %s\n", result.failure_reason.c_str());
