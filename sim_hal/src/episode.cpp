@@ -48,11 +48,11 @@ EpisodeResult run_episode(SimRobot& robot, const StepFunction& controller,
     robot.read(sensors);
     commands = controller(sensors, tick);
     robot.write(commands);
-    const GroundTruth g = world.ground_truth();
+    const Eigen::Isometry3d torso = world.torso_pose();
     const double t = static_cast<double>(tick - first_tick) * period_s;
     if (options.recorder) options.recorder->record(tick - first_tick, world, sensors, commands);
     while (next_snapshot < snapshot_times.size() && snapshot_times[next_snapshot] <= t + 1e-9) {
-      result.snapshots.push_back({t, world.link_poses(), g.ball_position});
+      result.snapshots.push_back({t, world.link_poses(), world.ground_truth().ball_position});
       ++next_snapshot;
     }
     if (world.status() != WorldStatus::kRunning) break;
@@ -61,10 +61,10 @@ EpisodeResult run_episode(SimRobot& robot, const StepFunction& controller,
       result.max_accel = std::max(result.max_accel, std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]));
       result.max_fps = std::max(result.max_fps, std::sqrt(a[0] * a[0] + a[1] * a[1]));
     }
-    const double forward = g.torso.translation().x() - start.torso.translation().x();
+    const double forward = torso.translation().x() - start.torso.translation().x();
     if (!result.time_to_goal_s && forward >= options.goal_distance_m) result.time_to_goal_s = t;
-    const double up = g.torso.linear()(2, 2);  // world z of the torso's z axis
-    if (!result.fell && (up < 0.5 || g.torso.translation().z() < 0.25)) {
+    const double up = torso.linear()(2, 2);  // world z of the torso's z axis
+    if (!result.fell && (up < 0.5 || torso.translation().z() < 0.25)) {
       result.fell = true;
       result.fall_time_s = t;
       if (options.stop_on_fall) break;

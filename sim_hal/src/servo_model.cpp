@@ -68,8 +68,11 @@ double ServoModel::step(double q, double w, double h) {
   }
   motor_torque_ = tau;
   // 4. Friction (viscous; Coulomb bounded by what stops the rotor within one step).
+  // The explicit friction slope (viscous plus stiction) stays below J/h, so that one step can
+  // at most stop the rotor, never reverse it (an over-damped explicit step chatters).
   double joint_tau = tau - p.viscous_friction * w;
-  const double stiction = std::min(p.coulomb_friction, p.reflected_inertia * std::abs(w) / h);
+  const double slope_left = std::max(0.0, p.reflected_inertia / h - p.viscous_friction);
+  const double stiction = std::min(p.coulomb_friction, slope_left * std::abs(w));
   joint_tau -= std::copysign(stiction, w);
   // 5. End stops.
   if (p.limited) {

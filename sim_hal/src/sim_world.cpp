@@ -472,7 +472,7 @@ bool SimWorld::Impl::step_once() {
       for (int k = 0; k < 4; ++k) q_all[first + k] /= norm;
     }
     matter->updU(state) = u_next;
-    state.updTime() += h;
+    state.updTime() = static_cast<Real>(steps + 1) * h;  // no round-off drift
   } catch (const std::exception& e) {
     std::string what = e.what();
     std::replace(what.begin(), what.end(), '\n', ' ');
@@ -726,6 +726,13 @@ GroundTruth SimWorld::ground_truth() const {
   if (w.left_foot >= 0) g.left_foot = to_isometry(w.bodies[static_cast<std::size_t>(w.left_foot)].getBodyTransform(w.state));
   if (w.right_foot >= 0) g.right_foot = to_isometry(w.bodies[static_cast<std::size_t>(w.right_foot)].getBodyTransform(w.state));
   return g;
+}
+
+Eigen::Isometry3d SimWorld::torso_pose() const {
+  Impl& w = *impl_;
+  if (w.status == WorldStatus::kNonFinite) return Eigen::Isometry3d::Identity();
+  w.system->realize(w.state, Stage::Position);
+  return to_isometry(w.bodies[0].getBodyTransform(w.state));
 }
 
 std::uint64_t SimWorld::state_hash() const {

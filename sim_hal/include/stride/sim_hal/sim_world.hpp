@@ -192,6 +192,8 @@ class SimWorld {
   const std::string& failure_reason() const;
 
   GroundTruth ground_truth() const;
+  /// The torso pose alone (cheaper than ground_truth()).
+  Eigen::Isometry3d torso_pose() const;
   /// FNV-1a 64 over the bytes of time, q, u, servo set-points and contact anchors.
   std::uint64_t state_hash() const;
 
