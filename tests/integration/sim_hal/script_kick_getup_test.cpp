@@ -116,6 +116,7 @@ TEST(SimScripts, PushedOverTheRobotGetsUp) {
     PushEpisodeOptions push;
     push.from_behind = trial % 2 == 0;
     push.push_speed = 10.0 + 0.5 * static_cast<double>(trial);
+    push.duration_s = 25.0;  // a front fall takes a roll onto the back, then get_up_back
     PushEpisodeResult result;
     const Status status = run_push_episode(
         world_for_seed(static_cast<std::uint64_t>(100 + trial), true), push, result);
