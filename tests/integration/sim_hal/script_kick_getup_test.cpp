@@ -116,17 +116,18 @@ TEST(SimScripts, PushedOverTheRobotGetsUp) {
     PushEpisodeOptions push;
     push.from_behind = trial % 2 == 0;
     push.push_speed = 10.0 + 0.5 * static_cast<double>(trial);
-    push.duration_s = 25.0;  // a front fall takes a roll onto the back, then get_up_back
+    push.duration_s = 40.0;  // a front fall: roll onto the back, then get_up_back; retries
     PushEpisodeResult result;
     const Status status = run_push_episode(
         world_for_seed(static_cast<std::uint64_t>(100 + trial), true), push, result);
     ASSERT_TRUE(status) << status.message();
     const char* expected = push.from_behind ? "get_up_front" : "get_up_back";
     std::printf(
-        "push trial %d (%s, %.1f m/s): knocked over %d, script %s, got up %d, final upright "
-        "%.2f\n",
+        "push trial %d (%s, %.1f m/s): knocked over %d, first script %s, %d get-up attempts, "
+        "standing again at %.1f s, got up %d, final upright %.2f\n",
         trial, push.from_behind ? "from behind" : "from the front", push.push_speed,
-        result.episode.fell, result.get_up_script.c_str(), result.got_up, result.final_upright);
+        result.episode.fell, result.get_up_script.c_str(), result.get_up_attempts,
+        result.stand_again_s, result.got_up, result.final_upright);
     knocked_over += result.episode.fell ? 1 : 0;
     got_up += result.got_up ? 1 : 0;
     right_script += result.get_up_script == expected ? 1 : 0;
