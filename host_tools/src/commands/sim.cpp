@@ -101,6 +101,8 @@ int run_sim(int argc, char** argv) {
     // kick requested at 1 s, played by the firmware's script engine once the stand is reached.
     sim::KickEpisodeOptions kick;
     kick.script = args.get("script");
+    if (firmware->params().list("script." + kick.script + ".frame").empty())
+      return bad_input("--script: no script '" + kick.script + "' in the firmware's scripts");
     kick.duration_s = duration;
     if (kick.script == "kick_left") kick.ball_position.y() = -kick.ball_position.y();
     kick.firmware = fw_options;

@@ -6,7 +6,10 @@
 #include <cstdio>
 #include <random>
 
+#include <sys/wait.h>
+
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "stride/sim_hal/script_episodes.hpp"
 
@@ -137,6 +140,33 @@ TEST(SimScripts, PushedOverTheRobotGetsUp) {
   EXPECT_EQ(knocked_over, 10);
   EXPECT_EQ(right_script, 10);
   EXPECT_GE(got_up, 8);
+}
+
+std::string run_stride(const std::string& args, int& code) {
+  const std::string command = std::string(STRIDE_BIN_DIR) + "/stride " + args;
+  FILE* pipe = popen(command.c_str(), "r");
+  std::string out;
+  char buffer[4096];
+  while (pipe != nullptr && std::fgets(buffer, sizeof buffer, pipe) != nullptr) out += buffer;
+  const int status = pipe != nullptr ? pclose(pipe) : -1;
+  code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return out;
+}
+
+TEST(SimScripts, StrideSimKickJson) {
+  int code = -1;
+  const std::string out = run_stride("sim kick --seed 4 --json", code);
+  ASSERT_EQ(code, 0) << out;
+  const nlohmann::json result = nlohmann::json::parse(out);
+  EXPECT_FALSE(result.at("fell").get<bool>());
+  EXPECT_GE(result.at("ball_distance_m").get<double>(), 0.5);
+  EXPECT_GT(result.at("max_fps").get<double>(), 0.0);
+  EXPECT_LT(result.at("max_fps").get<double>(), 20.0);
+  const std::string left = run_stride("sim kick --script kick_left --json", code);
+  ASSERT_EQ(code, 0) << left;
+  EXPECT_GE(nlohmann::json::parse(left).at("ball_distance_m").get<double>(), 0.5);
+  run_stride("sim kick --script kick_up --json 2>/dev/null", code);
+  EXPECT_EQ(code, 2);
 }
 
 }  // namespace
