@@ -18,7 +18,10 @@ set(CMAKE_FIND_ROOT_PATH_MODE_INCLUDE BOTH)
 set(CMAKE_FIND_ROOT_PATH_MODE_PACKAGE BOTH)
 set(ENV{PKG_CONFIG_LIBDIR} "/usr/lib/aarch64-linux-gnu/pkgconfig:/usr/share/pkgconfig")
 
+# The emulated programs load the arm64 multiarch runtime (libc6:arm64, libstdc++6:arm64 in
+# /lib/aarch64-linux-gnu), not the cross toolchain's private copy in /usr/aarch64-linux-gnu:
+# with that older copy, qemu-user 7.2 hangs in the first pthread join.
 find_program(STRIDE_QEMU_AARCH64 NAMES qemu-aarch64 qemu-aarch64-static)
 if(STRIDE_QEMU_AARCH64)
-  set(CMAKE_CROSSCOMPILING_EMULATOR "${STRIDE_QEMU_AARCH64};-L;/usr/aarch64-linux-gnu")
+  set(CMAKE_CROSSCOMPILING_EMULATOR "${STRIDE_QEMU_AARCH64};-L;/")
 endif()

@@ -13,5 +13,4 @@ set(CMAKE_CXX_FLAGS_INIT "-march=broadwell -mtune=broadwell")
 # Static: libstdc++, libc (glibc static works for stride-fw: it does not use NSS or dlopen) and
 # libserialport (Debian ships libserialport.a).
 set(CMAKE_EXE_LINKER_FLAGS_INIT "-static")
-set(CMAKE_FIND_LIBRARY_SUFFIXES ".a")
-set(PKG_CONFIG_ARGN --static)
+set(STRIDE_STATIC ON CACHE BOOL "Link every library statically")
