@@ -105,7 +105,9 @@ TEST(WalkInSim, BackwardAndTurningKeepTheRobotUpForFiveSeconds) {
     const sim::EpisodeResult r = walk_in_sim(1, command, 20.0);
     print(command.vx < 0 ? "backward" : "turning", 1, r);
     EXPECT_EQ(r.status, sim::WorldStatus::kRunning) << r.failure_reason;
-    if (r.fell) EXPECT_GT(r.fall_time_s, 5.0);
+    if (r.fell) {
+      EXPECT_GT(r.fall_time_s, 5.0);
+    }
   }
 }
 
