@@ -7,6 +7,8 @@
 #include <cstdlib>
 #include <exception>
 
+#include "stride/firmware/script/script_engine.hpp"
+
 #ifndef STRIDE_FIRMWARE_DATA_DIR
 #define STRIDE_FIRMWARE_DATA_DIR "."
 #endif
@@ -36,6 +38,7 @@ struct Firmware::Engines {
   std::unique_ptr<WalkEngine> walk_engine;
   WalkControl* walk = nullptr;
   ScriptControl* script = nullptr;
+  std::unique_ptr<ScriptEngine> script_engine;
 };
 
 Firmware::~Firmware() = default;
@@ -81,6 +84,13 @@ Status Firmware::create(const FirmwareOptions& options, std::unique_ptr<Firmware
     return Status::error(e.what());
   }
   fw->engines_->walk = fw->engines_->walk_engine.get();
+  // Scripts are loaded before the controller: the motion manager resolves the get-up scripts.
+  fw->engines_->script_engine =
+      std::make_unique<ScriptEngine>(fw->period_ns_, fw->params_, fw->servos_);
+  const std::filesystem::path scripts_dir =
+      options.scripts_dir.empty() ? data_dir() / "scripts" : options.scripts_dir;
+  if (Status s = fw->engines_->script_engine->load_folder(scripts_dir); !s) return s;
+  fw->engines_->script = fw->engines_->script_engine.get();
 
   fw->controller_ =
       std::make_unique<Controller>(fw->params_, fw->servos_, fw->period_ns_,

@@ -12,6 +12,7 @@
 #include "stride/host_tools/command.hpp"
 #include "stride/sim_hal/episode.hpp"
 #include "stride/sim_hal/pose_svg.hpp"
+#include "stride/sim_hal/script_episodes.hpp"
 #include "stride/sim_hal/sim_cli.hpp"
 #include "stride/sim_hal/trajectory_recorder.hpp"
 
@@ -88,21 +89,37 @@ int run_sim(int argc, char** argv) {
   if (Status s = stride::fw::Firmware::create(fw_options, firmware); !s) return bad_input(s.message());
   world_options.control_period_ns = firmware->period_ns();
 
-  std::unique_ptr<sim::SimWorld> world;
-  if (Status s = sim::SimWorld::create(world_options, world); !s) {
-    std::fprintf(stderr, "stride sim: %s\n", s.message().c_str());
-    return 1;
-  }
-  sim::SimRobot robot(std::move(world));
   sim::TrajectoryRecorder recorder;
   sim::EpisodeOptions episode;
   episode.duration_s = duration;
   episode.recorder = args.has("record") ? &recorder : nullptr;
   if (args.has("snapshot")) episode.snapshot_times_s = snapshot_times;
+  std::unique_ptr<sim::SimRobot> robot_ptr;
+  sim::EpisodeResult result;
+  if (motion == "kick") {
+    // The seed's kick episode (script_episodes.hpp): ball in front of the kicking foot, the
+    // kick requested at 1 s, played by the firmware's script engine once the stand is reached.
+    sim::KickEpisodeOptions kick;
+    kick.script = args.get("script");
+    kick.duration_s = duration;
+    if (kick.script == "kick_left") kick.ball_position.y() = -kick.ball_position.y();
+    kick.firmware = fw_options;
+    kick.episode = episode;
+    if (Status s = sim::run_kick_episode(world_options, kick, result, &robot_ptr); !s) {
+      std::fprintf(stderr, "stride sim: %s\n", s.message().c_str());
+      return 1;
+    }
+  } else {
+  std::unique_ptr<sim::SimWorld> world;
+  if (Status s = sim::SimWorld::create(world_options, world); !s) {
+    std::fprintf(stderr, "stride sim: %s\n", s.message().c_str());
+    return 1;
+  }
+  robot_ptr = std::make_unique<sim::SimRobot>(std::move(world));
+  sim::SimRobot& robot = *robot_ptr;
 
   stride::fw::Controller& controller = firmware->controller();
   if (motion == "walk") controller.request(stride::fw::MotionRequest::walk(vx, vy, vth));
-  if (motion == "kick") controller.request(stride::fw::MotionRequest::play(args.get("script")));
   if (motion != "stand") {
     // The request is taken at the next step: a refusal means the engine or script is missing.
     stride::hal::SensorFrame probe;
@@ -119,7 +136,9 @@ int run_sim(int argc, char** argv) {
                                                stride::hal::Tick tick) {
     return controller.step(sensors, tick);
   };
-  const sim::EpisodeResult result = sim::run_episode(robot, step, episode);
+  result = sim::run_episode(robot, step, episode);
+  }
+  sim::SimRobot& robot = *robot_ptr;
 
   if (args.has("record")) {
     if (Status s = recorder.save(args.get("record")); !s) {
