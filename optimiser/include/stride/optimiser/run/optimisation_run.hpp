@@ -13,11 +13,13 @@
 // continues; the files then end up byte for byte as in an uninterrupted run (wall_s aside).
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -31,7 +33,7 @@ namespace stride::opt {
 struct RunConfig {
   std::string problem;  ///< problem or task name
   Nsga2Settings settings;
-  std::optional<Genome> start;            ///< seeds the initial population when set
+  std::optional<Genome> start;                     ///< seeds the initial population when set
   nlohmann::json task = nlohmann::json::object();  ///< task configuration, recorded as is
 };
 
@@ -41,18 +43,21 @@ struct GenerationRecord {
   std::uint64_t evaluations = 0;
   std::uint64_t failures = 0;
   std::uint64_t cache_hits = 0;
-  int feasible = 0;    ///< feasible members of the population
-  int front_size = 0;  ///< members of the first front
+  int feasible = 0;                         ///< feasible members of the population
+  int front_size = 0;                       ///< members of the first front
   std::optional<double> hypervolume;        ///< normalised, reference point 1.1 per objective
   std::optional<double> hypervolume_ratio;  ///< hypervolume / the true front's
   std::optional<double> igd;                ///< normalised
   double wall_s = 0.0;                      ///< time spent on this generation
+  std::vector<double> best_objectives;      ///< per objective, best feasible value (empty: none)
 };
 
 struct RunOptions {
   std::filesystem::path dir;
   bool resume = false;
   std::function<void(const GenerationRecord&)> on_generation;
+  /// When set and true after a generation's checkpoint, the run stops there (Ctrl-C).
+  const std::atomic<bool>* stop = nullptr;
 };
 
 struct RunSummary {
@@ -60,6 +65,7 @@ struct RunSummary {
   int resumed_at_generation = 0;
   GenerationRecord last;
   std::size_t pareto_size = 0;
+  bool stopped = false;  ///< ended early by RunOptions::stop (resume with --resume)
 };
 
 /// The run.json contents for a problem and configuration.
