@@ -20,6 +20,7 @@
 #include "stride/firmware/cli_args.hpp"
 #include "stride/host_tools/command.hpp"
 #include "stride/optimiser/nsga2/evaluator.hpp"
+#include "stride/optimiser/nsga2/mpi_evaluator.hpp"
 #include "stride/optimiser/problems/test_problems.hpp"
 #include "stride/optimiser/run/optimisation_run.hpp"
 #include "stride/optimiser/run/progress.hpp"
@@ -162,6 +163,8 @@ int run_optimise(int argc, char** argv) {
       .option("jobs", "evaluation threads (default: all cores)")
       .option("slow-eval-ms", "sleep this long in every evaluation (to test interruption)", true,
               "0")
+      .option("mpi", "evaluate on MPI ranks (under mpirun: rank 0 optimises, the others evaluate)",
+              false)
       .option("json", "print a JSON summary on stdout", false)
       .option("help", "show this help", false);
   if (auto st = args.parse(argc, argv); !st) return bad_input(st.message());
@@ -181,6 +184,12 @@ int run_optimise(int argc, char** argv) {
   if (!args.has("out")) return bad_input("--out DIR is required");
   const std::filesystem::path dir = args.get("out");
   const bool resume = args.has("resume");
+  std::unique_ptr<opt::MpiSession> mpi;
+  if (args.has("mpi")) {
+    if (!opt::mpi_available()) return bad_input("--mpi: this build of stride has no MPI");
+    mpi = std::make_unique<opt::MpiSession>(nullptr, nullptr);
+  }
+  const bool worker = mpi && mpi->rank() != 0;  // evaluates only; rank 0 owns the run directory
 
   Settings s;
   std::unique_ptr<opt::Problem> problem;
@@ -230,7 +239,7 @@ int run_optimise(int argc, char** argv) {
     s.config.start = robot_task->start_genome();
     s.config.task = opt::to_json(task);
     problem = std::move(robot_task);
-    if (std::filesystem::exists(dir / "run.json")) {
+    if (!worker && std::filesystem::exists(dir / "run.json")) {
       return bad_input("--out " + dir.string() + " already holds a run (use --resume)");
     }
   } else {
@@ -249,7 +258,7 @@ int run_optimise(int argc, char** argv) {
       }
       s.config.start = start;
     }
-    if (std::filesystem::exists(dir / "run.json")) {
+    if (!worker && std::filesystem::exists(dir / "run.json")) {
       return bad_input("--out " + dir.string() + " already holds a run (use --resume)");
     }
   }
@@ -260,6 +269,13 @@ int run_optimise(int argc, char** argv) {
   if (auto st = read_int(args, "slow-eval-ms", 0, 60000, s.slow_ms); !st) {
     return bad_input(st.message());
   }
+  if (worker) {
+    if (auto st = opt::run_mpi_worker(*problem); !st) {
+      std::fprintf(stderr, "stride optimise: rank %d: %s\n", mpi->rank(), st.message().c_str());
+      return 1;
+    }
+    return 0;
+  }
   const auto* robot_task = dynamic_cast<const opt::RobotTask*>(problem.get());
   if (s.slow_ms > 0) {
     problem =
@@ -267,7 +283,9 @@ int run_optimise(int argc, char** argv) {
   }
 
   std::unique_ptr<opt::Evaluator> evaluator;
-  if (s.jobs > 1) {
+  if (mpi) {
+    evaluator = std::make_unique<opt::MpiEvaluator>(mpi->size());
+  } else if (s.jobs > 1) {
     evaluator = std::make_unique<opt::ThreadPoolEvaluator>(static_cast<int>(s.jobs));
   } else {
     evaluator = std::make_unique<opt::SerialEvaluator>();
