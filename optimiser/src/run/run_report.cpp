@@ -237,6 +237,15 @@ Status write_plots(const fs::path& dir) {
     const int g = count == 1 ? last_generation : 1 + (last_generation - 1) * k / (count - 1);
     if (shown.empty() || shown.back() != g) shown.push_back(g);
   }
+  // With no feasible evaluation yet (e.g. every walk fell), the plot shows the best infeasible
+  // ones instead and says so in its title.
+  bool any_feasible = false;
+  for (const auto& e : evaluations) any_feasible = any_feasible || feasible(e);
+  auto usable = [&](const json& e) {
+    if (any_feasible) return feasible(e);
+    return !e.value("failed", false) && e.contains("objectives") && e["objectives"].size() == 2 &&
+           e["objectives"][0].get<double>() < 1e29;
+  };
   std::vector<std::vector<std::vector<double>>> fronts;
   double x0 = std::numeric_limits<double>::infinity(), x1 = -x0, y0 = x0, y1 = -x0;
   for (int g : shown) {
@@ -259,8 +268,10 @@ Status write_plots(const fs::path& dir) {
   }
   if (!std::isfinite(x0)) x0 = 0, x1 = 1, y0 = 0, y1 = 1;
   const double mx = 0.05 * (x1 - x0 + 1e-9), my = 0.05 * (y1 - y0 + 1e-9);
-  Chart front_chart("Pareto front by generation (" + task + ")", f1, f2, x0 - mx, x1 + mx, y0 - my,
-                    y1 + my);
+  Chart front_chart(
+      "Pareto front by generation (" + task + ")" +
+          (any_feasible ? std::string() : std::string(", no feasible member yet: all fell")),
+      f1, f2, x0 - mx, x1 + mx, y0 - my, y1 + my);
   for (std::size_t i = 0; i < fronts.size(); ++i) {
     const std::string c = colour_for(
         fronts.size() > 1 ? static_cast<double>(i) / static_cast<double>(fronts.size() - 1) : 1.0);

@@ -2,6 +2,7 @@
 #include "stride/optimiser/tasks/robot_task.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <memory>
 
@@ -64,6 +65,8 @@ Status RobotTask::run_trial(const Genome& genome, int trial, EpisodeScore& out) 
     return Status::error("genome has " + std::to_string(genome.reals.size()) + " genes, the task " +
                          std::to_string(config_.genes.size()));
   const bool walk = config_.task == "walk";
+  using Clock = std::chrono::steady_clock;
+  const auto setup_start = Clock::now();
   sim::WorldOptions world_options = world_for_trial(config_, trial);
   std::unique_ptr<fw::Firmware> firmware;
   if (Status s = fw::Firmware::create({}, firmware); !s) return s;
@@ -87,6 +90,8 @@ Status RobotTask::run_trial(const Genome& genome, int trial, EpisodeScore& out) 
   const auto kick_tick = static_cast<hal::Tick>(std::llround(config_.kick_at_s / period_s));
   bool requested = false;
   double yaw_integral = 0.0;
+  double controller_s = 0.0;
+  const double setup_s = std::chrono::duration<double>(Clock::now() - setup_start).count();
   const sim::StepFunction step = [&](const hal::SensorFrame& sensors, hal::Tick tick) {
     params.apply_staged();
     if (!requested) {
@@ -100,7 +105,10 @@ Status RobotTask::run_trial(const Genome& genome, int trial, EpisodeScore& out) 
     }
     if (static_cast<double>(tick) * period_s > 0.25)
       yaw_integral += sensors.cm730.gyro_rad_s[2] * period_s;
-    return controller.step(sensors, tick);
+    const auto before = Clock::now();
+    hal::CommandFrame commands = controller.step(sensors, tick);
+    controller_s += std::chrono::duration<double>(Clock::now() - before).count();
+    return commands;
   };
   sim::EpisodeOptions episode;
   episode.duration_s = config_.duration_s;
@@ -124,6 +132,8 @@ Status RobotTask::run_trial(const Genome& genome, int trial, EpisodeScore& out) 
   out.ball_distance_m = r.ball_distance_m;
   out.sim_time_s = r.sim_time_s;
   out.wall_time_s = r.wall_time_s;
+  out.setup_s = setup_s;
+  out.controller_s = controller_s;
   if (walk) {
     const double missing = std::max(0.0, config_.goal_distance_m - r.distance_m);
     const double time = r.time_to_goal_s ? *r.time_to_goal_s : config_.duration_s + 10.0 * missing;

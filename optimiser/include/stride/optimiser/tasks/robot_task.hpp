@@ -38,7 +38,9 @@ struct EpisodeScore {
   double max_fps = 0.0;
   double ball_distance_m = 0.0;
   double sim_time_s = 0.0;
-  double wall_time_s = 0.0;
+  double wall_time_s = 0.0;   ///< the episode loop (controller + physics + metrics) [s]
+  double setup_s = 0.0;       ///< building the firmware and the world, flashing the genome [s]
+  double controller_s = 0.0;  ///< inside Controller::step over the episode [s]
 };
 
 class RobotTask final : public Problem {
