@@ -251,7 +251,7 @@ Status write_plots(const fs::path& dir) {
   for (int g : shown) {
     std::vector<std::vector<double>> pts;
     for (const auto& e : evaluations)
-      if (e.value("generation", 0) <= g && feasible(e))
+      if (e.value("generation", 0) <= g && usable(e))
         pts.push_back(e["objectives"].get<std::vector<double>>());
     fronts.push_back(non_dominated(pts));
     for (const auto& p : fronts.back())
