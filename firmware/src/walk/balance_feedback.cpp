@@ -17,22 +17,22 @@ double deadband(double value, double band) {
 BalanceFeedback::BalanceFeedback(ParameterStore& store, double period_s)
     : store_(store), period_s_(period_s) {
   ankle_pitch_gain_ =
-      store.add_real("walk.balance.ankle_pitch_gain", 0.0, 0.0, 1.0, "s",
+      store.add_real("walk.balance.ankle_pitch_gain", 0.461, 0.0, 1.0, "s",
                      "support ankle pitch added per rad/s of torso pitch rate (0: off)");
   ankle_roll_gain_ =
-      store.add_real("walk.balance.ankle_roll_gain", 0.0, 0.0, 1.0, "s",
+      store.add_real("walk.balance.ankle_roll_gain", 0.53, 0.0, 1.0, "s",
                      "support ankle roll added per rad/s of torso roll rate (0: off)");
   hip_pitch_gain_ =
-      store.add_real("walk.balance.hip_pitch_gain", 0.0, 0.0, 1.0, "s",
+      store.add_real("walk.balance.hip_pitch_gain", 0.49, 0.0, 1.0, "s",
                      "support hip pitch added per rad/s of torso pitch rate (0: off)");
-  hip_roll_gain_ = store.add_real("walk.balance.hip_roll_gain", 0.0, 0.0, 1.0, "s",
+  hip_roll_gain_ = store.add_real("walk.balance.hip_roll_gain", 0.925, 0.0, 1.0, "s",
                                   "support hip roll added per rad/s of torso roll rate (0: off)");
-  filter_time_ = store.add_real("walk.balance.filter_time", 0.03, 0.0, 1.0, "s",
+  filter_time_ = store.add_real("walk.balance.filter_time", 0.015, 0.0, 1.0, "s",
                                 "low-pass time constant of the gyro feedback");
   deadband_ = store.add_real("walk.balance.deadband", 0.0, 0.0, 2.0, "rad/s",
                              "gyro rates below this are ignored");
-  max_shift_ = store.add_real("walk.balance.max_shift", 0.436, 0.0, 1.0, "rad",
-                              "largest joint shift the feedback may add (25 deg)");
+  max_shift_ = store.add_real("walk.balance.max_shift", 0.516, 0.0, 1.0, "rad",
+                              "largest joint shift the feedback may add");
 }
 
 void BalanceFeedback::reset() noexcept {

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -177,14 +178,21 @@ TEST(WalkEngine, ParameterChangesApplyAtTheNextStep) {
   EXPECT_EQ(rig.engine.parameters().step_time, 0.6);
 }
 
-TEST(WalkEngine, BalanceFeedbackIsOffByDefaultAndShiftsTheSupportLeg) {
+TEST(WalkEngine, BalanceFeedbackShiftsTheSupportLegAndZeroGainsAreOpenLoop) {
   Rig still, shaken, fed_back;
   for (Rig* r : {&still, &shaken, &fed_back}) r->engine.start(r->sensors, r->out, 0);
   shaken.sensors.cm730.gyro_rad_s = {0.5, 0.8, 0.0};
   fed_back.sensors.cm730.gyro_rad_s = {0.5, 0.8, 0.0};
+  const std::vector<ParamWrite> open_loop{{"walk.balance.ankle_pitch_gain", 0.0},
+                                          {"walk.balance.ankle_roll_gain", 0.0},
+                                          {"walk.balance.hip_pitch_gain", 0.0},
+                                          {"walk.balance.hip_roll_gain", 0.0}};
+  ASSERT_TRUE(still.store.set_now(open_loop).is_ok());
+  ASSERT_TRUE(shaken.store.set_now(open_loop).is_ok());
   ASSERT_TRUE(fed_back.store
                   .set_now({{"walk.balance.ankle_pitch_gain", 0.2},
                             {"walk.balance.ankle_roll_gain", 0.1},
+                            {"walk.balance.hip_pitch_gain", 0.0},
                             {"walk.balance.hip_roll_gain", 0.1}})
                   .is_ok());
   still.run(150);  // first step: the left leg swings, the right supports

@@ -3,6 +3,7 @@
 #include "stride/firmware/walk/leg_kinematics.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <random>
 #include <utility>
 
@@ -76,6 +77,8 @@ TEST(WalkLegKinematics, RoundTripOverTheReachableWorkspace) {
       ++tested;
     }
   }
+  std::printf("  %d poses: worst position error %.3g m, worst orientation error %.3g rad\n", tested,
+              worst_position, worst_angle);
   EXPECT_GT(tested, 2000);
   EXPECT_LT(worst_position, 1e-4);  // 0.1 mm
   EXPECT_LT(worst_angle, 1e-4);     // 0.1 mrad

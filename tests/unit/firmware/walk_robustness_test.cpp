@@ -73,7 +73,7 @@ TEST(WalkRobustness, EveryGenomeParameterAtEachBound) {
     if (row.table_e_index == 0) continue;
     for (double value : {row.min, row.max}) {
       const std::vector<ParamWrite> genome{{std::string(row.name), value}};
-      const Outcome o = run_walk(genome, 900, 1.0, 0.3, 0.3);
+      const Outcome o = run_walk(genome, 650, 1.0, 0.3, 0.3);
       EXPECT_TRUE(o.finite) << row.name << " = " << value;
       EXPECT_TRUE(o.safe_output_inside_limits) << row.name << " = " << value;
       // Whatever the engine asked beyond the limits, the safety layer clamped and counted.
@@ -94,7 +94,7 @@ TEST(WalkRobustness, DefaultsStayInsideTheJointLimits) {
                              {0.0, 1.0, 0.0},
                              {0.0, 0.0, 1.0},
                              {1.0, 1.0, 1.0}}) {
-    const Outcome o = run_walk({}, 900, vx, vy, vth);
+    const Outcome o = run_walk({}, 650, vx, vy, vth);
     EXPECT_TRUE(o.finite);
     EXPECT_EQ(o.engine_limit_violations, 0u) << vx << " " << vy << " " << vth;
   }
@@ -103,7 +103,7 @@ TEST(WalkRobustness, DefaultsStayInsideTheJointLimits) {
 TEST(WalkRobustness, RandomGenomesWithinBoundsNeverGiveNaN) {
   std::mt19937_64 rng(2024);
   std::uniform_real_distribution<double> unit(0.0, 1.0), command(-1.0, 1.0);
-  for (int g = 0; g < 150; ++g) {
+  for (int g = 0; g < 60; ++g) {
     std::vector<ParamWrite> genome;
     for (const auto& row : walk::walk_parameter_table()) {
       genome.emplace_back(std::string(row.name), row.min + unit(rng) * (row.max - row.min));

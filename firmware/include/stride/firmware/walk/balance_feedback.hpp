@@ -1,6 +1,8 @@
 // BalanceFeedback: optional gyro feedback to the support leg's ankles and hips, the way the
 // UPenn walk (and NUbots' port, where it was disabled) stabilises an open-loop gait. Not part
-// of the 46-parameter genome; all gains default to 0 (off), i.e. the seed's open-loop walk.
+// of the 46-parameter genome. Defaults: gains found by a random search in the simulator with
+// the 46 at Ind_O (the open-loop walk fell in every simulated run; see the walk README);
+// setting every gain to 0 gives the seed's open-loop walk.
 //
 //   g_f  <- g_f + alpha (g - g_f),  alpha = dt / (dt + walk.balance.filter_time)   [rad/s]
 //   shift_j = clamp(k_j * deadband(g_f), -max_shift, +max_shift)                    [rad]

@@ -19,9 +19,9 @@
 // walks; the first two steps have zero velocity and no lift. request_stop() makes the next
 // step the last (the swing foot lands beside the support foot); then the engine stands still
 // (phase 0.5, both feet down) and done() is true. Parameters are latched at each step start.
-// Optional gyro feedback (walk.balance.*, off by default) shifts the support leg's ankle and
-// hip joints (balance_feedback.hpp).
-// Pure: no I/O, no clock, no allocation and no exceptions in start()/step().
+// Gyro feedback (walk.balance.*, not in the genome; gains 0 = open loop) shifts the support leg's
+// ankle and hip joints (balance_feedback.hpp). Pure: no I/O, no clock, no allocation and no
+// exceptions in start()/step().
 #pragma once
 
 #include <array>
