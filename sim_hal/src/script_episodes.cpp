@@ -82,11 +82,21 @@ Status run_push_episode(const WorldOptions& world_options, const PushEpisodeOpti
   if (Status s = make_firmware(options.firmware, robot->period_ns(), firmware); !s) return s;
   fw::Controller& controller = firmware->controller();
   PushEpisodeResult result;
+  const double period_s = static_cast<double>(robot->period_ns()) * 1e-9;
+  fw::MotionState previous = fw::MotionState::kStand;
   const StepFunction step = [&](const hal::SensorFrame& sensors, hal::Tick tick) {
     hal::CommandFrame commands = controller.step(sensors, tick);
-    if (result.get_up_script.empty() && controller.motion().state() == fw::MotionState::kGetUp) {
-      result.get_up_script = std::string(controller.motion().active_script());
+    const fw::MotionState state = controller.motion().state();
+    if (state == fw::MotionState::kGetUp && previous != fw::MotionState::kGetUp) {
+      ++result.get_up_attempts;
+      if (result.get_up_script.empty()) {
+        result.get_up_script = std::string(controller.motion().active_script());
+      }
     }
+    if (state == fw::MotionState::kStand && previous == fw::MotionState::kGetUp) {
+      result.stand_again_s = static_cast<double>(tick) * period_s;
+    }
+    previous = state;
     return commands;
   };
   EpisodeOptions episode = options.episode;

@@ -6,7 +6,10 @@
 #include <cstdio>
 #include <random>
 
+#include <sys/wait.h>
+
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "stride/sim_hal/script_episodes.hpp"
 
@@ -116,16 +119,18 @@ TEST(SimScripts, PushedOverTheRobotGetsUp) {
     PushEpisodeOptions push;
     push.from_behind = trial % 2 == 0;
     push.push_speed = 10.0 + 0.5 * static_cast<double>(trial);
+    push.duration_s = 40.0;  // a front fall: roll onto the back, then get_up_back; retries
     PushEpisodeResult result;
     const Status status = run_push_episode(
         world_for_seed(static_cast<std::uint64_t>(100 + trial), true), push, result);
     ASSERT_TRUE(status) << status.message();
     const char* expected = push.from_behind ? "get_up_front" : "get_up_back";
     std::printf(
-        "push trial %d (%s, %.1f m/s): knocked over %d, script %s, got up %d, final upright "
-        "%.2f\n",
+        "push trial %d (%s, %.1f m/s): knocked over %d, first script %s, %d get-up attempts, "
+        "standing again at %.1f s, got up %d, final upright %.2f\n",
         trial, push.from_behind ? "from behind" : "from the front", push.push_speed,
-        result.episode.fell, result.get_up_script.c_str(), result.got_up, result.final_upright);
+        result.episode.fell, result.get_up_script.c_str(), result.get_up_attempts,
+        result.stand_again_s, result.got_up, result.final_upright);
     knocked_over += result.episode.fell ? 1 : 0;
     got_up += result.got_up ? 1 : 0;
     right_script += result.get_up_script == expected ? 1 : 0;
@@ -135,6 +140,33 @@ TEST(SimScripts, PushedOverTheRobotGetsUp) {
   EXPECT_EQ(knocked_over, 10);
   EXPECT_EQ(right_script, 10);
   EXPECT_GE(got_up, 8);
+}
+
+std::string run_stride(const std::string& args, int& code) {
+  const std::string command = std::string(STRIDE_BIN_DIR) + "/stride " + args;
+  FILE* pipe = popen(command.c_str(), "r");
+  std::string out;
+  char buffer[4096];
+  while (pipe != nullptr && std::fgets(buffer, sizeof buffer, pipe) != nullptr) out += buffer;
+  const int status = pipe != nullptr ? pclose(pipe) : -1;
+  code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return out;
+}
+
+TEST(SimScripts, StrideSimKickJson) {
+  int code = -1;
+  const std::string out = run_stride("sim kick --seed 4 --json", code);
+  ASSERT_EQ(code, 0) << out;
+  const nlohmann::json result = nlohmann::json::parse(out);
+  EXPECT_FALSE(result.at("fell").get<bool>());
+  EXPECT_GE(result.at("ball_distance_m").get<double>(), 0.5);
+  EXPECT_GT(result.at("max_fps").get<double>(), 0.0);
+  EXPECT_LT(result.at("max_fps").get<double>(), 20.0);
+  const std::string left = run_stride("sim kick --script kick_left --json", code);
+  ASSERT_EQ(code, 0) << left;
+  EXPECT_GE(nlohmann::json::parse(left).at("ball_distance_m").get<double>(), 0.5);
+  run_stride("sim kick --script kick_up --json 2>/dev/null", code);
+  EXPECT_EQ(code, 2);
 }
 
 }  // namespace

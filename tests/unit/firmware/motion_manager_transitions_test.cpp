@@ -246,17 +246,32 @@ TEST(MotionManager, LyingOnTheBackPlaysGetUpBack) {
   EXPECT_EQ(r.manager->active_script(), "get_up_back");
 }
 
-TEST(MotionManager, LyingOnASideWaitsInFallen) {
+TEST(MotionManager, LyingOnASideWaitsThenPlaysTheScriptOfTheSideItLeansTo) {
   Rig r;
   r.settle_stand();
-  r.lie(1.0, 9.7, 0.3);
-  r.run(400);
+  r.lie(1.0, 9.7, 0.3);  // on its right side, leaning slightly onto the back (accel x > 0)
+  r.run(1);
+  ASSERT_EQ(r.manager->state(), MotionState::kFallen);
+  // One settle time (1 s) is not enough on a side: it may still be rolling.
+  r.run(150);
   EXPECT_EQ(r.manager->state(), MotionState::kFallen);
-  // Rolling onto the back then starts the get-up.
-  r.sensors.cm730.accel_mps2 = {9.7, 1.0, 0.3};
+  // After twice the settle time the get-up of the side it leans to starts.
+  const hal::Tick waited = r.run_until(MotionState::kGetUp, 300);
+  EXPECT_GE(151 + waited, 199);
+  EXPECT_LE(151 + waited, 202);
+  EXPECT_EQ(r.manager->active_script(), "get_up_back");
+}
+
+TEST(MotionManager, RollingFromASideOntoTheFrontStartsAtOnce) {
+  Rig r;
+  r.settle_stand();
+  r.lie(-1.0, 9.7, 0.3);
+  r.run(120);
+  EXPECT_EQ(r.manager->state(), MotionState::kFallen);
+  r.sensors.cm730.accel_mps2 = {-9.7, 1.0, 0.3};  // rolled onto the front
   r.run(2);
   EXPECT_EQ(r.manager->state(), MotionState::kGetUp);
-  EXPECT_EQ(r.manager->active_script(), "get_up_back");
+  EXPECT_EQ(r.manager->active_script(), "get_up_front");
 }
 
 TEST(MotionManager, GetUpThenStandWhenUpright) {

@@ -159,6 +159,14 @@ TEST(StockScripts, KickRightIsTheIgusKickInUrdfAngles) {
   EXPECT_DOUBLE_EQ(kick.frames[3].targets[*servos().index_of("r_hip_pitch")].position_rad, -0.8608);
   EXPECT_DOUBLE_EQ(kick.frames[1].targets[*servos().index_of("r_ankle_roll")].position_rad, 0.6276);
   EXPECT_DOUBLE_EQ(kick.frames[5].targets[*servos().index_of("r_knee")].gain, 30);
+  // Stride's one change (README): the support leg's pitch joints at gain 50 instead of 20.
+  for (const ScriptFrame& frame : kick.frames) {
+    for (const char* name : {"l_hip_pitch", "l_knee", "l_ankle_pitch"}) {
+      EXPECT_DOUBLE_EQ(frame.targets[*servos().index_of(name)].gain, 50) << name;
+    }
+    EXPECT_DOUBLE_EQ(frame.targets[*servos().index_of("l_hip_roll")].gain,
+                     &frame == &kick.frames.back() ? 30 : 20);
+  }
 }
 
 TEST(StockScripts, KickLeftMirrorsKickRight) {

@@ -55,8 +55,10 @@ struct PushEpisodeOptions {
 struct PushEpisodeResult {
   EpisodeResult episode;  ///< fell = it was knocked over
   bool got_up = false;
-  std::string get_up_script;   ///< the get-up script the motion manager chose first ("" if none)
-  double final_upright = 0.0;  ///< world z of the torso z axis at the end (1 = upright)
+  std::string get_up_script;    ///< the get-up script the motion manager chose first ("" if none)
+  double final_upright = 0.0;   ///< world z of the torso z axis at the end (1 = upright)
+  int get_up_attempts = 0;      ///< get-up scripts started
+  double stand_again_s = -1.0;  ///< when a get-up last handed over to stand (-1: never)
 };
 
 Status run_push_episode(const WorldOptions& world_options, const PushEpisodeOptions& options,
