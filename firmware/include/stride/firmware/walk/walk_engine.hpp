@@ -12,7 +12,7 @@
 // Frames: the walk plane holds 2-D poses of the ankles (projected to the ground) and of the
 // torso reference point, a point fixed in the trunk 0.18 m above the hip roll/pitch axes
 // (NUbots' chest-to-origin 0.135 + hip offset 0.045), at height walk.stance.body_height and
-// pitched by walk.stance.body_tilt. The ankles sit 0.039 m above the sole (URDF foot plane).
+// pitched by walk.stance.body_tilt. The ankles sit 0.0565 m above the ground (tips of the studs).
 //
 // Start: the feet stay where the last commands put them (forward kinematics); start() blends
 // from the last commands to the walk's standing pose on those feet over 1 s, then
