@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The main job from a fresh machine: installs the dependencies, builds the release preset and
 # runs a short walk optimisation in the simulator (optimiser/configs/walk-demo.json: the seed's
-# walk task with pop 8, 3 generations and a 15 s / 1.5 m episode; a few minutes on 2 cores),
+# walk task with pop 12, 5 generations and a 25 s time limit; about a minute on 2 cores),
 # then prints the report and where the plots are.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -12,7 +12,7 @@ cmake --build --preset release -j "$(nproc)" --target stride stride-fw
 
 out="demo-run"
 rm -rf "$out"
-echo "== stride optimise: walk demo (pop 8, 3 generations) into $out/"
+echo "== stride optimise: walk demo (pop 12, 5 generations) into $out/"
 build/release/bin/stride optimise --config optimiser/configs/walk-demo.json --out "$out"
 echo "== stride report $out"
 build/release/bin/stride report "$out"
