@@ -1,13 +1,20 @@
 #!/usr/bin/env bash
 # The main job from a fresh machine: installs the dependencies, builds the release preset and
-# runs the demo. Until the optimiser lands the demo is the firmware loop on the test HAL, paced
-# by the real clock for a few seconds, printing its loop statistics.
+# runs a short walk optimisation in the simulator (optimiser/configs/walk-demo.json: the seed's
+# walk task with pop 12, 5 generations and a 25 s time limit; about a minute on 2 cores),
+# then prints the report and where the plots are.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 toolchain/install-deps.sh
 cmake --preset release >/dev/null
-cmake --build --preset release -j "$(nproc)"
+cmake --build --preset release -j "$(nproc)" --target stride stride-fw
 
-echo "== stride-fw on the test HAL for 3 s at 100 Hz"
-build/release/bin/stride-fw --hal test --ticks 300
+out="demo-run"
+rm -rf "$out"
+echo "== stride optimise: walk demo (pop 12, 5 generations) into $out/"
+build/release/bin/stride optimise --config optimiser/configs/walk-demo.json --out "$out"
+echo "== stride report $out"
+build/release/bin/stride report "$out"
+echo "Plots: $out/pareto_by_generation.svg and $out/hypervolume.svg (open in a browser);"
+echo "front parameter files: $out/front/*.json (stride sim walk --vx 1 --params FILE)."

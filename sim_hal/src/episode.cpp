@@ -70,6 +70,7 @@ EpisodeResult run_episode(SimRobot& robot, const StepFunction& controller,
       result.fall_time_s = t;
       if (options.stop_on_fall) break;
     }
+    if (options.stop_at_goal && result.time_to_goal_s) break;
     if (tick - first_tick >= total_ticks) break;
     ++tick;
     robot.sleep_until(tick);

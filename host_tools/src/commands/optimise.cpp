@@ -1,9 +1,14 @@
 // `stride optimise`: runs NSGA-II on a problem and writes a run directory (optimiser/README.md).
 //
-// Today the problem is one of the test problems (--problem); robot tasks plug in through
-// make_problem() as further Problem implementations (--config FILE, issue 8).
+// The problem is a test problem (--problem NAME) or a robot task (--config FILE: walk or kick,
+// optimiser/configs/). Robot runs also get front/ parameter files and SVG plots (run_report).
+// On a terminal a progress bar is drawn; Ctrl-C stops after the next checkpoint.
+#include <unistd.h>
+
+#include <atomic>
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -15,8 +20,12 @@
 #include "stride/firmware/cli_args.hpp"
 #include "stride/host_tools/command.hpp"
 #include "stride/optimiser/nsga2/evaluator.hpp"
+#include "stride/optimiser/nsga2/mpi_evaluator.hpp"
 #include "stride/optimiser/problems/test_problems.hpp"
 #include "stride/optimiser/run/optimisation_run.hpp"
+#include "stride/optimiser/run/progress.hpp"
+#include "stride/optimiser/run/run_report.hpp"
+#include "stride/optimiser/tasks/robot_task.hpp"
 
 namespace {
 
@@ -41,6 +50,11 @@ class SlowProblem final : public opt::Problem {
   std::chrono::milliseconds delay_;
 };
 
+std::atomic<bool> g_stop{false};
+extern "C" void on_interrupt(int) {
+  g_stop.store(true);
+}
+
 int bad_input(const std::string& message) {
   std::fprintf(stderr, "stride optimise: %s\n", message.c_str());
   return 2;
@@ -54,6 +68,8 @@ std::string problem_list() {
 
 /// The problem named on the command line (test problems today; tasks from --config later).
 Status make_problem(const std::string& name, std::unique_ptr<opt::Problem>& out) {
+  if (name == "walk" || name == "kick")
+    return Status::error("task '" + name + "' needs --config FILE");
   out = opt::make_test_problem(name);
   if (!out) return Status::error("--problem '" + name + "' is not one of " + problem_list());
   return {};
@@ -127,6 +143,10 @@ Status read_settings(const stride::fw::CliArgs& args, std::size_t real_genes, Se
 int run_optimise(int argc, char** argv) {
   stride::fw::CliArgs args;
   args.option("problem", "test problem: " + problem_list())
+      .option("config", "robot task config (optimiser/configs/walk.json, kick.json, ...)")
+      .option("trials",
+              "robust evaluation: K seeded randomised worlds per genome (overrides the config)")
+      .option("aggregate", "how trials combine: mean or worst (overrides the config)")
       .option("out", "run directory to write (or resume)")
       .option("resume", "continue the run in --out from its checkpoint", false)
       .option("seed", "random seed", true, "1")
@@ -140,15 +160,19 @@ int run_optimise(int argc, char** argv) {
       .option("pbm", "binMutProb: bit-flip probability per bit", true, "0.05")
       .option("start", "comma-separated real genes seeding the initial population")
       .option("seed-fraction", "fraction of genes mutated around --start", true, "0.2")
-      .option("jobs", "evaluation threads", true, "1")
+      .option("jobs", "evaluation threads (default: all cores)")
       .option("slow-eval-ms", "sleep this long in every evaluation (to test interruption)", true,
               "0")
+      .option("mpi", "evaluate on MPI ranks (under mpirun: rank 0 optimises, the others evaluate)",
+              false)
       .option("json", "print a JSON summary on stdout", false)
       .option("help", "show this help", false);
   if (auto st = args.parse(argc, argv); !st) return bad_input(st.message());
   if (args.has("help")) {
     std::printf(
         "usage: stride optimise --problem NAME --out DIR [options]\n"
+        "       stride optimise --config FILE --out DIR [--jobs N] [--trials K] [--aggregate "
+        "mean|worst]\n"
         "       stride optimise --out DIR --resume\n"
         "Runs NSGA-II and writes run.json, evaluations.jsonl, generations.jsonl, checkpoint.json\n"
         "and pareto.csv to DIR; prints one progress line per generation on stderr.\n\n%s",
@@ -160,6 +184,12 @@ int run_optimise(int argc, char** argv) {
   if (!args.has("out")) return bad_input("--out DIR is required");
   const std::filesystem::path dir = args.get("out");
   const bool resume = args.has("resume");
+  std::unique_ptr<opt::MpiSession> mpi;
+  if (args.has("mpi")) {
+    if (!opt::mpi_available()) return bad_input("--mpi: this build of stride has no MPI");
+    mpi = std::make_unique<opt::MpiSession>(nullptr, nullptr);
+  }
+  const bool worker = mpi && mpi->rank() != 0;  // evaluates only; rank 0 owns the run directory
 
   Settings s;
   std::unique_ptr<opt::Problem> problem;
@@ -172,15 +202,49 @@ int run_optimise(int argc, char** argv) {
       return bad_input("--problem " + args.get("problem") + " differs from the run's " +
                        s.config.problem);
     }
-    if (auto st = make_problem(s.config.problem, problem); !st) return bad_input(st.message());
+    if (s.config.problem == "walk" || s.config.problem == "kick") {
+      opt::TaskConfig task;
+      if (auto st = opt::parse_task_config(s.config.task, task); !st)
+        return bad_input("run.json task: " + st.message());
+      problem = std::make_unique<opt::RobotTask>(task);
+    } else if (auto st = make_problem(s.config.problem, problem); !st) {
+      return bad_input(st.message());
+    }
     const opt::RunConfig recorded = s.config;
     if (auto st = read_settings(args, 0, s); !st) return bad_input(st.message());
     if (!(s.config.settings == recorded.settings)) {
       return bad_input("--resume: the NSGA-II options given differ from the run's run.json");
     }
+  } else if (args.has("config")) {
+    if (args.has("problem")) return bad_input("--problem and --config exclude each other");
+    opt::TaskConfig task;
+    if (auto st = opt::load_task_config(args.get("config"), task); !st)
+      return bad_input(st.message());
+    if (args.has("trials")) {
+      std::int64_t trials = 1;
+      if (auto st = read_int(args, "trials", 1, 1000, trials); !st) return bad_input(st.message());
+      task.trials = static_cast<int>(trials);
+    }
+    if (args.has("aggregate")) {
+      const std::string a = args.get("aggregate");
+      if (a != "mean" && a != "worst")
+        return bad_input("--aggregate: must be mean or worst, got '" + a + "'");
+      task.aggregate = a == "mean" ? opt::Aggregate::kMean : opt::Aggregate::kWorst;
+    }
+    s.config.settings = task.settings;
+    if (auto st = read_settings(args, 0, s); !st) return bad_input(st.message());
+    task.settings = s.config.settings;
+    auto robot_task = std::make_unique<opt::RobotTask>(task);
+    s.config.problem = task.task;
+    s.config.start = robot_task->start_genome();
+    s.config.task = opt::to_json(task);
+    problem = std::move(robot_task);
+    if (!worker && std::filesystem::exists(dir / "run.json")) {
+      return bad_input("--out " + dir.string() + " already holds a run (use --resume)");
+    }
   } else {
     if (!args.has("problem"))
-      return bad_input("--problem NAME is required (" + problem_list() + ")");
+      return bad_input("--problem NAME or --config FILE is required (" + problem_list() + ")");
     if (auto st = make_problem(args.get("problem"), problem); !st) return bad_input(st.message());
     s.config.problem = problem->name();
     if (auto st = read_settings(args, problem->shape().reals.size(), s); !st) {
@@ -194,21 +258,34 @@ int run_optimise(int argc, char** argv) {
       }
       s.config.start = start;
     }
-    if (std::filesystem::exists(dir / "run.json")) {
+    if (!worker && std::filesystem::exists(dir / "run.json")) {
       return bad_input("--out " + dir.string() + " already holds a run (use --resume)");
     }
   }
-  if (auto st = read_int(args, "jobs", 1, 1024, s.jobs); !st) return bad_input(st.message());
+  s.jobs = std::max<std::int64_t>(1, std::thread::hardware_concurrency());
+  if (args.has("jobs")) {
+    if (auto st = read_int(args, "jobs", 1, 1024, s.jobs); !st) return bad_input(st.message());
+  }
   if (auto st = read_int(args, "slow-eval-ms", 0, 60000, s.slow_ms); !st) {
     return bad_input(st.message());
   }
+  if (worker) {
+    if (auto st = opt::run_mpi_worker(*problem); !st) {
+      std::fprintf(stderr, "stride optimise: rank %d: %s\n", mpi->rank(), st.message().c_str());
+      return 1;
+    }
+    return 0;
+  }
+  const auto* robot_task = dynamic_cast<const opt::RobotTask*>(problem.get());
   if (s.slow_ms > 0) {
     problem =
         std::make_unique<SlowProblem>(std::move(problem), std::chrono::milliseconds(s.slow_ms));
   }
 
   std::unique_ptr<opt::Evaluator> evaluator;
-  if (s.jobs > 1) {
+  if (mpi) {
+    evaluator = std::make_unique<opt::MpiEvaluator>(mpi->size());
+  } else if (s.jobs > 1) {
     evaluator = std::make_unique<opt::ThreadPoolEvaluator>(static_cast<int>(s.jobs));
   } else {
     evaluator = std::make_unique<opt::SerialEvaluator>();
@@ -216,17 +293,44 @@ int run_optimise(int argc, char** argv) {
   opt::RunOptions options;
   options.dir = dir;
   options.resume = resume;
-  options.on_generation = [](const opt::GenerationRecord& r) {
-    std::fprintf(stderr, "generation %d/%d evaluations %llu", r.generation, r.generations,
-                 static_cast<unsigned long long>(r.evaluations));
-    if (r.hypervolume) std::fprintf(stderr, " hypervolume %.6f", *r.hypervolume);
-    if (r.hypervolume_ratio) std::fprintf(stderr, " (%.2f %%)", 100.0 * *r.hypervolume_ratio);
-    std::fprintf(stderr, " front %d\n", r.front_size);
-  };
+  opt::ProgressPrinter progress(isatty(STDERR_FILENO) != 0);
+  options.on_generation = [&progress](const opt::GenerationRecord& r) { progress.print(r); };
+  options.stop = &g_stop;
+  g_stop.store(false);
+  struct sigaction action {};
+  action.sa_handler = on_interrupt;
+  sigemptyset(&action.sa_mask);
+  struct sigaction previous_int {
+  }, previous_term{};
+  sigaction(SIGINT, &action, &previous_int);
+  sigaction(SIGTERM, &action, &previous_term);
   opt::RunSummary summary;
-  if (auto st = opt::run_optimisation(*problem, s.config, *evaluator, options, summary); !st) {
-    std::fprintf(stderr, "stride optimise: %s\n", st.message().c_str());
+  const Status run_status = opt::run_optimisation(*problem, s.config, *evaluator, options, summary);
+  sigaction(SIGINT, &previous_int, nullptr);
+  sigaction(SIGTERM, &previous_term, nullptr);
+  progress.finish();
+  if (!run_status) {
+    std::fprintf(stderr, "stride optimise: %s\n", run_status.message().c_str());
     return 1;
+  }
+  if (const auto* task = robot_task) {
+    if (auto st = opt::write_front_files(dir, *task); !st) {
+      std::fprintf(stderr, "stride optimise: %s\n", st.message().c_str());
+      return 1;
+    }
+    if (auto st = opt::write_plots(dir); !st) {
+      std::fprintf(stderr, "stride optimise: %s\n", st.message().c_str());
+      return 1;
+    }
+    std::fprintf(stderr, "plots: %s, %s; front parameter files: %s\n",
+                 (dir / "pareto_by_generation.svg").c_str(), (dir / "hypervolume.svg").c_str(),
+                 (dir / "front").c_str());
+  }
+  if (summary.stopped) {
+    std::fprintf(stderr,
+                 "stride optimise: stopped after generation %d (checkpoint written); continue with "
+                 "--out %s --resume\n",
+                 summary.last.generation, dir.c_str());
   }
   if (args.has("json")) {
     auto number = [](const std::optional<double>& v) -> nlohmann::json {
@@ -246,10 +350,11 @@ int run_optimise(int argc, char** argv) {
                                 {"hypervolume_ratio", number(r.hypervolume_ratio)},
                                 {"igd", number(r.igd)},
                                 {"resumed", summary.resumed},
-                                {"resumed_at_generation", summary.resumed_at_generation}};
+                                {"resumed_at_generation", summary.resumed_at_generation},
+                                {"stopped", summary.stopped}};
     std::printf("%s\n", out.dump().c_str());
   }
-  return 0;
+  return summary.stopped ? 130 : 0;
 }
 
 STRIDE_COMMAND(optimise, "run NSGA-II on a test problem (or a task) into a run directory",

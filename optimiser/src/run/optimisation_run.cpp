@@ -342,7 +342,18 @@ Status run_optimisation(const Problem& problem, const RunConfig& config, Evaluat
     if (auto st = write_checkpoint(); !st) return st;
     summary.last = record;
     summary.pareto_size = rows;
+    for (const Individual& ind : engine->population()) {
+      if (ind.result.failed || ind.result.violation > 0.0) continue;
+      if (record.best_objectives.empty()) record.best_objectives = ind.result.objectives;
+      for (std::size_t m = 0; m < record.best_objectives.size(); ++m)
+        record.best_objectives[m] = std::min(record.best_objectives[m], ind.result.objectives[m]);
+    }
+    summary.last = record;
     if (options.on_generation) options.on_generation(record);
+    if (options.stop != nullptr && options.stop->load() && !engine->finished()) {
+      summary.stopped = true;
+      break;
+    }
   }
   if (summary.last.generation == 0) {  // resumed a finished run: report its final state
     summary.last = measure(problem, engine->population(), reference);

@@ -48,6 +48,7 @@ struct EpisodeOptions {
   double goal_distance_m = 2.5;
   double metrics_start_s = 0.25;
   bool stop_on_fall = true;
+  bool stop_at_goal = false;               ///< end once goal_distance_m is covered
   TrajectoryRecorder* recorder = nullptr;  ///< optional, records every tick
   std::vector<double> snapshot_times_s;    ///< moments to capture link poses at
 };

@@ -13,11 +13,13 @@
 // continues; the files then end up byte for byte as in an uninterrupted run (wall_s aside).
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -47,12 +49,15 @@ struct GenerationRecord {
   std::optional<double> hypervolume_ratio;  ///< hypervolume / the true front's
   std::optional<double> igd;                ///< normalised
   double wall_s = 0.0;                      ///< time spent on this generation
+  std::vector<double> best_objectives;      ///< per objective, best feasible value (empty: none)
 };
 
 struct RunOptions {
   std::filesystem::path dir;
   bool resume = false;
   std::function<void(const GenerationRecord&)> on_generation;
+  /// When set and true after a generation's checkpoint, the run stops there (Ctrl-C).
+  const std::atomic<bool>* stop = nullptr;
 };
 
 struct RunSummary {
@@ -60,6 +65,7 @@ struct RunSummary {
   int resumed_at_generation = 0;
   GenerationRecord last;
   std::size_t pareto_size = 0;
+  bool stopped = false;  ///< ended early by RunOptions::stop (resume with --resume)
 };
 
 /// The run.json contents for a problem and configuration.

@@ -1,0 +1,95 @@
+// `stride report DIR`: rebuilds the plots and front/ files of a robot optimisation run and
+// prints the fastest, most stable and knee-point members beside Ind_O.
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+
+#include <nlohmann/json.hpp>
+
+#include "stride/firmware/cli_args.hpp"
+#include "stride/host_tools/command.hpp"
+#include "stride/optimiser/run/optimisation_run.hpp"
+#include "stride/optimiser/run/run_report.hpp"
+#include "stride/optimiser/tasks/robot_task.hpp"
+
+namespace {
+
+int bad_input(const std::string& message) {
+  std::fprintf(stderr, "stride report: %s\n", message.c_str());
+  return 2;
+}
+
+void print_member(const char* label, const nlohmann::json& m, const nlohmann::json& ind_o) {
+  if (m.is_null()) return;
+  const auto f = m["objectives"].get<std::vector<double>>();
+  std::printf("%-12s f1 %10.4g  f2 %10.4g", label, f[0], f[1]);
+  if (ind_o.is_object()) {
+    const auto o = ind_o["objectives"].get<std::vector<double>>();
+    if (o[0] > 0 && o[1] > 0 && o[0] < 1e29)
+      std::printf("  (%+.1f %%, %+.1f %% vs Ind_O)", 100.0 * (f[0] - o[0]) / o[0],
+                  100.0 * (f[1] - o[1]) / o[1]);
+  }
+  if (m.contains("file")) std::printf("  %s", m["file"].get<std::string>().c_str());
+  std::printf("\n");
+}
+
+}  // namespace
+
+int run_report(int argc, char** argv) {
+  stride::fw::CliArgs args;
+  args.option("json", "print the summary as one JSON object", false)
+      .option("help", "show this help", false);
+  if (auto st = args.parse(argc, argv); !st) return bad_input(st.message());
+  if (args.has("help")) {
+    std::printf(
+        "usage: stride report DIR [--json]\nRebuilds DIR/pareto_by_generation.svg, "
+        "DIR/hypervolume.svg and DIR/front/,\n"
+        "then prints the fastest, most stable and knee-point members beside Ind_O.\n\n%s",
+        args.help().c_str());
+    return 0;
+  }
+  if (args.positional().size() != 1) return bad_input("expected one run directory");
+  const std::filesystem::path dir = args.positional()[0];
+  if (!std::filesystem::exists(dir / "run.json"))
+    return bad_input((dir / "run.json").string() + " does not exist");
+  stride::opt::RunConfig config;
+  if (auto st = stride::opt::read_run_config(dir, config); !st) return bad_input(st.message());
+  if (config.problem != "walk" && config.problem != "kick")
+    return bad_input(dir.string() + " is a '" + config.problem + "' run, not a walk or kick task");
+  stride::opt::TaskConfig task;
+  if (auto st = stride::opt::parse_task_config(config.task, task); !st)
+    return bad_input("run.json task: " + st.message());
+  const stride::opt::RobotTask robot_task(task);
+  for (auto st : {stride::opt::write_front_files(dir, robot_task), stride::opt::write_plots(dir)}) {
+    if (!st) {
+      std::fprintf(stderr, "stride report: %s\n", st.message().c_str());
+      return 1;
+    }
+  }
+  nlohmann::json summary;
+  if (auto st = stride::opt::summarise_run(dir, summary); !st) {
+    std::fprintf(stderr, "stride report: %s\n", st.message().c_str());
+    return 1;
+  }
+  summary["plots"] = {(dir / "pareto_by_generation.svg").string(),
+                      (dir / "hypervolume.svg").string()};
+  if (args.has("json")) {
+    std::printf("%s\n", summary.dump().c_str());
+    return 0;
+  }
+  std::printf("%s run, %zu evaluations, %zu front members (objectives: %s)\n",
+              config.problem.c_str(), summary["evaluations"].get<std::size_t>(),
+              summary["front_size"].get<std::size_t>(),
+              config.problem == "walk" ? "f1 time to goal [s], f2 max |a| [m/s^2]"
+                                       : "f1 max sway [m/s^2], f2 1/ball distance [1/m]");
+  const nlohmann::json& o = summary["ind_o"];
+  if (o.is_object()) print_member("Ind_O", o, nullptr);
+  for (auto [label, key] :
+       {std::pair{"fastest", "fastest"}, {"most stable", "most_stable"}, {"knee", "knee"}})
+    if (summary.contains(key)) print_member(label, summary[key], o);
+  std::printf("plots: %s, %s\n", (dir / "pareto_by_generation.svg").c_str(),
+              (dir / "hypervolume.svg").c_str());
+  return 0;
+}
+
+STRIDE_COMMAND(report, "plots and summary of an optimisation run directory", run_report);

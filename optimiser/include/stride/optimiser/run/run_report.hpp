@@ -1,0 +1,43 @@
+// Run reports: what a robot optimisation run directory yields after (or during) the run.
+//   front/NNN.json            one parameter file per pareto.csv row (the genes by parameter name),
+//                             loadable by `stride-fw --params` and `stride sim walk --params`
+//   pareto_by_generation.svg  the non-dominated feasible evaluations so far, after selected
+//                             generations (like the seed's figures), Ind_O marked
+//   hypervolume.svg           hypervolume against evaluations
+// and a summary: the fastest (best Obj1), the most stable (best Obj2) and the knee-point
+// (closest to the ideal point after normalising the front) members beside Ind_O.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "stride/hal/status.hpp"
+#include "stride/optimiser/tasks/robot_task.hpp"
+
+namespace stride::opt {
+
+/// One row of pareto.csv.
+struct FrontMember {
+  std::vector<double> objectives;
+  std::vector<double> genes;
+};
+
+Status read_pareto_csv(const std::filesystem::path& path, int objectives,
+                       std::vector<FrontMember>& out);
+/// Replaces front/ with one parameter file per pareto.csv row.
+Status write_front_files(const std::filesystem::path& dir, const RobotTask& task);
+/// Writes both SVG plots from evaluations.jsonl and generations.jsonl.
+Status write_plots(const std::filesystem::path& dir);
+/// Summary JSON: task, Ind_O, fastest, most_stable, knee (objectives and front file names).
+Status summarise_run(const std::filesystem::path& dir, nlohmann::json& out);
+
+/// The non-dominated points of `points` (minimisation, 2 objectives), sorted by Obj1.
+std::vector<std::vector<double>> non_dominated(std::vector<std::vector<double>> points);
+/// Index of the knee point of a front: the member closest to the ideal point after scaling
+/// each objective to [0, 1] over the front.
+std::size_t knee_index(const std::vector<std::vector<double>>& front);
+
+}  // namespace stride::opt

@@ -1,0 +1,67 @@
+// RobotTask: the walk and kick optimisation tasks as NSGA-II problems.
+//
+// One evaluation = `trials` episodes. Each episode builds a simulated world (SimWorld seeded
+// with trial_seed + k; trial 0 of a single-trial task is the nominal world, robust trials
+// randomise friction, masses, servo strength and IMU noise) and a Firmware, stages the genome
+// into the firmware's ParameterStore (ParameterStore::stage, the console's atomic write; it
+// takes effect at tick 0 through apply_staged, as in the ControlLoop), and runs the unmodified
+// Controller against SimRobot in lockstep (sim::run_episode).
+//
+// walk  Obj1 = time to cover goal_distance_m [s]; not reached: duration_s + 10 s/m * the
+//       distance still missing (a penalty that still rewards progress).
+//       Obj2 = max |a| of the IMU over the episode [m/s^2].
+//       c0 = fell ? -(1 + time lost / duration) : 0  (g >= 0 is feasible).
+// kick  Obj1 = max field-plane sway sqrt(ax^2 + ay^2) [m/s^2] (1000 if fell),
+//       Obj2 = 1 / ball distance, distance clamped to [0.001, 10] m (1000 if fell).
+//       c0 = fell ? -10 : 0; c1 = -(|integral of gyro z| - limit) when over the limit.
+// Trials are aggregated per value by mean or worst (max objective, min constraint).
+// Every world and firmware is private to the call, so evaluate() is thread-safe and the
+// outcome depends on the genome alone.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "stride/optimiser/nsga2/problem.hpp"
+#include "stride/optimiser/tasks/task_config.hpp"
+
+namespace stride::opt {
+
+/// The raw figures of one episode (for reports and tests).
+struct EpisodeScore {
+  std::vector<double> objectives;
+  std::vector<double> constraints;
+  bool fell = false;
+  double distance_m = 0.0;
+  double time_to_goal_s = -1.0;
+  double max_accel = 0.0;
+  double max_fps = 0.0;
+  double ball_distance_m = 0.0;
+  double sim_time_s = 0.0;
+  double wall_time_s = 0.0;   ///< the episode loop (controller + physics + metrics) [s]
+  double setup_s = 0.0;       ///< building the firmware and the world, flashing the genome [s]
+  double controller_s = 0.0;  ///< inside Controller::step over the episode [s]
+};
+
+class RobotTask final : public Problem {
+ public:
+  explicit RobotTask(TaskConfig config);
+  std::string name() const override { return config_.task; }
+  const ProblemShape& shape() const override { return shape_; }
+  EvaluationOutcome evaluate(const Genome& genome) const override;
+  std::optional<FrontReference> reference() const override;
+
+  const TaskConfig& config() const { return config_; }
+  /// The start genome (Ind_O: every gene's start value).
+  Genome start_genome() const;
+  /// One episode of trial `trial` (0-based); a failure reason on a broken set-up or world.
+  Status run_trial(const Genome& genome, int trial, EpisodeScore& out) const;
+  /// The genome as a parameter file body {"name": value, ...} (loadable by --params).
+  nlohmann::json parameter_file(const Genome& genome) const;
+
+ private:
+  TaskConfig config_;
+  ProblemShape shape_;
+};
+
+}  // namespace stride::opt

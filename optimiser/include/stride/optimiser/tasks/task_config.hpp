@@ -1,0 +1,68 @@
+// Task configuration: what a robot optimisation (optimiser/configs/*.json) asks for.
+//
+// A task config names the task ("walk" or "kick"), the NSGA-II inputs (seed, pop, generations,
+// pc, pm, etaC, etaM, seed_fraction), the genome as parameter names with bounds and start
+// values (the firmware's current values, Ind_O), the episode settings and the robust
+// evaluation (trials under seeded randomised worlds, aggregated by mean or worst).
+// Every error names the offending field, e.g. "genes[3].max: must be greater than min".
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "stride/hal/status.hpp"
+#include "stride/optimiser/nsga2/settings.hpp"
+
+namespace stride::opt {
+
+/// One real gene: a firmware parameter and its search interval.
+struct TaskGene {
+  std::string parameter;  ///< ParameterStore name, e.g. "walk.walk_cycle.zmp_time"
+  double min = 0.0;
+  double max = 0.0;
+  double start = 0.0;  ///< the original value (Ind_O)
+};
+
+enum class Aggregate : std::uint8_t { kMean, kWorst };
+
+/// Randomised conditions of one robust trial (relative ranges, uniform +-range).
+struct TrialRandomisation {
+  bool imu_noise = true;
+  double friction_range = 0.2;
+  double mass_range = 0.05;
+  double strength_range = 0.1;
+};
+
+struct TaskConfig {
+  std::string task;  ///< "walk" or "kick"
+  Nsga2Settings settings;
+  std::vector<TaskGene> genes;
+  // Episode.
+  double duration_s = 40.0;           ///< walk: time limit; kick: episode length
+  double goal_distance_m = 2.5;       ///< walk
+  double walk_vx = 1.0;               ///< walk: normalised forward command
+  std::string script = "kick_right";  ///< kick
+  double kick_at_s = 1.0;             ///< kick
+  double yaw_drift_limit_rad = 6.66;  ///< kick constraint (seed: |integral of gyro z| > 6.66)
+  // Robust evaluation.
+  int trials = 1;  ///< 1: the nominal world; K > 1: K seeded randomised worlds
+  Aggregate aggregate = Aggregate::kMean;
+  std::uint64_t trial_seed = 1;  ///< base world seed of the trials
+  TrialRandomisation randomisation;
+  // Hypervolume normalisation (ideal and nadir objective vectors).
+  std::vector<double> hv_ideal;
+  std::vector<double> hv_nadir;
+};
+
+/// Parses a task config; the error names the field.
+Status parse_task_config(const nlohmann::json& doc, TaskConfig& out);
+/// Reads and parses a file; the error names the file and the field.
+Status load_task_config(const std::filesystem::path& path, TaskConfig& out);
+/// The config as JSON (recorded in run.json, read back by --resume).
+nlohmann::json to_json(const TaskConfig& config);
+
+}  // namespace stride::opt

@@ -1,0 +1,229 @@
+// Task configuration parsing with field-naming errors.
+#include "stride/optimiser/tasks/task_config.hpp"
+
+#include <cmath>
+#include <fstream>
+
+namespace stride::opt {
+
+namespace {
+
+Status number(const nlohmann::json& doc, const std::string& field, double& out, bool required,
+              const std::string& prefix = "") {
+  if (!doc.contains(field)) {
+    if (required) return Status::error(prefix + field + ": missing");
+    return {};
+  }
+  const auto& v = doc.at(field);
+  if (!v.is_number()) return Status::error(prefix + field + ": must be a number");
+  out = v.get<double>();
+  if (!std::isfinite(out)) return Status::error(prefix + field + ": must be finite");
+  return {};
+}
+
+Status integer(const nlohmann::json& doc, const std::string& field, std::int64_t lo,
+               std::int64_t hi, std::int64_t& out, bool required) {
+  if (!doc.contains(field)) {
+    if (required) return Status::error(field + ": missing");
+    return {};
+  }
+  const auto& v = doc.at(field);
+  if (!v.is_number_integer()) return Status::error(field + ": must be an integer");
+  out = v.get<std::int64_t>();
+  if (out < lo || out > hi) {
+    return Status::error(field + ": " + std::to_string(out) + " is outside [" + std::to_string(lo) +
+                         ", " + std::to_string(hi) + "]");
+  }
+  return {};
+}
+
+Status vector_of(const nlohmann::json& doc, const std::string& field, std::vector<double>& out) {
+  out.clear();
+  if (!doc.contains(field)) return {};
+  const auto& v = doc.at(field);
+  if (!v.is_array() || v.size() != 2)
+    return Status::error(field + ": must be an array of 2 numbers");
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    if (!v[i].is_number())
+      return Status::error(field + "[" + std::to_string(i) + "]: must be a number");
+    out.push_back(v[i].get<double>());
+  }
+  return {};
+}
+
+const char* const kKnownFields[] = {"task",
+                                    "seed",
+                                    "pop",
+                                    "generations",
+                                    "pc",
+                                    "pm",
+                                    "etac",
+                                    "etam",
+                                    "seed_fraction",
+                                    "genes",
+                                    "duration_s",
+                                    "goal_distance_m",
+                                    "walk_vx",
+                                    "script",
+                                    "kick_at_s",
+                                    "yaw_drift_limit_rad",
+                                    "trials",
+                                    "aggregate",
+                                    "trial_seed",
+                                    "randomisation",
+                                    "hypervolume_ideal",
+                                    "hypervolume_nadir",
+                                    "_comment"};
+
+}  // namespace
+
+Status parse_task_config(const nlohmann::json& doc, TaskConfig& out) {
+  if (!doc.is_object()) return Status::error("config: must be a JSON object");
+  for (const auto& [key, value] : doc.items()) {
+    bool known = false;
+    for (const char* k : kKnownFields) known = known || key == k;
+    if (!known) return Status::error(key + ": unknown field");
+  }
+  TaskConfig c;
+  if (!doc.contains("task") || !doc.at("task").is_string())
+    return Status::error("task: missing or not a string");
+  c.task = doc.at("task").get<std::string>();
+  if (c.task != "walk" && c.task != "kick")
+    return Status::error("task: '" + c.task + "' is not walk or kick");
+  std::int64_t v = 0;
+  if (Status s = integer(doc, "seed", 0, INT64_MAX, v, true); !s) return s;
+  c.settings.seed = static_cast<std::uint64_t>(v);
+  if (Status s = integer(doc, "pop", 4, 1000000, v, true); !s) return s;
+  c.settings.pop_size = static_cast<int>(v);
+  if (Status s = integer(doc, "generations", 1, 1000000, v, true); !s) return s;
+  c.settings.generations = static_cast<int>(v);
+  if (Status s = number(doc, "pc", c.settings.real_cross_prob, true); !s) return s;
+  if (Status s = number(doc, "pm", c.settings.real_mut_prob, true); !s) return s;
+  if (Status s = number(doc, "etac", c.settings.eta_c, true); !s) return s;
+  if (Status s = number(doc, "etam", c.settings.eta_m, true); !s) return s;
+  if (Status s = number(doc, "seed_fraction", c.settings.seed_mutation_fraction, false); !s)
+    return s;
+  if (Status s = validate(c.settings); !s) return s;
+
+  if (!doc.contains("genes") || !doc.at("genes").is_array() || doc.at("genes").empty())
+    return Status::error("genes: missing or not a non-empty array");
+  const auto& genes = doc.at("genes");
+  for (std::size_t i = 0; i < genes.size(); ++i) {
+    const std::string prefix = "genes[" + std::to_string(i) + "].";
+    const auto& g = genes[i];
+    if (!g.is_object()) return Status::error("genes[" + std::to_string(i) + "]: must be an object");
+    TaskGene gene;
+    if (!g.contains("parameter") || !g.at("parameter").is_string())
+      return Status::error(prefix + "parameter: missing or not a string");
+    gene.parameter = g.at("parameter").get<std::string>();
+    if (Status s = number(g, "min", gene.min, true, prefix); !s) return s;
+    if (Status s = number(g, "max", gene.max, true, prefix); !s) return s;
+    if (Status s = number(g, "start", gene.start, true, prefix); !s) return s;
+    if (!(gene.min < gene.max)) return Status::error(prefix + "max: must be greater than min");
+    if (gene.start < gene.min || gene.start > gene.max)
+      return Status::error(prefix + "start: must lie within [min, max]");
+    for (const auto& other : c.genes)
+      if (other.parameter == gene.parameter)
+        return Status::error(prefix + "parameter: '" + gene.parameter + "' appears twice");
+    c.genes.push_back(gene);
+  }
+  if (Status s = number(doc, "duration_s", c.duration_s, false); !s) return s;
+  if (!(c.duration_s > 0.0 && c.duration_s <= 600.0))
+    return Status::error("duration_s: must be in (0, 600]");
+  if (Status s = number(doc, "goal_distance_m", c.goal_distance_m, false); !s) return s;
+  if (!(c.goal_distance_m > 0.0)) return Status::error("goal_distance_m: must be positive");
+  if (Status s = number(doc, "walk_vx", c.walk_vx, false); !s) return s;
+  if (!(c.walk_vx >= -1.0 && c.walk_vx <= 1.0)) return Status::error("walk_vx: must be in [-1, 1]");
+  if (doc.contains("script")) {
+    if (!doc.at("script").is_string()) return Status::error("script: must be a string");
+    c.script = doc.at("script").get<std::string>();
+  }
+  if (Status s = number(doc, "kick_at_s", c.kick_at_s, false); !s) return s;
+  if (!(c.kick_at_s >= 0.0 && c.kick_at_s < c.duration_s))
+    return Status::error("kick_at_s: must be in [0, duration_s)");
+  if (Status s = number(doc, "yaw_drift_limit_rad", c.yaw_drift_limit_rad, false); !s) return s;
+  if (Status s = integer(doc, "trials", 1, 1000, v, false); !s) return s;
+  if (doc.contains("trials")) c.trials = static_cast<int>(v);
+  if (doc.contains("aggregate")) {
+    const auto& a = doc.at("aggregate");
+    if (!a.is_string() || (a != "mean" && a != "worst"))
+      return Status::error("aggregate: must be \"mean\" or \"worst\"");
+    c.aggregate = a == "mean" ? Aggregate::kMean : Aggregate::kWorst;
+  }
+  if (Status s = integer(doc, "trial_seed", 0, INT64_MAX, v, false); !s) return s;
+  if (doc.contains("trial_seed")) c.trial_seed = static_cast<std::uint64_t>(v);
+  if (doc.contains("randomisation")) {
+    const auto& r = doc.at("randomisation");
+    if (!r.is_object()) return Status::error("randomisation: must be an object");
+    if (r.contains("imu_noise")) {
+      if (!r.at("imu_noise").is_boolean())
+        return Status::error("randomisation.imu_noise: must be true or false");
+      c.randomisation.imu_noise = r.at("imu_noise").get<bool>();
+    }
+    for (auto [name, target] : {std::pair{"friction_range", &c.randomisation.friction_range},
+                                {"mass_range", &c.randomisation.mass_range},
+                                {"strength_range", &c.randomisation.strength_range}}) {
+      if (Status s = number(r, name, *target, false, "randomisation."); !s) return s;
+      if (*target < 0.0 || *target >= 1.0)
+        return Status::error(std::string("randomisation.") + name + ": must be in [0, 1)");
+    }
+  }
+  if (Status s = vector_of(doc, "hypervolume_ideal", c.hv_ideal); !s) return s;
+  if (Status s = vector_of(doc, "hypervolume_nadir", c.hv_nadir); !s) return s;
+  if (c.hv_ideal.empty() != c.hv_nadir.empty())
+    return Status::error("hypervolume_nadir: give both hypervolume_ideal and hypervolume_nadir");
+  for (std::size_t i = 0; i < c.hv_ideal.size(); ++i)
+    if (!(c.hv_ideal[i] < c.hv_nadir[i]))
+      return Status::error("hypervolume_nadir[" + std::to_string(i) +
+                           "]: must exceed hypervolume_ideal");
+  out = std::move(c);
+  return {};
+}
+
+Status load_task_config(const std::filesystem::path& path, TaskConfig& out) {
+  std::ifstream in(path);
+  if (!in) return Status::error(path.string() + ": cannot open");
+  nlohmann::json doc = nlohmann::json::parse(in, nullptr, false);
+  if (doc.is_discarded()) return Status::error(path.string() + ": not valid JSON");
+  if (Status s = parse_task_config(doc, out); !s)
+    return Status::error(path.string() + ": " + s.message());
+  return {};
+}
+
+nlohmann::json to_json(const TaskConfig& c) {
+  nlohmann::json genes = nlohmann::json::array();
+  for (const auto& g : c.genes)
+    genes.push_back(
+        {{"parameter", g.parameter}, {"min", g.min}, {"max", g.max}, {"start", g.start}});
+  nlohmann::json j = {{"task", c.task},
+                      {"seed", c.settings.seed},
+                      {"pop", c.settings.pop_size},
+                      {"generations", c.settings.generations},
+                      {"pc", c.settings.real_cross_prob},
+                      {"pm", c.settings.real_mut_prob},
+                      {"etac", c.settings.eta_c},
+                      {"etam", c.settings.eta_m},
+                      {"seed_fraction", c.settings.seed_mutation_fraction},
+                      {"genes", genes},
+                      {"duration_s", c.duration_s},
+                      {"goal_distance_m", c.goal_distance_m},
+                      {"walk_vx", c.walk_vx},
+                      {"script", c.script},
+                      {"kick_at_s", c.kick_at_s},
+                      {"yaw_drift_limit_rad", c.yaw_drift_limit_rad},
+                      {"trials", c.trials},
+                      {"aggregate", c.aggregate == Aggregate::kMean ? "mean" : "worst"},
+                      {"trial_seed", c.trial_seed},
+                      {"randomisation",
+                       {{"imu_noise", c.randomisation.imu_noise},
+                        {"friction_range", c.randomisation.friction_range},
+                        {"mass_range", c.randomisation.mass_range},
+                        {"strength_range", c.randomisation.strength_range}}}};
+  if (!c.hv_ideal.empty()) {
+    j["hypervolume_ideal"] = c.hv_ideal;
+    j["hypervolume_nadir"] = c.hv_nadir;
+  }
+  return j;
+}
+
+}  // namespace stride::opt

@@ -1,0 +1,263 @@
+// Robot tasks end to end (short episodes, small populations): the genome reaches the firmware,
+// the kick scores, robust trials aggregate, serial = threads = MPI (3 ranks), Ctrl-C then
+// --resume equals the uninterrupted run, front/ files load in stride-fw and stride sim, and
+// stride report rebuilds the plots.
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+#include <nlohmann/json.hpp>
+
+#include "stride/optimiser/tasks/robot_task.hpp"
+#include "temp_dir.hpp"
+
+namespace stride::opt {
+namespace {
+
+namespace fs = std::filesystem;
+const std::string kBin = std::string(STRIDE_BIN_DIR);
+const std::string kConfigs = std::string(STRIDE_SOURCE_DIR) + "/optimiser/configs/";
+
+std::string read(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::string without_wall_time(std::string text) {
+  const std::string key = ",\"wall_s\":";
+  for (std::size_t at = text.find(key); at != std::string::npos; at = text.find(key, at))
+    text.erase(at, text.find('}', at) - at);
+  return text;
+}
+
+pid_t launch(const std::string& program, const std::vector<std::string>& args,
+             const fs::path& log_dir) {
+  const pid_t pid = fork();
+  if (pid == 0) {
+    const int out = ::open((log_dir / "stdout").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    const int err = ::open((log_dir / "stderr").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    ::dup2(out, 1);
+    ::dup2(err, 2);
+    std::vector<char*> argv;
+    argv.push_back(const_cast<char*>(program.c_str()));
+    for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    ::execvp(program.c_str(), argv.data());
+    ::_exit(127);
+  }
+  return pid;
+}
+
+int wait_exit(pid_t pid) {
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -WTERMSIG(status);
+}
+
+int run(const std::string& program, const std::vector<std::string>& args, const fs::path& log_dir) {
+  return wait_exit(launch(program, args, log_dir));
+}
+
+/// The walk task with a short episode (2 s, goal 0.3 m) so that a run takes seconds.
+fs::path short_walk_config(const fs::path& dir, int generations) {
+  std::ifstream in(kConfigs + "walk.json");
+  nlohmann::json c = nlohmann::json::parse(in);
+  c["pop"] = 4;
+  c["generations"] = generations;
+  c["duration_s"] = 2.0;
+  c["goal_distance_m"] = 0.3;
+  c["pm"] = 0.2;
+  const fs::path path = dir / "walk-short.json";
+  std::ofstream(path) << c.dump(1);
+  return path;
+}
+
+TaskConfig load(const std::string& name) {
+  TaskConfig c;
+  EXPECT_TRUE(load_task_config(kConfigs + name, c));
+  return c;
+}
+
+TEST(RobotTask, TheGenomeIsFlashedIntoTheFirmware) {
+  TaskConfig c = load("walk.json");
+  c.duration_s = 2.0;
+  const RobotTask task(c);
+  EpisodeScore original, changed, again;
+  ASSERT_TRUE(task.run_trial(task.start_genome(), 0, original));
+  Genome g = task.start_genome();
+  for (std::size_t i = 0; i < c.genes.size(); ++i)
+    if (c.genes[i].parameter == "walk.stance.gains.legs") g.reals[i] = c.genes[i].max;
+  ASSERT_TRUE(task.run_trial(g, 0, changed));
+  ASSERT_TRUE(task.run_trial(task.start_genome(), 0, again));
+  EXPECT_NE(original.distance_m, changed.distance_m);  // stiffer legs change the episode
+  EXPECT_EQ(original.distance_m, again.distance_m);    // and the episode is deterministic
+  EXPECT_EQ(original.objectives, again.objectives);
+  ASSERT_EQ(original.objectives.size(), 2u);
+  ASSERT_EQ(original.constraints.size(), 1u);
+  EXPECT_EQ(original.objectives[1], original.max_accel);
+  EXPECT_GT(original.max_accel, 5.0);
+}
+
+TEST(RobotTask, KickEpisodeMovesTheBallAndScoresTheSeedsObjectives) {
+  TaskConfig c = load("kick.json");
+  c.duration_s = 5.0;
+  const RobotTask task(c);
+  EpisodeScore s;
+  ASSERT_TRUE(task.run_trial(task.start_genome(), 0, s));
+  ASSERT_EQ(s.objectives.size(), 2u);
+  ASSERT_EQ(s.constraints.size(), 2u);
+  if (!s.fell) {
+    EXPECT_GT(s.ball_distance_m, 0.05);
+    EXPECT_DOUBLE_EQ(s.objectives[0], s.max_fps);
+    EXPECT_NEAR(s.objectives[1], 1.0 / std::clamp(s.ball_distance_m, 0.001, 10.0), 1e-12);
+    EXPECT_EQ(s.constraints[0], 0.0);
+  } else {
+    EXPECT_EQ(s.objectives[0], 1000.0);
+    EXPECT_EQ(s.constraints[0], -10.0);
+  }
+}
+
+TEST(RobotTask, RobustTrialsAggregateByMeanOrWorst) {
+  TaskConfig c = load("walk.json");
+  c.duration_s = 1.5;
+  c.trials = 2;
+  c.aggregate = Aggregate::kMean;
+  const RobotTask mean_task(c);
+  c.aggregate = Aggregate::kWorst;
+  const RobotTask worst_task(c);
+  const Genome g = mean_task.start_genome();
+  EpisodeScore t0, t1;
+  ASSERT_TRUE(mean_task.run_trial(g, 0, t0));
+  ASSERT_TRUE(mean_task.run_trial(g, 1, t1));
+  EXPECT_NE(t0.max_accel, t1.max_accel);  // two different randomised worlds
+  const EvaluationOutcome mean = mean_task.evaluate(g);
+  const EvaluationOutcome worst = worst_task.evaluate(g);
+  ASSERT_FALSE(mean.failed) << mean.reason;
+  ASSERT_FALSE(worst.failed) << worst.reason;
+  for (int m = 0; m < 2; ++m) {
+    EXPECT_DOUBLE_EQ(mean.objectives[m], 0.5 * (t0.objectives[m] + t1.objectives[m]));
+    EXPECT_DOUBLE_EQ(worst.objectives[m], std::max(t0.objectives[m], t1.objectives[m]));
+  }
+  EXPECT_DOUBLE_EQ(worst.constraints[0], std::min(t0.constraints[0], t1.constraints[0]));
+  EXPECT_EQ(mean_task.evaluate(g).objectives, mean.objectives);  // seeded: repeatable
+}
+
+TEST(RobotTaskCli, SerialThreadsAndMpiGiveTheSameRunAndTheFrontLoads) {
+  test::TempDir tmp;
+  const fs::path config = short_walk_config(tmp.path(), 2);
+  const std::string stride = kBin + "/stride";
+  auto args = [&](const std::string& out, std::vector<std::string> extra) {
+    std::vector<std::string> a = {"optimise", "--config", config.string(), "--out",
+                                  (tmp.path() / out).string()};
+    a.insert(a.end(), extra.begin(), extra.end());
+    return a;
+  };
+  ASSERT_EQ(run(stride, args("serial", {"--jobs", "1"}), tmp.path()), 0)
+      << read(tmp.path() / "stderr");
+  ASSERT_EQ(run(stride, args("threads", {"--jobs", "2"}), tmp.path()), 0)
+      << read(tmp.path() / "stderr");
+  ::setenv("OMPI_ALLOW_RUN_AS_ROOT", "1", 1);
+  ::setenv("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1", 1);
+  std::vector<std::string> mpi = {"--oversubscribe", "-n", "3", stride};
+  if (::geteuid() == 0) mpi.insert(mpi.begin(), "--allow-run-as-root");
+  for (const auto& a : args("mpi", {"--mpi"})) mpi.push_back(a);
+  ASSERT_EQ(run("mpirun", mpi, tmp.path()), 0) << read(tmp.path() / "stderr");
+  for (const char* other : {"threads", "mpi"}) {
+    for (const char* f : {"evaluations.jsonl", "pareto.csv", "checkpoint.json"})
+      EXPECT_EQ(read(tmp.path() / "serial" / f), read(tmp.path() / other / f)) << other << " " << f;
+    EXPECT_EQ(without_wall_time(read(tmp.path() / "serial/generations.jsonl")),
+              without_wall_time(read(tmp.path() / other / "generations.jsonl")));
+  }
+  // front/ files are parameter files of the firmware.
+  const fs::path member = tmp.path() / "serial/front/000.json";
+  ASSERT_TRUE(fs::exists(member));
+  EXPECT_EQ(nlohmann::json::parse(read(member)).size(), 46u);
+  EXPECT_EQ(run(kBin + "/stride-fw", {"--hal", "sim", "--params", member.string(), "--ticks", "5"},
+                tmp.path()),
+            0)
+      << read(tmp.path() / "stderr");
+  EXPECT_EQ(
+      run(stride,
+          {"sim", "walk", "--params", member.string(), "--vx", "1", "--duration", "0.3", "--json"},
+          tmp.path()),
+      0)
+      << read(tmp.path() / "stderr");
+  // stride report rebuilds the plots and names the picks.
+  fs::remove(tmp.path() / "serial/hypervolume.svg");
+  ASSERT_EQ(run(stride, {"report", (tmp.path() / "serial").string(), "--json"}, tmp.path()), 0)
+      << read(tmp.path() / "stderr");
+  const auto summary = nlohmann::json::parse(read(tmp.path() / "stdout"));
+  EXPECT_EQ(summary["task"], "walk");
+  EXPECT_TRUE(summary["ind_o"].is_object());
+  for (const char* key : {"fastest", "most_stable", "knee"})
+    EXPECT_TRUE(summary.contains(key)) << key;
+  for (const char* svg : {"hypervolume.svg", "pareto_by_generation.svg"})
+    EXPECT_EQ(read(tmp.path() / "serial" / svg).rfind("<svg", 0), 0u) << svg;
+  EXPECT_EQ(run(stride, {"report", (tmp.path() / "nothing").string()}, tmp.path()), 2);
+}
+
+TEST(RobotTaskCli, CtrlCStopsAfterACheckpointAndResumeFinishesTheSameRun) {
+  test::TempDir tmp;
+  const fs::path config = short_walk_config(tmp.path(), 4);
+  const std::string stride = kBin + "/stride";
+  const fs::path ref = tmp.path() / "ref", cut = tmp.path() / "cut";
+  ASSERT_EQ(
+      run(stride, {"optimise", "--config", config.string(), "--out", ref.string(), "--jobs", "1"},
+          tmp.path()),
+      0)
+      << read(tmp.path() / "stderr");
+  const pid_t pid = launch(
+      stride, {"optimise", "--config", config.string(), "--out", cut.string(), "--jobs", "1"},
+      tmp.path());
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  for (;;) {
+    ASSERT_LT(std::chrono::steady_clock::now(), deadline);
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    try {
+      const auto cp = nlohmann::json::parse(read(cut / "checkpoint.json"));
+      if (cp["engine"]["completed_generations"].get<int>() >= 1) break;
+    } catch (const nlohmann::json::exception&) {
+    }
+  }
+  ASSERT_EQ(::kill(pid, SIGINT), 0);
+  EXPECT_EQ(wait_exit(pid), 130);
+  EXPECT_NE(read(tmp.path() / "stderr").find("--resume"), std::string::npos);
+  const auto cp = nlohmann::json::parse(read(cut / "checkpoint.json"));
+  EXPECT_LT(cp["engine"]["completed_generations"].get<int>(), 4);
+  ASSERT_EQ(run(stride, {"optimise", "--out", cut.string(), "--resume", "--jobs", "2"}, tmp.path()),
+            0)
+      << read(tmp.path() / "stderr");
+  for (const char* f : {"run.json", "evaluations.jsonl", "checkpoint.json", "pareto.csv"})
+    EXPECT_EQ(read(cut / f), read(ref / f)) << f;
+}
+
+TEST(RobotTaskCli, BadConfigNamesTheField) {
+  test::TempDir tmp;
+  std::ifstream in(kConfigs + "walk.json");
+  nlohmann::json c = nlohmann::json::parse(in);
+  c["genes"][2]["min"] = "low";
+  std::ofstream(tmp.path() / "bad.json") << c.dump();
+  EXPECT_EQ(run(kBin + "/stride",
+                {"optimise", "--config", (tmp.path() / "bad.json").string(), "--out",
+                 (tmp.path() / "run").string()},
+                tmp.path()),
+            2);
+  const std::string err = read(tmp.path() / "stderr");
+  EXPECT_NE(err.find("genes[2].min"), std::string::npos) << err;
+  EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1);
+  EXPECT_FALSE(fs::exists(tmp.path() / "run"));
+}
+
+}  // namespace
+}  // namespace stride::opt

@@ -1,0 +1,155 @@
+// Task configs: the shipped configs carry the seed's settings; errors name the field; report
+// helpers (non-dominated filter, knee point) and the progress line.
+#include <gtest/gtest.h>
+
+#include "stride/optimiser/run/progress.hpp"
+#include "stride/optimiser/run/run_report.hpp"
+#include "stride/optimiser/tasks/robot_task.hpp"
+#include "stride/optimiser/tasks/task_config.hpp"
+
+namespace stride::opt {
+namespace {
+
+const std::string kConfigs = std::string(STRIDE_SOURCE_DIR) + "/optimiser/configs/";
+
+TEST(TaskConfig, WalkConfigIsTheSeedsTable71With46Genes) {
+  TaskConfig c;
+  ASSERT_TRUE(load_task_config(kConfigs + "walk.json", c)) << "walk.json";
+  EXPECT_EQ(c.task, "walk");
+  EXPECT_EQ(c.settings.seed, 300u);
+  EXPECT_EQ(c.settings.pop_size, 40);
+  EXPECT_EQ(c.settings.generations, 50);
+  EXPECT_DOUBLE_EQ(c.settings.real_mut_prob, 0.025);
+  EXPECT_DOUBLE_EQ(c.settings.real_cross_prob, 0.8);
+  EXPECT_DOUBLE_EQ(c.settings.eta_c, 13);
+  EXPECT_DOUBLE_EQ(c.settings.eta_m, 20);
+  ASSERT_EQ(c.genes.size(), 46u);
+  for (const auto& g : c.genes) {
+    EXPECT_NE(g.parameter, "walk.stance.body_height");
+    if (g.start != 0.0) {  // about +-50 % of Ind_O (less where a physical range clips it)
+      const double width = std::abs(g.max - g.min) / std::abs(g.start);
+      EXPECT_GE(width, 0.5) << g.parameter;
+      EXPECT_LE(width, 1.35) << g.parameter;
+    } else {
+      EXPECT_LT(g.min, g.max) << g.parameter;  // an absolute interval
+    }
+  }
+  const RobotTask task(c);
+  EXPECT_EQ(task.shape().reals.size(), 46u);
+  EXPECT_EQ(task.shape().constraints, 1);
+  EXPECT_EQ(task.start_genome().reals[0], c.genes[0].start);
+}
+
+TEST(TaskConfig, KickConfigsAreTheSeedsTable61) {
+  TaskConfig soft, initial;
+  ASSERT_TRUE(load_task_config(kConfigs + "kick.json", soft));
+  ASSERT_TRUE(load_task_config(kConfigs + "kick-initial.json", initial));
+  EXPECT_EQ(soft.settings.seed, 650u);
+  EXPECT_EQ(soft.settings.generations, 300);
+  EXPECT_DOUBLE_EQ(soft.settings.real_mut_prob, 0.025);
+  EXPECT_DOUBLE_EQ(soft.settings.real_cross_prob, 0.8);
+  EXPECT_DOUBLE_EQ(soft.settings.eta_c, 15);
+  EXPECT_DOUBLE_EQ(soft.settings.eta_m, 40);
+  EXPECT_EQ(initial.settings.seed, 123u);
+  EXPECT_EQ(initial.settings.generations, 500);
+  EXPECT_DOUBLE_EQ(initial.settings.real_mut_prob, 0.2);
+  EXPECT_DOUBLE_EQ(initial.settings.real_cross_prob, 0.33);
+  EXPECT_DOUBLE_EQ(initial.settings.eta_c, 18);
+  EXPECT_DOUBLE_EQ(initial.settings.eta_m, 50);
+  // Frames 2..5 of the 6-frame kick, 18 servos each, +-0.5 rad (clipped to servo limits).
+  ASSERT_EQ(soft.genes.size(), 72u);
+  EXPECT_EQ(soft.genes.front().parameter.rfind("script.kick_right.frame2.", 0), 0u);
+  EXPECT_EQ(soft.genes.back().parameter.rfind("script.kick_right.frame5.", 0), 0u);
+  for (const auto& g : soft.genes) {
+    EXPECT_LE(g.max - g.start, 0.5 + 1e-9);
+    EXPECT_LE(g.start - g.min, 0.5 + 1e-9);
+  }
+  EXPECT_EQ(RobotTask(soft).shape().constraints, 2);
+}
+
+nlohmann::json minimal() {
+  return {
+      {"task", "walk"},
+      {"seed", 1},
+      {"pop", 8},
+      {"generations", 2},
+      {"pc", 0.8},
+      {"pm", 0.1},
+      {"etac", 13},
+      {"etam", 20},
+      {"genes",
+       {{{"parameter", "walk.walk_cycle.zmp_time"}, {"min", 0.2}, {"max", 0.6}, {"start", 0.4}}}}};
+}
+
+std::string error_of(const nlohmann::json& doc) {
+  TaskConfig c;
+  const Status s = parse_task_config(doc, c);
+  return s ? std::string("ok") : s.message();
+}
+
+TEST(TaskConfig, ErrorsNameTheField) {
+  EXPECT_EQ(error_of(minimal()), "ok");
+  auto d = minimal();
+  d["task"] = "swim";
+  EXPECT_NE(error_of(d).find("task"), std::string::npos);
+  d = minimal();
+  d.erase("pop");
+  EXPECT_EQ(error_of(d), "pop: missing");
+  d = minimal();
+  d["pc"] = "high";
+  EXPECT_EQ(error_of(d), "pc: must be a number");
+  d = minimal();
+  d["genes"][0]["max"] = 0.1;
+  EXPECT_EQ(error_of(d), "genes[0].max: must be greater than min");
+  d = minimal();
+  d["genes"][0]["start"] = 0.9;
+  EXPECT_EQ(error_of(d), "genes[0].start: must lie within [min, max]");
+  d = minimal();
+  d["aggregate"] = "median";
+  EXPECT_NE(error_of(d).find("aggregate"), std::string::npos);
+  d = minimal();
+  d["trials"] = 0;
+  EXPECT_NE(error_of(d).find("trials"), std::string::npos);
+  d = minimal();
+  d["colour"] = 1;
+  EXPECT_EQ(error_of(d), "colour: unknown field");
+  d = minimal();
+  d["randomisation"] = {{"friction_range", 2.0}};
+  EXPECT_NE(error_of(d).find("randomisation.friction_range"), std::string::npos);
+}
+
+TEST(TaskConfig, RoundTripsThroughJson) {
+  TaskConfig a, b;
+  ASSERT_TRUE(load_task_config(kConfigs + "walk.json", a));
+  ASSERT_TRUE(parse_task_config(to_json(a), b));
+  EXPECT_EQ(to_json(a), to_json(b));
+  EXPECT_EQ(b.genes.size(), 46u);
+}
+
+TEST(RunReport, NonDominatedAndKnee) {
+  const auto front = non_dominated({{3, 1}, {1, 3}, {2, 2}, {2.5, 2.5}, {4, 4}, {1, 5}});
+  ASSERT_EQ(front.size(), 3u);
+  EXPECT_EQ(front[0], (std::vector<double>{1, 3}));
+  EXPECT_EQ(front[2], (std::vector<double>{3, 1}));
+  EXPECT_EQ(knee_index(front), 1u);  // (2, 2) is closest to the ideal point
+}
+
+TEST(Progress, LineShowsGenerationRateEtaBestAndHypervolume) {
+  GenerationRecord r;
+  r.generation = 3;
+  r.generations = 10;
+  r.evaluations = 24;
+  r.hypervolume = 0.5;
+  r.best_objectives = {21.5, 12.25};
+  const std::string plain = ProgressPrinter(false).line(r, 2.5, 70);
+  EXPECT_NE(plain.find("generation 3/10"), std::string::npos) << plain;
+  EXPECT_NE(plain.find("2.50 evals/s"), std::string::npos) << plain;
+  EXPECT_NE(plain.find("ETA 70 s"), std::string::npos) << plain;
+  EXPECT_NE(plain.find("best 21.5 12.25"), std::string::npos) << plain;
+  EXPECT_NE(plain.find("hypervolume 0.500000"), std::string::npos) << plain;
+  EXPECT_EQ(plain.find('['), std::string::npos);
+  EXPECT_EQ(ProgressPrinter(true).line(r, 2.5, 70).rfind("[#######", 0), 0u);
+}
+
+}  // namespace
+}  // namespace stride::opt
