@@ -40,7 +40,7 @@ std::unique_ptr<ConsoleTransport> make_stdio_transport();
 
 /// A serial device or pseudo-terminal opened with libserialport: 8N1, no flow control, raw,
 /// exclusive (TIOCEXCL and an flock, so a second stride-fw or a picocom cannot share it).
-/// Options a pseudo-terminal cannot set (baud rate, flow control) are tolerated.
+/// Options a pseudo-terminal cannot set (baud rate, flow control) are tolerated (tty_port.hpp).
 std::unique_ptr<ConsoleTransport> make_serial_transport(std::string device, int baud = 115200);
 
 }  // namespace stride::fw::console
