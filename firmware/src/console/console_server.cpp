@@ -43,29 +43,31 @@ void ConsoleServer::serve_bytes(std::string_view bytes) {
   std::vector<EditedLine> lines;
   std::string out;
   const std::uint64_t noise_before = editor_.dropped_bytes();
-  editor_.feed(bytes, lines, out);
-  counters_.noise_bytes += editor_.dropped_bytes() - noise_before;
-  for (const EditedLine& line : lines) {
-    Reply reply;
-    if (line.kind == EditedLine::Kind::kOverlong) {
-      ++counters_.overlong_lines;
-      reply = Reply::error(
-          ErrorCode::kLineTooLong,
-          "line longer than " + std::to_string(editor_.max_line()) + " bytes discarded");
-    } else if (line.kind == EditedLine::Kind::kCancelled) {
-      out += prompt_;
-      continue;
-    } else if (line.text.find_first_not_of(' ') == std::string::npos) {
-      out += prompt_;  // empty line: just a new prompt
-      continue;
-    } else {
-      reply = interpreter_.execute(line.text);
+  // One byte at a time, so that each line's echo is followed by its own reply.
+  for (std::size_t i = 0; i < bytes.size(); ++i) {
+    editor_.feed(bytes.substr(i, 1), lines, out);
+    for (const EditedLine& line : lines) {
+      Reply reply;
+      if (line.kind == EditedLine::Kind::kOverlong) {
+        ++counters_.overlong_lines;
+        reply = Reply::error(
+            ErrorCode::kLineTooLong,
+            "line longer than " + std::to_string(editor_.max_line()) + " bytes discarded");
+      } else if (line.kind == EditedLine::Kind::kCancelled ||
+                 line.text.find_first_not_of(' ') == std::string::npos) {
+        out += prompt_;  // abandoned or empty line: just a new prompt
+        continue;
+      } else {
+        reply = interpreter_.execute(line.text);
+      }
+      ++counters_.lines;
+      if (!reply.ok()) ++counters_.errors;
+      for (const std::string& data : reply.data) out += data + "\r\n";
+      out += reply.final_line + "\r\n" + prompt_;
     }
-    ++counters_.lines;
-    if (!reply.ok()) ++counters_.errors;
-    for (const std::string& data : reply.data) out += data + "\r\n";
-    out += reply.final_line + "\r\n" + prompt_;
+    lines.clear();
   }
+  counters_.noise_bytes += editor_.dropped_bytes() - noise_before;
   if (!out.empty()) (void)transport_->write(out);
 }
 
