@@ -63,6 +63,7 @@ Status ConsoleClient::command(const std::string& line, ConsoleReply& out, int ti
     if (Status s = read_line(received, deadline); !s) return s;
     if (!seen_echo && received == line) {
       seen_echo = true;
+      out.data.clear();  // whatever came before our echo (a banner) is not part of the reply
       continue;
     }
     if (received.empty()) continue;

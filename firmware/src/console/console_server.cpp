@@ -15,7 +15,8 @@ ConsoleServer::ConsoleServer(std::unique_ptr<ConsoleTransport> transport, Consol
       interpreter_(std::move(context)),
       editor_(options.max_line, transport_->wants_echo()),
       options_(options),
-      prompt_(transport_->wants_echo() ? "> " : "") {}
+      prompt_(transport_->wants_echo() ? "> " : ""),
+      line_end_(transport_->wants_echo() ? "\r\n" : "\n") {}
 
 ConsoleServer::~ConsoleServer() {
   stop();
@@ -62,8 +63,8 @@ void ConsoleServer::serve_bytes(std::string_view bytes) {
       }
       ++counters_.lines;
       if (!reply.ok()) ++counters_.errors;
-      for (const std::string& data : reply.data) out += data + "\r\n";
-      out += reply.final_line + "\r\n" + prompt_;
+      for (const std::string& data : reply.data) out += data + line_end_;
+      out += reply.final_line + line_end_ + prompt_;
     }
     lines.clear();
   }

@@ -67,7 +67,8 @@ class ConsoleServer {
   CommandInterpreter interpreter_;
   LineEditor editor_;
   ServerOptions options_;
-  std::string prompt_;  ///< "> " on terminals (serial, pty), none on stdio
+  std::string prompt_;    ///< "> " on terminals (serial, pty), none on stdio
+  std::string line_end_;  ///< CR LF on terminals, LF on stdio
   ServerCounters counters_;
   std::atomic<bool> stop_{false};
   std::atomic<bool> finished_{false};

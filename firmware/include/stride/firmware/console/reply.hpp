@@ -2,8 +2,8 @@
 //
 // Wire format (firmware/console/README.md): zero or more data lines, then exactly one final
 // line, either `ok` or `ok <text>`, or `err <code> <message>`. Data lines never start with the
-// word "ok" or "err". Every line ends with CR LF; after the final line the console prints the
-// prompt "> " (no line end).
+// word "ok" or "err". On a serial line or pty every line ends with CR LF and the final line is
+// followed by the prompt "> " (no line end); on stdio lines end with LF and there is no prompt.
 #pragma once
 
 #include <string>
