@@ -1,7 +1,12 @@
 // ConsoleClient implementation (see the header).
 #include "stride/host_tools/console_client.hpp"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <cstdlib>
+
+#include <nlohmann/json.hpp>
 
 namespace stride::tools {
 namespace {
@@ -16,6 +21,15 @@ long long now_ms() {
 
 bool is_final_line(const std::string& line) {
   return line == "ok" || line.rfind("ok ", 0) == 0 || line.rfind("err ", 0) == 0;
+}
+
+bool value_matches(const nlohmann::json& expected, const std::string& robot_text) {
+  if (expected.is_boolean()) return robot_text == (expected.get<bool>() ? "true" : "false");
+  if (!expected.is_number() || robot_text.empty()) return false;
+  char* end = nullptr;
+  const double value = std::strtod(robot_text.c_str(), &end);
+  const double want = expected.get<double>();
+  return *end == '\0' && std::fabs(value - want) <= 1e-9 * std::max(1.0, std::fabs(want));
 }
 
 Status ConsoleClient::open(const std::string& port, int baud) {

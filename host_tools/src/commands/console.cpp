@@ -80,16 +80,7 @@ Status verify(ConsoleClient& client, const FlashFile& file, int timeout_ms,
       continue;
     }
     const std::string robot = reply.final_line.substr(prefix.size());
-    bool same = false;
-    if (expected.is_boolean()) {
-      same = robot == (expected.get<bool>() ? "true" : "false");
-    } else if (expected.is_number()) {
-      char* end = nullptr;
-      const double value = std::strtod(robot.c_str(), &end);
-      const double want = expected.get<double>();
-      same = end != robot.c_str() && *end == '\0' &&
-             std::fabs(value - want) <= 1e-9 * std::max(1.0, std::fabs(want));
-    }
+    const bool same = value_matches(expected, robot);
     if (!same) differences.push_back(name + ": file " + expected.dump() + ", robot " + robot);
   }
   return {};

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json_fwd.hpp>
+
 #include "stride/firmware/console/tty_port.hpp"
 #include "stride/hal/status.hpp"
 
@@ -41,5 +43,9 @@ class ConsoleClient {
 
 /// True if `line` (prompt already removed) ends a reply: "ok", "ok ..." or "err ...".
 bool is_final_line(const std::string& line);
+
+/// flash --verify: does the value the console printed (`get`: "0.85", "true", "12") equal the
+/// file's value? Numbers match within 1e-9 relative; bools by name; anything else never.
+bool value_matches(const nlohmann::json& expected, const std::string& robot_text);
 
 }  // namespace stride::tools
