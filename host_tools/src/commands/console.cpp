@@ -19,6 +19,7 @@
 #include <nlohmann/json.hpp>
 
 #include "stride/firmware/cli_args.hpp"
+#include "stride/firmware/console/line_editor.hpp"
 #include "stride/host_tools/command.hpp"
 #include "stride/host_tools/console_client.hpp"
 
@@ -33,6 +34,9 @@ constexpr const char* kUsage =
     "Each COMMAND is one console line, e.g. 'get walk.step_time' status 'set stand.gain 40'.\n"
     "'flash FILE' sends the parameter file FILE (read here) as one line of JSON.\n"
     "Exit status: 0 all replies ok, 1 an err reply or a port failure, 2 bad usage.\n\n";
+
+// The console's line limit (stride::fw::console::LineEditor::kDefaultMaxLine).
+constexpr std::size_t kMaxConsoleLine = fw::console::LineEditor::kDefaultMaxLine;
 
 // Flattens a parameter file into dotted names (as the firmware does).
 void flatten(const nlohmann::json& node, const std::string& prefix,
@@ -63,6 +67,11 @@ Status read_flash_file(const std::string& path, FlashFile& out) {
   }
   if (!doc.is_object()) return Status::error(path + ": expected a JSON object of parameters");
   out.line = "flash " + doc.dump();
+  if (out.line.size() > kMaxConsoleLine) {
+    return Status::error(path + ": " + std::to_string(out.line.size()) +
+                         " bytes as one line; the console accepts lines up to " +
+                         std::to_string(kMaxConsoleLine) + " bytes");
+  }
   out.values.clear();
   flatten(doc, "", out.values);
   return {};

@@ -215,6 +215,13 @@ TEST_F(ConsoleEndToEnd, ClientBadUsageAndPortFailures) {
   out = run(kBin + "/stride console --port /dev/null flash " + broken.string(), code);
   EXPECT_EQ(code, 2);
   EXPECT_NE(out.find("not valid JSON"), std::string::npos) << out;
+  std::string big = "{";
+  for (int i = 0; i < 8000; ++i) big += "\"p" + std::to_string(i) + "\": 1.0, ";
+  big += "\"last\": 1}";
+  out = run(kBin + "/stride console --port /dev/null flash " + dir_.write("big.json", big).string(),
+            code);
+  EXPECT_EQ(code, 2);
+  EXPECT_NE(out.find("the console accepts lines up to 65536 bytes"), std::string::npos) << out;
   out = run(kBin + "/stride console --port /dev/null --verify status", code);
   EXPECT_EQ(code, 2);
   out = run(kBin + "/stride console --port /nonexistent/tty status", code);
