@@ -15,8 +15,20 @@ packages=(
   clang libclang-rt-14-dev clang-format
   python3
 )
+cross=0
 if [[ "${1:-}" == "--cross" ]]; then
-  packages+=(g++-aarch64-linux-gnu qemu-user qemu-user-static)
+  cross=1
+  packages+=(g++-aarch64-linux-gnu qemu-user
+             libserialport-dev:arm64 libgtest-dev:arm64 libgmock-dev:arm64 libstdc++6:arm64)
+fi
+
+sudo_cmd=()
+if [[ $(id -u) -ne 0 ]]; then sudo_cmd=(sudo); fi
+
+# The arm64 libraries come from Debian's multiarch archive.
+if ((cross)) && ! dpkg --print-foreign-architectures | grep -qx arm64; then
+  "${sudo_cmd[@]}" dpkg --add-architecture arm64
+  added_arch=1
 fi
 
 missing=()
@@ -26,13 +38,11 @@ for p in "${packages[@]}"; do
   fi
 done
 
-if ((${#missing[@]} == 0)); then
+if ((${#missing[@]} == 0)) && [[ -z "${added_arch:-}" ]]; then
   echo "install-deps: all ${#packages[@]} packages present"
   exit 0
 fi
 
-sudo_cmd=()
-if [[ $(id -u) -ne 0 ]]; then sudo_cmd=(sudo); fi
 echo "install-deps: installing ${missing[*]}"
 export DEBIAN_FRONTEND=noninteractive
 "${sudo_cmd[@]}" apt-get update -qq

@@ -14,7 +14,17 @@ std::filesystem::path data_dir() {
   if (const char* env = std::getenv("STRIDE_DATA_DIR"); env != nullptr && *env != '\0') {
     return env;
   }
-  return STRIDE_FIRMWARE_DATA_DIR;
+  // An installed binary finds its data beside it: <prefix>/bin/stride-fw and
+  // <prefix>/share/stride/, wherever the prefix was copied to.
+  std::error_code error;
+  const auto exe = std::filesystem::read_symlink("/proc/self/exe", error);
+  if (!error) {
+    const auto installed = exe.parent_path().parent_path() / "share" / "stride";
+    if (std::filesystem::exists(installed / "config" / "servo_table.json", error)) {
+      return installed;
+    }
+  }
+  return STRIDE_FIRMWARE_DATA_DIR;  // the source tree (development builds)
 }
 
 // The motion engines the controller drives. Each engine registers its parameters in its

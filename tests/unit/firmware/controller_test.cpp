@@ -1,28 +1,12 @@
 // Controller: step() allocates nothing, requests cross threads, torque switch, safety last.
 #include "stride/firmware/controller.hpp"
 
-#include <atomic>
-#include <cstdlib>
-#include <new>
 #include <thread>
 
 #include <gtest/gtest.h>
 
+#include "counting_allocator.hpp"
 #include "firmware_fixture.hpp"
-
-// Counting global allocator: counts every operator new while `g_counting` is set.
-namespace {
-std::atomic<bool> g_counting{false};
-std::atomic<std::size_t> g_allocations{0};
-}  // namespace
-
-void* operator new(std::size_t size) {
-  if (g_counting.load(std::memory_order_relaxed)) g_allocations.fetch_add(1);
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
 
 namespace stride::fw {
 namespace {
@@ -35,19 +19,18 @@ TEST(Controller, StepAllocatesNothing) {
   const auto lying = test::tilted_frame(1.5);
   controller.request(MotionRequest::walk(0.5, 0, 0));
   controller.request(MotionRequest::play("kick_right"));
-  g_allocations = 0;
-  g_counting = true;
+  test::start_counting_allocations();
   for (hal::Tick t = 0; t < 300; ++t) {
     (void)controller.step(t < 200 ? upright : lying, t);  // stand, requests, then a fall
   }
-  g_counting = false;
-  EXPECT_EQ(g_allocations.load(), 0u);
+  EXPECT_EQ(test::stop_counting_allocations(), 0u);
   // The counter works: an allocation in the counted window is seen.
-  g_counting = true;
-  auto* probe = new int(3);
-  g_counting = false;
+  test::start_counting_allocations();
+  static int* volatile probe = nullptr;  // volatile: the allocation cannot be elided
+  probe = new int(3);
+  const std::size_t seen = test::stop_counting_allocations();
   delete probe;
-  EXPECT_EQ(g_allocations.load(), 1u);
+  EXPECT_EQ(seen, 1u);
 }
 
 TEST(Controller, TorqueOffReachesEveryServoAndOnComesBack) {

@@ -54,9 +54,12 @@ TEST(ServoTable, EveryKindOfBrokenEntryIsRefused) {
     const char* expect;
   };
   const Case cases[] = {
-      {"id", 21, "servos[5].id"},           {"id", 1, "duplicate id"},
-      {"name", "r_shoulder_pitch", "duplicate name"}, {"model", "AX-12", "servos[5].model"},
-      {"offset_rad", 4.0, "servos[5].offset_rad"},    {"min_rad", 10.0, "servos[5].min_rad"},
+      {"id", 21, "servos[5].id"},
+      {"id", 1, "duplicate id"},
+      {"name", "r_shoulder_pitch", "duplicate name"},
+      {"model", "AX-12", "servos[5].model"},
+      {"offset_rad", 4.0, "servos[5].offset_rad"},
+      {"min_rad", 10.0, "servos[5].min_rad"},
       {"max_rad", "big", "servos[5].max_rad"},
   };
   for (const Case& c : cases) {

@@ -1,0 +1,250 @@
+// `stride optimise`: runs NSGA-II on a problem and writes a run directory (optimiser/README.md).
+//
+// Today the problem is one of the test problems (--problem); robot tasks plug in through
+// make_problem() as further Problem implementations (--config FILE, issue 8).
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <sstream>
+#include <thread>
+
+#include <nlohmann/json.hpp>
+
+#include "stride/firmware/cli_args.hpp"
+#include "stride/host_tools/command.hpp"
+#include "stride/optimiser/nsga2/evaluator.hpp"
+#include "stride/optimiser/problems/test_problems.hpp"
+#include "stride/optimiser/run/optimisation_run.hpp"
+
+namespace {
+
+using stride::Status;
+namespace opt = stride::opt;
+
+/// Wraps a problem so that each evaluation takes at least `delay` (to test interruption).
+class SlowProblem final : public opt::Problem {
+ public:
+  SlowProblem(std::unique_ptr<opt::Problem> inner, std::chrono::milliseconds delay)
+      : inner_(std::move(inner)), delay_(delay) {}
+  std::string name() const override { return inner_->name(); }
+  const opt::ProblemShape& shape() const override { return inner_->shape(); }
+  opt::EvaluationOutcome evaluate(const opt::Genome& genome) const override {
+    std::this_thread::sleep_for(delay_);
+    return inner_->evaluate(genome);
+  }
+  std::optional<opt::FrontReference> reference() const override { return inner_->reference(); }
+
+ private:
+  std::unique_ptr<opt::Problem> inner_;
+  std::chrono::milliseconds delay_;
+};
+
+int bad_input(const std::string& message) {
+  std::fprintf(stderr, "stride optimise: %s\n", message.c_str());
+  return 2;
+}
+
+std::string problem_list() {
+  std::string names;
+  for (const auto& n : opt::test_problem_names()) names += (names.empty() ? "" : "|") + n;
+  return names;
+}
+
+/// The problem named on the command line (test problems today; tasks from --config later).
+Status make_problem(const std::string& name, std::unique_ptr<opt::Problem>& out) {
+  out = opt::make_test_problem(name);
+  if (!out) return Status::error("--problem '" + name + "' is not one of " + problem_list());
+  return {};
+}
+
+Status parse_start(const std::string& text, opt::Genome& genome) {
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    char* end = nullptr;
+    const double v = std::strtod(item.c_str(), &end);
+    if (item.empty() || *end != '\0') {
+      return Status::error("--start: '" + item + "' is not a number");
+    }
+    genome.reals.push_back(v);
+  }
+  return {};
+}
+
+struct Settings {
+  opt::RunConfig config;
+  std::int64_t jobs = 1;
+  std::int64_t slow_ms = 0;
+};
+
+Status read_int(const stride::fw::CliArgs& args, const char* name, std::int64_t lo, std::int64_t hi,
+                std::int64_t& out) {
+  if (auto st = args.get_int(name, out); !st) return st;
+  if (out < lo || out > hi) {
+    return Status::error("--" + std::string(name) + " = " + std::to_string(out) + " is outside [" +
+                         std::to_string(lo) + ", " + std::to_string(hi) + "]");
+  }
+  return {};
+}
+
+/// Reads the NSGA-II inputs; values not given keep what `s` holds.
+Status read_settings(const stride::fw::CliArgs& args, std::size_t real_genes, Settings& s) {
+  opt::Nsga2Settings& n = s.config.settings;
+  std::int64_t v = 0;
+  if (args.has("seed")) {
+    if (auto st = read_int(args, "seed", 0, INT64_MAX, v); !st) return st;
+    n.seed = static_cast<std::uint64_t>(v);
+  }
+  if (args.has("pop")) {
+    if (auto st = read_int(args, "pop", 0, 1000000, v); !st) return st;
+    n.pop_size = static_cast<int>(v);
+  }
+  if (args.has("generations")) {
+    if (auto st = read_int(args, "generations", 0, 1000000, v); !st) return st;
+    n.generations = static_cast<int>(v);
+  }
+  const std::pair<const char*, double*> reals[] = {
+      {"pc", &n.real_cross_prob},   {"etac", &n.eta_c}, {"pm", &n.real_mut_prob},
+      {"etam", &n.eta_m},           {"pbc", &n.bin_cross_prob},
+      {"pbm", &n.bin_mut_prob},     {"seed-fraction", &n.seed_mutation_fraction}};
+  for (const auto& [name, target] : reals) {
+    if (args.has(name)) {
+      if (auto st = args.get_double(name, *target); !st) return st;
+    }
+  }
+  if (!args.has("pm") && real_genes > 0) n.real_mut_prob = 1.0 / static_cast<double>(real_genes);
+  if (auto st = opt::validate(n); !st) return st;
+  return {};
+}
+
+}  // namespace
+
+int run_optimise(int argc, char** argv) {
+  stride::fw::CliArgs args;
+  args.option("problem", "test problem: " + problem_list())
+      .option("out", "run directory to write (or resume)")
+      .option("resume", "continue the run in --out from its checkpoint", false)
+      .option("seed", "random seed", true, "1")
+      .option("pop", "population size (multiple of 4)", true, "100")
+      .option("generations", "generations, the initial population included", true, "250")
+      .option("pc", "realCrossProb: SBX probability per pair", true, "0.9")
+      .option("etac", "etaC: SBX distribution index", true, "20")
+      .option("pm", "realMutProb: mutation probability per real gene (default 1/n)")
+      .option("etam", "etaM: polynomial mutation distribution index", true, "20")
+      .option("pbc", "binCrossProb: single-point crossover probability per pair", true, "0.9")
+      .option("pbm", "binMutProb: bit-flip probability per bit", true, "0.05")
+      .option("start", "comma-separated real genes seeding the initial population")
+      .option("seed-fraction", "fraction of genes mutated around --start", true, "0.2")
+      .option("jobs", "evaluation threads", true, "1")
+      .option("slow-eval-ms", "sleep this long in every evaluation (to test interruption)", true,
+              "0")
+      .option("json", "print a JSON summary on stdout", false)
+      .option("help", "show this help", false);
+  if (auto st = args.parse(argc, argv); !st) return bad_input(st.message());
+  if (args.has("help")) {
+    std::printf(
+        "usage: stride optimise --problem NAME --out DIR [options]\n"
+        "       stride optimise --out DIR --resume\n"
+        "Runs NSGA-II and writes run.json, evaluations.jsonl, generations.jsonl, checkpoint.json\n"
+        "and pareto.csv to DIR; prints one progress line per generation on stderr.\n\n%s",
+        args.help().c_str());
+    return 0;
+  }
+  if (!args.positional().empty()) return bad_input("unexpected argument '" + args.positional()[0] + "'");
+  if (!args.has("out")) return bad_input("--out DIR is required");
+  const std::filesystem::path dir = args.get("out");
+  const bool resume = args.has("resume");
+
+  Settings s;
+  std::unique_ptr<opt::Problem> problem;
+  if (resume) {
+    if (!std::filesystem::exists(dir / "run.json")) {
+      return bad_input("--resume: " + (dir / "run.json").string() + " does not exist");
+    }
+    if (auto st = opt::read_run_config(dir, s.config); !st) return bad_input(st.message());
+    if (args.has("problem") && args.get("problem") != s.config.problem) {
+      return bad_input("--problem " + args.get("problem") + " differs from the run's " +
+                       s.config.problem);
+    }
+    if (auto st = make_problem(s.config.problem, problem); !st) return bad_input(st.message());
+    const opt::RunConfig recorded = s.config;
+    if (auto st = read_settings(args, 0, s); !st) return bad_input(st.message());
+    if (!(s.config.settings == recorded.settings)) {
+      return bad_input("--resume: the NSGA-II options given differ from the run's run.json");
+    }
+  } else {
+    if (!args.has("problem")) return bad_input("--problem NAME is required (" + problem_list() + ")");
+    if (auto st = make_problem(args.get("problem"), problem); !st) return bad_input(st.message());
+    s.config.problem = problem->name();
+    if (auto st = read_settings(args, problem->shape().reals.size(), s); !st) {
+      return bad_input(st.message());
+    }
+    if (args.has("start")) {
+      opt::Genome start;
+      if (auto st = parse_start(args.get("start"), start); !st) return bad_input(st.message());
+      if (auto st = opt::validate_genome(problem->shape(), start); !st) {
+        return bad_input("--start: " + st.message());
+      }
+      s.config.start = start;
+    }
+    if (std::filesystem::exists(dir / "run.json")) {
+      return bad_input("--out " + dir.string() + " already holds a run (use --resume)");
+    }
+  }
+  if (auto st = read_int(args, "jobs", 1, 1024, s.jobs); !st) return bad_input(st.message());
+  if (auto st = read_int(args, "slow-eval-ms", 0, 60000, s.slow_ms); !st) {
+    return bad_input(st.message());
+  }
+  if (s.slow_ms > 0) {
+    problem = std::make_unique<SlowProblem>(std::move(problem), std::chrono::milliseconds(s.slow_ms));
+  }
+
+  std::unique_ptr<opt::Evaluator> evaluator;
+  if (s.jobs > 1) {
+    evaluator = std::make_unique<opt::ThreadPoolEvaluator>(static_cast<int>(s.jobs));
+  } else {
+    evaluator = std::make_unique<opt::SerialEvaluator>();
+  }
+  opt::RunOptions options;
+  options.dir = dir;
+  options.resume = resume;
+  options.on_generation = [](const opt::GenerationRecord& r) {
+    std::fprintf(stderr, "generation %d/%d evaluations %llu", r.generation, r.generations,
+                 static_cast<unsigned long long>(r.evaluations));
+    if (r.hypervolume) std::fprintf(stderr, " hypervolume %.6f", *r.hypervolume);
+    if (r.hypervolume_ratio) std::fprintf(stderr, " (%.2f %%)", 100.0 * *r.hypervolume_ratio);
+    std::fprintf(stderr, " front %d\n", r.front_size);
+  };
+  opt::RunSummary summary;
+  if (auto st = opt::run_optimisation(*problem, s.config, *evaluator, options, summary); !st) {
+    std::fprintf(stderr, "stride optimise: %s\n", st.message().c_str());
+    return 1;
+  }
+  if (args.has("json")) {
+    auto number = [](const std::optional<double>& v) -> nlohmann::json {
+      if (!v || !std::isfinite(*v)) return nullptr;
+      return *v;
+    };
+    const opt::GenerationRecord& r = summary.last;
+    const nlohmann::json out = {{"problem", s.config.problem},
+                                {"out", dir.string()},
+                                {"seed", s.config.settings.seed},
+                                {"generations", r.generation},
+                                {"evaluations", r.evaluations},
+                                {"failures", r.failures},
+                                {"cache_hits", r.cache_hits},
+                                {"pareto_size", summary.pareto_size},
+                                {"hypervolume", number(r.hypervolume)},
+                                {"hypervolume_ratio", number(r.hypervolume_ratio)},
+                                {"igd", number(r.igd)},
+                                {"resumed", summary.resumed},
+                                {"resumed_at_generation", summary.resumed_at_generation}};
+    std::printf("%s\n", out.dump().c_str());
+  }
+  return 0;
+}
+
+STRIDE_COMMAND(optimise, "run NSGA-II on a test problem (or a task) into a run directory",
+               run_optimise);

@@ -1,0 +1,154 @@
+// `stride sim stand|walk|kick`: one simulated episode of the firmware against the Simbody world,
+// with the DESIGN.md metrics (--json), a trajectory recording and pose pictures.
+#include <cstdio>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "stride/firmware/atomic_file.hpp"
+#include "stride/firmware/cli_args.hpp"
+#include "stride/firmware/firmware.hpp"
+#include "stride/firmware/motion_request.hpp"
+#include "stride/host_tools/command.hpp"
+#include "stride/sim_hal/episode.hpp"
+#include "stride/sim_hal/pose_svg.hpp"
+#include "stride/sim_hal/sim_cli.hpp"
+#include "stride/sim_hal/trajectory_recorder.hpp"
+
+namespace {
+
+using stride::Status;
+namespace sim = stride::sim;
+namespace hal = stride::hal;
+
+int bad_input(const std::string& message) {
+  std::fprintf(stderr, "stride sim: %s\n", message.c_str());
+  return 2;
+}
+
+Status parse_times(const std::string& text, std::vector<double>& out) {
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    try {
+      std::size_t used = 0;
+      const double t = std::stod(item, &used);
+      if (used != item.size() || !(t >= 0.0)) throw std::invalid_argument(item);
+      out.push_back(t);
+    } catch (const std::exception&) {
+      return Status::error("--snapshot-times: bad time '" + item + "' (expected e.g. 0,1,2.5)");
+    }
+  }
+  return Status::ok();
+}
+
+}  // namespace
+
+int run_sim(int argc, char** argv) {
+  stride::fw::CliArgs args;
+  args.option("help", "show this help", false);
+  args.option("params", "parameter file (JSON) loaded into the controller", true);
+  args.option("vx", "walk forward command, normalised [-1, 1]", true, "0");
+  args.option("vy", "walk sideways command, normalised [-1, 1]", true, "0");
+  args.option("vth", "walk turning command, normalised [-1, 1]", true, "0");
+  args.option("script", "kick: the script to play", true, "kick_right");
+  args.option("duration", "episode length [s]", true, "10");
+  args.option("record", "write the trajectory (JSON lines, see trajectory_recorder.hpp)", true);
+  args.option("snapshot", "write an SVG picture of the robot's pose at --snapshot-times", true);
+  args.option("snapshot-times", "comma-separated times [s] for --snapshot", true, "0,1,2,5,10");
+  args.option("json", "print the result as one JSON object", false);
+  sim::declare_world_options(args);
+  if (Status s = args.parse(argc, argv); !s) return bad_input(s.message());
+  if (args.has("help")) {
+    std::printf("usage: stride sim stand|walk|kick [options]\n\n%s", args.help().c_str());
+    return 0;
+  }
+  if (args.positional().size() != 1)
+    return bad_input("expected one motion: stand, walk or kick");
+  const std::string motion = args.positional()[0];
+  if (motion != "stand" && motion != "walk" && motion != "kick")
+    return bad_input("unknown motion '" + motion + "' (expected stand, walk or kick)");
+  double duration = 10, vx = 0, vy = 0, vth = 0;
+  for (auto [name, out] : {std::pair{"duration", &duration}, {"vx", &vx}, {"vy", &vy}, {"vth", &vth}})
+    if (Status s = args.get_double(name, *out); !s) return bad_input(s.message());
+  if (!(duration > 0.0) || duration > 3600.0)
+    return bad_input("--duration: must be in (0, 3600] s, got " + args.get("duration"));
+  std::vector<double> snapshot_times;
+  if (Status s = parse_times(args.get("snapshot-times"), snapshot_times); !s) return bad_input(s.message());
+  sim::WorldOptions world_options;
+  if (Status s = sim::read_world_options(args, world_options); !s) return bad_input(s.message());
+  if (motion == "walk")
+    for (double v : {vx, vy, vth})
+      if (!(v >= -1.0 && v <= 1.0)) return bad_input("--vx/--vy/--vth: must be in [-1, 1]");
+
+  // The firmware exactly as stride-fw builds it (parameters, servo table, engines).
+  stride::fw::FirmwareOptions fw_options;
+  if (args.has("params")) fw_options.params_file = args.get("params");
+  std::unique_ptr<stride::fw::Firmware> firmware;
+  if (Status s = stride::fw::Firmware::create(fw_options, firmware); !s) return bad_input(s.message());
+  world_options.control_period_ns = firmware->period_ns();
+
+  std::unique_ptr<sim::SimWorld> world;
+  if (Status s = sim::SimWorld::create(world_options, world); !s) {
+    std::fprintf(stderr, "stride sim: %s\n", s.message().c_str());
+    return 1;
+  }
+  sim::SimRobot robot(std::move(world));
+  sim::TrajectoryRecorder recorder;
+  sim::EpisodeOptions episode;
+  episode.duration_s = duration;
+  episode.recorder = args.has("record") ? &recorder : nullptr;
+  if (args.has("snapshot")) episode.snapshot_times_s = snapshot_times;
+
+  stride::fw::Controller& controller = firmware->controller();
+  if (motion == "walk") controller.request(stride::fw::MotionRequest::walk(vx, vy, vth));
+  if (motion == "kick") controller.request(stride::fw::MotionRequest::play(args.get("script")));
+  if (motion != "stand") {
+    // The request is taken at the next step: a refusal means the engine or script is missing.
+    stride::hal::SensorFrame probe;
+    robot.read(probe);
+    (void)controller.step(probe, 0);
+    if (controller.motion().refused_requests() > 0) {
+      std::fprintf(stderr, "stride sim: %s\n",
+                   motion == "walk" ? "walk engine not available"
+                                    : ("kick script '" + args.get("script") + "' not available (script engine or file missing)").c_str());
+      return 1;
+    }
+  }
+  const sim::StepFunction step = [&controller](const stride::hal::SensorFrame& sensors,
+                                               stride::hal::Tick tick) {
+    return controller.step(sensors, tick);
+  };
+  const sim::EpisodeResult result = sim::run_episode(robot, step, episode);
+
+  if (args.has("record")) {
+    if (Status s = recorder.save(args.get("record")); !s) {
+      std::fprintf(stderr, "stride sim: %s\n", s.message().c_str());
+      return 1;
+    }
+  }
+  if (args.has("snapshot")) {
+    const std::string svg = sim::render_pose_svg(robot.world().model(), result.snapshots,
+                                                 world_options.contact.grass_thickness_m,
+                                                 world_options.ball.present ? world_options.ball.radius_m : 0.0);
+    if (Status s = stride::fw::write_file_atomically(args.get("snapshot"), svg); !s) {
+      std::fprintf(stderr, "stride sim: %s\n", s.message().c_str());
+      return 1;
+    }
+  }
+  if (args.has("json")) {
+    std::printf("%s\n", sim::to_json(result).dump().c_str());
+  } else {
+    std::printf("%s: %s after %.2f s sim (%.2f s wall, %.1fx real time)\n", motion.c_str(),
+                result.fell ? "FELL" : "standing", result.sim_time_s, result.wall_time_s, result.rtf);
+    std::printf("distance %.3f m, max |a| %.2f m/s^2, max field-plane sway %.2f m/s^2, state %s\n",
+                result.distance_m, result.max_accel, result.max_fps, sim::hash_hex(result.state_hash).c_str());
+  }
+  if (result.status != sim::WorldStatus::kRunning) {
+    std::fprintf(stderr, "stride sim: episode ended: %s\n", result.failure_reason.c_str());
+    return 1;
+  }
+  return 0;
+}
+
+STRIDE_COMMAND(sim, "simulate the robot: stand, walk or kick", run_sim);

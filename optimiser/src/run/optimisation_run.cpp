@@ -1,0 +1,359 @@
+// run_optimisation(): the ask/evaluate/tell loop writing the run directory (see the header).
+#include "stride/optimiser/run/optimisation_run.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "stride/firmware/atomic_file.hpp"
+#include "stride/optimiser/nsga2/indicators.hpp"
+#include "stride/optimiser/run/log_files.hpp"
+
+namespace stride::opt {
+namespace {
+
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+constexpr const char* kRunFormat = "stride-optimiser-run";
+constexpr const char* kStrideVersion = "0.1.0";
+
+json settings_json(const Nsga2Settings& s) {
+  return json{{"seed", s.seed},
+              {"popSize", s.pop_size},
+              {"generations", s.generations},
+              {"realCrossProb", s.real_cross_prob},
+              {"realMutProb", s.real_mut_prob},
+              {"etaC", s.eta_c},
+              {"etaM", s.eta_m},
+              {"binCrossProb", s.bin_cross_prob},
+              {"binMutProb", s.bin_mut_prob},
+              {"seedMutationFraction", s.seed_mutation_fraction}};
+}
+
+json shape_json(const ProblemShape& shape) {
+  json reals = json::array();
+  for (const RealLimits& l : shape.reals) reals.push_back({l.min, l.max});
+  json bins = json::array();
+  for (const BinaryGene& b : shape.binaries) bins.push_back({{"bits", b.bits}, {"limits", {b.min, b.max}}});
+  return json{{"objectives", shape.objectives},
+              {"constraints", shape.constraints},
+              {"realLimits", reals},
+              {"binaries", bins}};
+}
+
+json evaluation_line(const Individual& ind, int generation) {
+  return json{{"id", ind.id},
+              {"generation", generation},
+              {"reals", ind.genome.reals},
+              {"bits", bits_to_text(ind.genome.bits)},
+              {"objectives", ind.result.objectives},
+              {"constraints", ind.result.constraints},
+              {"violation", ind.result.violation},
+              {"failed", ind.result.failed},
+              {"reason", ind.result.reason}};
+}
+
+Status parse_evaluation_line(const std::string& line, std::pair<Genome, Result>& out) {
+  try {
+    const json j = json::parse(line);
+    out.first.reals = j.at("reals").get<std::vector<double>>();
+    if (!bits_from_text(j.at("bits").get<std::string>(), out.first.bits)) {
+      return Status::error("evaluations.jsonl: bits are not 0/1 text");
+    }
+    out.second.objectives = j.at("objectives").get<std::vector<double>>();
+    out.second.constraints = j.at("constraints").get<std::vector<double>>();
+    out.second.violation = j.at("violation").get<double>();
+    out.second.failed = j.at("failed").get<bool>();
+    out.second.reason = j.at("reason").get<std::string>();
+  } catch (const json::exception& e) {
+    return Status::error(std::string("evaluations.jsonl: malformed line: ") + e.what());
+  }
+  return {};
+}
+
+json optional_number(const std::optional<double>& v) {
+  if (!v || !std::isfinite(*v)) return nullptr;
+  return *v;
+}
+
+json generation_line(const GenerationRecord& r) {
+  return json{{"generation", r.generation},
+              {"evaluations", r.evaluations},
+              {"failures", r.failures},
+              {"cache_hits", r.cache_hits},
+              {"feasible", r.feasible},
+              {"front_size", r.front_size},
+              {"hypervolume", optional_number(r.hypervolume)},
+              {"hypervolume_ratio", optional_number(r.hypervolume_ratio)},
+              {"igd", optional_number(r.igd)},
+              {"wall_s", r.wall_s}};
+}
+
+std::string number_text(double v) {
+  char text[40];
+  std::snprintf(text, sizeof text, "%.17g", v);
+  return text;
+}
+
+/// pareto.csv: the distinct genomes of the first front, sorted by objectives.
+std::string pareto_csv(const ProblemShape& shape, const std::vector<Individual>& population,
+                       std::size_t& rows) {
+  std::vector<const Individual*> members;
+  std::set<std::string> seen;
+  for (const Individual& ind : population) {
+    if (ind.rank == 0 && seen.insert(genome_key(ind.genome)).second) members.push_back(&ind);
+  }
+  std::sort(members.begin(), members.end(), [](const Individual* a, const Individual* b) {
+    if (a->result.objectives != b->result.objectives) {
+      return a->result.objectives < b->result.objectives;
+    }
+    return a->id < b->id;
+  });
+  std::string text;
+  for (int m = 0; m < shape.objectives; ++m) text += (m ? ",f" : "f") + std::to_string(m + 1);
+  for (std::size_t k = 0; k < shape.reals.size(); ++k) text += ",x" + std::to_string(k + 1);
+  for (std::size_t k = 0; k < shape.binaries.size(); ++k) text += ",b" + std::to_string(k + 1);
+  text += "\n";
+  for (const Individual* ind : members) {
+    std::string row;
+    for (const double f : ind->result.objectives) row += (row.empty() ? "" : ",") + number_text(f);
+    for (const double x : ind->genome.reals) row += "," + number_text(x);
+    for (const double b : decode_binaries(shape, ind->genome)) row += "," + number_text(b);
+    text += row + "\n";
+  }
+  rows = members.size();
+  return text;
+}
+
+Status read_json(const fs::path& path, json& out) {
+  std::ifstream in(path);
+  if (!in) return Status::error(path.string() + ": cannot be read");
+  try {
+    out = json::parse(in);
+  } catch (const json::exception& e) {
+    return Status::error(path.string() + ": not valid JSON (" + e.what() + ")");
+  }
+  return {};
+}
+
+}  // namespace
+
+json run_description(const Problem& problem, const RunConfig& config) {
+  json start = nullptr;
+  if (config.start) {
+    start = json{{"reals", config.start->reals}, {"bits", bits_to_text(config.start->bits)}};
+  }
+  return json{{"format", kRunFormat},
+              {"format_version", 1},
+              {"stride_version", kStrideVersion},
+              {"problem", config.problem.empty() ? problem.name() : config.problem},
+              {"settings", settings_json(config.settings)},
+              {"shape", shape_json(problem.shape())},
+              {"start", start},
+              {"task", config.task}};
+}
+
+Status read_run_config(const fs::path& dir, RunConfig& config) {
+  json j;
+  if (auto st = read_json(dir / "run.json", j); !st) return st;
+  try {
+    if (j.at("format").get<std::string>() != kRunFormat) {
+      return Status::error((dir / "run.json").string() + " is not a Stride run description");
+    }
+    config.problem = j.at("problem").get<std::string>();
+    const json& s = j.at("settings");
+    config.settings.seed = s.at("seed").get<std::uint64_t>();
+    config.settings.pop_size = s.at("popSize").get<int>();
+    config.settings.generations = s.at("generations").get<int>();
+    config.settings.real_cross_prob = s.at("realCrossProb").get<double>();
+    config.settings.real_mut_prob = s.at("realMutProb").get<double>();
+    config.settings.eta_c = s.at("etaC").get<double>();
+    config.settings.eta_m = s.at("etaM").get<double>();
+    config.settings.bin_cross_prob = s.at("binCrossProb").get<double>();
+    config.settings.bin_mut_prob = s.at("binMutProb").get<double>();
+    config.settings.seed_mutation_fraction = s.at("seedMutationFraction").get<double>();
+    config.start.reset();
+    if (!j.at("start").is_null()) {
+      Genome g;
+      g.reals = j["start"].at("reals").get<std::vector<double>>();
+      if (!bits_from_text(j["start"].at("bits").get<std::string>(), g.bits)) {
+        return Status::error("run.json: start.bits are not 0/1 text");
+      }
+      config.start = g;
+    }
+    config.task = j.at("task");
+  } catch (const json::exception& e) {
+    return Status::error((dir / "run.json").string() + ": malformed (" + e.what() + ")");
+  }
+  return {};
+}
+
+GenerationRecord measure(const Problem& problem, const std::vector<Individual>& population,
+                         const std::optional<FrontReference>& reference) {
+  GenerationRecord r;
+  Points front;
+  for (const Individual& ind : population) {
+    if (!ind.result.feasible()) continue;
+    ++r.feasible;
+    if (ind.rank == 0) front.push_back(ind.result.objectives);
+  }
+  r.front_size = static_cast<int>(front.size());
+  if (reference && !reference->ideal.empty()) {
+    const Points normalised = normalise(front, reference->ideal, reference->nadir);
+    r.hypervolume = hypervolume(
+        normalised, std::vector<double>(static_cast<std::size_t>(problem.shape().objectives), 1.1));
+    if (reference->true_hypervolume && *reference->true_hypervolume > 0) {
+      r.hypervolume_ratio = *r.hypervolume / *reference->true_hypervolume;
+    }
+    if (!reference->front.empty()) {
+      r.igd = igd(normalised, normalise(reference->front, reference->ideal, reference->nadir));
+    }
+  }
+  return r;
+}
+
+Status run_optimisation(const Problem& problem, const RunConfig& config, Evaluator& evaluator,
+                        const RunOptions& options, RunSummary& summary) {
+  const fs::path& dir = options.dir;
+  const json description = run_description(problem, config);
+  const fs::path run_path = dir / "run.json";
+  const fs::path checkpoint_path = dir / "checkpoint.json";
+  const fs::path evaluations_path = dir / "evaluations.jsonl";
+  const fs::path generations_path = dir / "generations.jsonl";
+  const fs::path pareto_path = dir / "pareto.csv";
+
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec) return Status::error(dir.string() + ": cannot create (" + ec.message() + ")");
+
+  std::unique_ptr<Nsga2> engine;
+  summary = RunSummary{};
+  if (options.resume) {
+    json existing;
+    if (auto st = read_json(run_path, existing); !st) return st;
+    if (existing != description) {
+      return Status::error(run_path.string() + " describes another run (problem, settings or "
+                                               "task differ)");
+    }
+    std::size_t evaluation_lines = 0;
+    std::size_t generation_lines = 0;
+    json cp;
+    const bool have_checkpoint = fs::exists(checkpoint_path);
+    if (have_checkpoint) {
+      if (auto st = read_json(checkpoint_path, cp); !st) return st;
+      try {
+        evaluation_lines = cp.at("run").at("evaluation_lines").get<std::size_t>();
+        generation_lines = cp.at("run").at("generation_lines").get<std::size_t>();
+      } catch (const json::exception& e) {
+        return Status::error(checkpoint_path.string() + ": malformed (" + e.what() + ")");
+      }
+    }
+    std::vector<std::string> lines;
+    if (auto st = keep_first_lines(generations_path, generation_lines, lines); !st) return st;
+    if (auto st = keep_first_lines(evaluations_path, evaluation_lines, lines); !st) return st;
+    std::vector<std::pair<Genome, Result>> known(lines.size());
+    for (std::size_t i = 0; i < lines.size(); ++i) {
+      if (auto st = parse_evaluation_line(lines[i], known[i]); !st) return st;
+    }
+    if (have_checkpoint) {
+      if (auto st = Nsga2::restore(cp.at("engine"), problem.shape(), known, engine); !st) {
+        return Status::error(checkpoint_path.string() + ": " + st.message());
+      }
+    } else if (auto st = Nsga2::create(config.settings, problem.shape(), config.start, engine);
+               !st) {
+      return st;
+    }
+    summary.resumed = true;
+    summary.resumed_at_generation = engine->completed_generations();
+  } else {
+    if (fs::exists(run_path) || fs::exists(checkpoint_path) || fs::exists(evaluations_path)) {
+      return Status::error(dir.string() + " already holds a run (use --resume or another --out)");
+    }
+    if (auto st = Nsga2::create(config.settings, problem.shape(), config.start, engine); !st) {
+      return st;
+    }
+    if (auto st = fw::write_file_atomically(run_path, description.dump(2) + "\n"); !st) return st;
+  }
+
+  LineLog evaluations;
+  LineLog generations;
+  if (auto st = evaluations.open(evaluations_path); !st) return st;
+  if (auto st = generations.open(generations_path); !st) return st;
+  const std::optional<FrontReference> reference = problem.reference();
+
+  auto write_checkpoint = [&]() -> Status {
+    if (auto st = evaluations.sync(); !st) return st;
+    if (auto st = generations.sync(); !st) return st;
+    const json cp = {{"engine", engine->checkpoint()},
+                     {"run",
+                      {{"evaluation_lines", evaluations.lines()},
+                       {"generation_lines", generations.lines()}}}};
+    return fw::write_file_atomically(checkpoint_path, cp.dump() + "\n");
+  };
+  if (!options.resume) {
+    if (auto st = write_checkpoint(); !st) return st;
+  }
+
+  while (!engine->finished()) {
+    const auto started = std::chrono::steady_clock::now();
+    const std::vector<Candidate> batch = engine->ask();
+    const int generation = engine->completed_generations() + 1;
+    // Results are logged in batch order: out-of-order ones wait until their turn.
+    std::vector<bool> told(batch.size(), false);
+    std::size_t next_to_log = 0;
+    Status failure;
+    evaluator.evaluate(problem, batch, [&](std::size_t index, EvaluationOutcome outcome) {
+      if (!failure.is_ok() || index >= batch.size() || told[index]) return;
+      if (auto st = engine->tell(batch[index].id, outcome); !st) {
+        failure = st;
+        return;
+      }
+      told[index] = true;
+      while (next_to_log < batch.size() && told[next_to_log]) {
+        const Individual* ind = engine->batch_member(batch[next_to_log].id);
+        if (auto st = evaluations.append(evaluation_line(*ind, generation).dump()); !st) {
+          failure = st;
+          return;
+        }
+        ++next_to_log;
+      }
+    });
+    if (!failure) return failure;
+    if (auto st = engine->advance(); !st) return st;
+    GenerationRecord record = measure(problem, engine->population(), reference);
+    record.generation = engine->completed_generations();
+    record.generations = config.settings.generations;
+    record.evaluations = engine->counters().evaluations;
+    record.failures = engine->counters().failures;
+    record.cache_hits = engine->counters().cache_hits;
+    record.wall_s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    if (auto st = generations.append(generation_line(record).dump()); !st) return st;
+    std::size_t rows = 0;
+    const std::string csv = pareto_csv(problem.shape(), engine->population(), rows);
+    if (auto st = fw::write_file_atomically(pareto_path, csv); !st) return st;
+    if (auto st = write_checkpoint(); !st) return st;
+    summary.last = record;
+    summary.pareto_size = rows;
+    if (options.on_generation) options.on_generation(record);
+  }
+  if (summary.last.generation == 0) {  // resumed a finished run: report its final state
+    summary.last = measure(problem, engine->population(), reference);
+    summary.last.generation = engine->completed_generations();
+    summary.last.generations = config.settings.generations;
+    summary.last.evaluations = engine->counters().evaluations;
+    summary.last.failures = engine->counters().failures;
+    summary.last.cache_hits = engine->counters().cache_hits;
+    std::size_t rows = 0;
+    pareto_csv(problem.shape(), engine->population(), rows);
+    summary.pareto_size = rows;
+  }
+  return {};
+}
+
+}  // namespace stride::opt

@@ -1,0 +1,43 @@
+// The `sim` HAL backend of stride-fw: the firmware runs against the Simbody world in lockstep
+// (as fast as it computes), or paced by the real clock with --realtime (RealtimeRobot).
+#include <nlohmann/json.hpp>
+
+#include "stride/firmware/hal_registry.hpp"
+#include "stride/sim_hal/episode.hpp"
+#include "stride/sim_hal/sim_cli.hpp"
+#include "stride/sim_hal/sim_robot.hpp"
+
+namespace {
+
+void declare(stride::fw::CliArgs& args) {
+  stride::sim::declare_world_options(args);
+  args.option("realtime", "sim: pace the simulation at real time", false);
+}
+
+stride::Status make(const stride::fw::CliArgs& args, std::int64_t period_ns,
+                    stride::fw::HalInstance& out) {
+  stride::sim::WorldOptions options;
+  if (stride::Status s = stride::sim::read_world_options(args, options); !s) return s;
+  options.control_period_ns = period_ns;
+  std::unique_ptr<stride::sim::SimWorld> world;
+  if (stride::Status s = stride::sim::SimWorld::create(options, world); !s) return s;
+  auto robot = std::make_unique<stride::sim::SimRobot>(std::move(world));
+  stride::sim::SimRobot* sim = robot.get();
+  out.robot = std::move(robot);
+  out.paced_by_clock = args.has("realtime");
+  out.report = [sim](nlohmann::json& report) {
+    const stride::sim::SimWorld& w = sim->world();
+    const stride::sim::GroundTruth g = w.ground_truth();
+    report["sim"] = {{"sim_time_s", w.time_s()},
+                     {"status", stride::sim::to_string(w.status())},
+                     {"failure_reason", w.failure_reason()},
+                     {"torso_height_m", g.torso.translation().z()},
+                     {"upright", g.torso.linear()(2, 2)},
+                     {"state_hash", stride::sim::hash_hex(w.state_hash())}};
+  };
+  return {};
+}
+
+}  // namespace
+
+STRIDE_HAL_BACKEND(sim, "Simbody simulation in lockstep (--realtime: paced by the clock)", declare, make);

@@ -1,0 +1,84 @@
+// Episode runner: a controller (anything that turns a SensorFrame into a CommandFrame each
+// tick) against a SimRobot for a fixed duration, with the metrics of the `stride sim --json`
+// contract (DESIGN.md). Used by `stride sim`, the tests and the optimiser's tasks.
+//
+// Metrics (sensor-based ones start after EpisodeOptions::metrics_start_s, as in the seed's
+// evaluator, to skip the settling transient):
+//   fell             torso tilted more than 60 deg from upright or its origin below 0.25 m
+//   distance_m       forward (x) displacement of the torso from the start [m]
+//   time_to_goal_s   first time the torso was goal_distance_m ahead of its start (null if never)
+//   max_accel        max over samples of |a| of the IMU accelerometer [m/s^2] (seed walk Obj2)
+//   max_fps          max over samples of sqrt(ax^2 + ay^2), the field-plane sway (seed kick Obj1)
+//   ball_distance_m  distance the ball moved in the field plane [m]
+//   sim_time_s, wall_time_s, rtf (= sim / wall), state_hash (SimWorld::state_hash, hex)
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "stride/hal/command_frame.hpp"
+#include "stride/hal/sensor_frame.hpp"
+#include "stride/sim_hal/sim_robot.hpp"
+
+namespace stride::sim {
+
+/// The controller side of an episode (the firmware Controller or a test source).
+using StepFunction = std::function<hal::CommandFrame(const hal::SensorFrame&, hal::Tick)>;
+
+/// Holds a fixed pose with one P gain (the stand pose by default): a minimal controller.
+StepFunction hold_pose_controller(const std::array<double, hal::kServoCount>& pose,
+                                  double p_gain = 76.0);
+
+/// Link poses at one moment, for pictures.
+struct PoseSnapshot {
+  double time_s = 0.0;
+  std::vector<Eigen::Isometry3d> links;
+  Eigen::Vector3d ball = Eigen::Vector3d::Zero();
+};
+
+class TrajectoryRecorder;
+
+struct EpisodeOptions {
+  double duration_s = 10.0;
+  double goal_distance_m = 2.5;
+  double metrics_start_s = 0.25;
+  bool stop_on_fall = true;
+  TrajectoryRecorder* recorder = nullptr;  ///< optional, records every tick
+  std::vector<double> snapshot_times_s;    ///< moments to capture link poses at
+};
+
+struct EpisodeResult {
+  bool fell = false;
+  double fall_time_s = -1.0;
+  double distance_m = 0.0;
+  std::optional<double> time_to_goal_s;
+  double max_accel = 0.0;
+  double max_fps = 0.0;
+  double ball_distance_m = 0.0;
+  double sim_time_s = 0.0;
+  double wall_time_s = 0.0;
+  double rtf = 0.0;
+  std::uint64_t state_hash = 0;
+  std::int64_t ticks = 0;
+  WorldStatus status = WorldStatus::kRunning;
+  std::string failure_reason;  ///< empty unless the world failed
+  std::vector<PoseSnapshot> snapshots;
+};
+
+/// Runs `controller` against `robot` from its current state (reset it first) for
+/// options.duration_s, or until a fall (stop_on_fall) or a world failure.
+EpisodeResult run_episode(SimRobot& robot, const StepFunction& controller,
+                          const EpisodeOptions& options);
+
+/// The `stride sim --json` object. state_hash is a 16-digit hex string.
+nlohmann::json to_json(const EpisodeResult& result);
+
+/// "%016llx" of a hash.
+std::string hash_hex(std::uint64_t hash);
+
+}  // namespace stride::sim

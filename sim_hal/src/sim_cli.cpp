@@ -1,0 +1,33 @@
+// Simulator command-line options (shared by stride sim and stride-fw --hal sim).
+#include "stride/sim_hal/sim_cli.hpp"
+
+namespace stride::sim {
+
+void declare_world_options(fw::CliArgs& args) {
+  args.option("seed", "world random seed (randomisation and sensor noise)", true, "1");
+  args.option("noise", "sensor noise and per-episode IMU bias: on|off", true, "on");
+  args.option("physics-step-us", "fixed physics step [us], must divide the control period", true, "2000");
+}
+
+Status read_world_options(const fw::CliArgs& args, WorldOptions& out) {
+  std::int64_t seed = 1;
+  if (Status s = args.get_int("seed", seed); !s) return s;
+  if (seed < 0) return Status::error("--seed: must be >= 0, got " + std::to_string(seed));
+  out.seed = static_cast<std::uint64_t>(seed);
+  const std::string noise = args.get("noise", "on");
+  if (noise == "on") {
+    out.imu = ImuOptions::noisy();
+  } else if (noise == "off") {
+    out.imu = ImuOptions{};
+  } else {
+    return Status::error("--noise: expected on or off, got '" + noise + "'");
+  }
+  std::int64_t step_us = 2000;
+  if (Status s = args.get_int("physics-step-us", step_us); !s) return s;
+  if (step_us <= 0 || step_us > 20000)
+    return Status::error("--physics-step-us: must be in 1..20000, got " + std::to_string(step_us));
+  out.physics_step_ns = step_us * 1000;
+  return Status::ok();
+}
+
+}  // namespace stride::sim
