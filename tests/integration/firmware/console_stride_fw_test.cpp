@@ -103,7 +103,7 @@ class ConsoleEndToEnd : public ::testing::Test {
       std::string received;
       ASSERT_TRUE(watch->read_until(
           received, [](const std::string& r) { return r.find("type help") != std::string::npos; },
-          10s))
+          30s))
           << received << fw_->err();
     } else {
       for (int i = 0; i < 1000 && fw_->err().find("hal=test") == std::string::npos; ++i) {
@@ -263,6 +263,30 @@ TEST_F(ConsoleEndToEnd, FlashVerifyWhileAWalkIsRequested) {
   EXPECT_EQ(code, 0) << out;
   EXPECT_NE(out.find("verify: 2 of 2 parameters match"), std::string::npos) << out;
   (void)stop_fw();
+}
+
+// The simulated robot (stride-fw --hal sim --realtime: Simbody in lockstep, paced by the clock)
+// is asked to walk; a flash lands while the walk is requested, a safety change is refused.
+// (This build has no walk engine yet, so the motion manager keeps the robot standing and
+// counts the walk request as refused; the console's safety rules treat the request as motion.)
+TEST_F(ConsoleEndToEnd, FlashWhileTheSimulatedRobotIsAskedToWalk) {
+  PseudoTerminal pty;
+  start_fw(pty.slave_path(), &pty, {"--hal", "sim", "--realtime"});
+  EXPECT_EQ(final_line_of(pty.command("walk 0.5 0 0")), "ok walk requested vx=0.5 vy=0 vtheta=0");
+  EXPECT_EQ(final_line_of(pty.command(R"(flash {"stand":{"gain":45,"ramp_time":2}})")),
+            "ok flashed 2 parameters");
+  EXPECT_EQ(final_line_of(pty.command("get stand.gain")), "ok stand.gain = 45");
+  EXPECT_EQ(final_line_of(pty.command(R"(flash {"stand.gain":50,"safety.fall_tilt":0.8})"))
+                .rfind("err refused safety.fall_tilt may only change while standing still", 0),
+            0u);
+  EXPECT_EQ(final_line_of(pty.command("get stand.gain")), "ok stand.gain = 45");
+  const std::string status = pty.command("status");
+  EXPECT_NE(status.find("walk requested: yes"), std::string::npos) << status;
+  EXPECT_EQ(final_line_of(pty.command("stop")), "ok stop requested");
+  const nlohmann::json report = stop_fw();
+  EXPECT_EQ(report["hal"], "sim");
+  EXPECT_GE(report["param_batches"].get<int>(), 1);
+  EXPECT_FALSE(report["fallen"].get<bool>());
 }
 
 TEST_F(ConsoleEndToEnd, NoiseFloodWhileTheLoopRuns) {
