@@ -334,6 +334,17 @@ Reply CommandInterpreter::status() const {
   return r;
 }
 
+bool CommandInterpreter::wait_for_torque(bool on) const {
+  // The switch lands at the next tick; wait for the published status so that a following
+  // command (walk after torque on) sees it.
+  const auto deadline = std::chrono::steady_clock::now() + context_.apply_timeout;
+  for (;;) {
+    if (controller_.status().torque_on == on) return true;
+    if (std::chrono::steady_clock::now() >= deadline) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+}
+
 Reply CommandInterpreter::torque(const Args& args) {
   const bool force = args.size() == 3 && args[2] == "force";
   if (args.size() < 2 || args.size() > 3 || (args.size() == 3 && !force) ||
@@ -342,7 +353,9 @@ Reply CommandInterpreter::torque(const Args& args) {
   }
   if (args[1] == "on") {
     controller_.set_torque(true);
-    return Reply::success("torque on");
+    return Reply::success(wait_for_torque(true) ? "torque on"
+                                                : "torque on (requested; the loop has not "
+                                                  "applied it yet)");
   }
   const MotionSituation now = situation();
   if (Status s = check_torque_off(now, force); !s) {
@@ -353,7 +366,9 @@ Reply CommandInterpreter::torque(const Args& args) {
     walk_requested_ = false;
   }
   controller_.set_torque(false);
-  return Reply::success("torque off");
+  return Reply::success(wait_for_torque(false) ? "torque off"
+                                               : "torque off (requested; the loop has not "
+                                                 "applied it yet)");
 }
 
 Reply CommandInterpreter::walk(const Args& args) {

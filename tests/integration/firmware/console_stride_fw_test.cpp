@@ -149,6 +149,64 @@ TEST_F(ConsoleEndToEnd, SessionOnAPtyChangesTheRunningLoop) {
   EXPECT_GE(report["param_batches"].get<int>(), 3);
 }
 
+// Every command once over the wire, and every error code stride-fw can produce (read-only has
+// no parameter in this firmware; the interpreter's unit test covers it).
+TEST_F(ConsoleEndToEnd, EveryCommandAndErrorCodeOverThePty) {
+  PseudoTerminal pty;
+  start_fw(pty.slave_path(), &pty);
+  const auto file = dir_.path() / "p.json";
+  const std::vector<std::pair<std::string, std::string>> expected = {
+      {"help", "ok 13 commands"},
+      {"list safety.fall", "ok 2 parameters"},
+      {"get stand.ramp_time", "ok stand.ramp_time = 1.5"},
+      {"set stand.ramp_time 2", "ok stand.ramp_time = 2"},
+      {"reset stand.ramp_time", "ok stand.ramp_time = 1.5"},
+      {"reset all", "ok reset 13 parameters"},
+      {"save " + file.string(), "ok saved 13 parameters to " + file.string()},
+      {"load " + file.string(), "ok loaded 13 parameters from " + file.string()},
+      {R"(flash {"motion":{"fallen_gain":6}})", "ok flashed 1 parameters"},
+      {"status", "ok status"},
+      {"torque off", "ok torque off"},
+      {"torque on", "ok torque on"},
+      {"walk 0.1 0 0", "ok walk requested vx=0.1 vy=0 vtheta=0"},
+      {"stop", "ok stop requested"},
+      {"script kick_right", "ok script kick_right requested"},
+      {"get", "err usage get NAME"},
+      {"jump", "err unknown-command 'jump' (type help)"},
+      {"get walk.nothing", "err unknown-parameter 'walk.nothing' (try list)"},
+      {"set stand.gain x", "err bad-value stand.gain: 'x' is not a real"},
+      {"load " + (dir_.path() / "none.json").string(),
+       "err io " + (dir_.path() / "none.json").string() + ": cannot open for reading"},
+      {"flash {]", ""},                          // bad-file, message from the JSON parser
+      {"save /proc/stride-forbidden.json", ""},  // io
+  };
+  for (const auto& [command, reply] : expected) {
+    const std::string line = final_line_of(pty.command(command));
+    if (!reply.empty()) {
+      EXPECT_EQ(line, reply) << command;
+    } else {
+      EXPECT_EQ(line.rfind(command[0] == 'f' ? "err bad-file flash: not valid JSON" : "err io ", 0),
+                0u)
+          << command << " -> " << line;
+    }
+  }
+  // 70 kB on one line, read back (the echo) while writing so the pty never fills up.
+  std::string received;
+  const std::string overlong = std::string(70000, 'z') + "\r";
+  for (std::size_t at = 0; at < overlong.size(); at += 4096) {
+    ASSERT_TRUE(pty.write(std::string_view(overlong).substr(at, 4096)));
+    std::size_t before = 0;
+    do {  // drain the echo until the line is quiet
+      before = received.size();
+      (void)pty.read_for(received, 5ms);
+    } while (received.size() != before);
+  }
+  ASSERT_TRUE(pty.read_until(
+      received, [](const std::string& r) { return !final_line_of(r).empty(); }, 10s));
+  EXPECT_EQ(final_line_of(received), "err line-too-long line longer than 65536 bytes discarded");
+  (void)stop_fw();
+}
+
 TEST_F(ConsoleEndToEnd, StdioConsole) {
   int code = -1;
   const std::string out = run(

@@ -80,6 +80,8 @@ class CommandInterpreter {
 
   /// Guard, stage and wait for the loop: the common tail of set/reset/load/flash.
   Reply stage_batch(const std::vector<ParamWrite>& batch, std::string done_text);
+  /// Waits (up to apply_timeout) until the controller reports the torque state `on`.
+  bool wait_for_torque(bool on) const;
   std::string format_value(ParamHandle handle, double value) const;
   std::string restart_note(const std::vector<ParamWrite>& batch) const;
 
