@@ -1,0 +1,117 @@
+// VirtualBus: an emulated Dynamixel protocol 1.0 bus with 20 MX-64/MX-106 servos and the stock
+// CM730 (ID 200), each with its control table (control_table.hpp) and behaviour:
+//  - PING, READ, WRITE, REG_WRITE, ACTION, RESET, SYNC_WRITE and the CM730-style BULK_READ;
+//  - status return level (0: ping only, 1: + reads, 2: all), return delay time (reported per
+//    reply in `reply_delay_us` so a server can wait it out), broadcast ID without replies;
+//  - error bits: angle limit (goal outside CW/CCW limits, not applied), range (value outside a
+//    register's range, not applied), overheating (temperature above its limit), overload
+//    (load saturated at the torque limit), checksum (a damaged packet addressed to the device),
+//    instruction (unknown instruction, ACTION without REG_WRITE);
+//  - alarm shutdown: while an error bit in the Shutdown register (18) is active, torque is off;
+//  - BULK_READ replies in list order, and, as on the real bus, a device answers only after its
+//    predecessor's status packet: a device that stays silent silences the rest of the list.
+// Motion and the IMU come from a VirtualBusPhysics. Time: in lockstep mode the physics advances
+// by exactly one control period at each BULK_READ (the firmware's per-tick read), so a run is
+// deterministic; otherwise it advances by the wall-clock time elapsed since the last packet.
+// Faults (dropped or corrupted replies, silent or overheating servos) are injectable, seeded.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <random>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "stride/hal/dynamixel/bus_responder.hpp"
+#include "stride/hal/dynamixel/control_table.hpp"
+#include "stride/hal/dynamixel/packet_parser.hpp"
+#include "stride/hal/dynamixel/units.hpp"
+#include "stride/hal/dynamixel/virtual_bus_physics.hpp"
+#include "stride/hal/status.hpp"
+#include "stride/hal/types.hpp"
+
+namespace stride::hal::dxl {
+
+struct VirtualBusFaults {
+  double drop_probability = 0.0;         ///< each status packet is lost with this probability
+  double corrupt_probability = 0.0;      ///< each status packet gets one byte changed
+  std::array<bool, 256> silent{};        ///< these IDs never answer
+  std::array<bool, 256> overheat{};      ///< these servos report 85 deg C (limit 80)
+  std::uint64_t start_after_cycles = 0;  ///< faults act after this many BULK_READs
+  std::uint64_t seed = 1;
+
+  /// Parses one `--fault` item: drop:P, corrupt:P, silent:ID, overheat:ID, start:CYCLES.
+  /// The error names the item.
+  Status add(const std::string& spec);
+};
+
+struct VirtualBusCounters {
+  std::uint64_t instructions = 0;  ///< valid instruction packets received
+  std::uint64_t bad_packets = 0;   ///< damaged packets received (checksum)
+  std::uint64_t replies = 0;       ///< status packets sent
+  std::uint64_t bulk_reads = 0;
+  std::uint64_t sync_writes = 0;
+  std::uint64_t dropped = 0;    ///< replies dropped by fault injection
+  std::uint64_t corrupted = 0;  ///< replies corrupted by fault injection
+  std::uint64_t silenced = 0;   ///< replies withheld because a device is silent
+};
+
+class VirtualBus final : public BusResponder {
+ public:
+  struct Options {
+    std::array<ServoCalibration, kServoCount> calibration{};  ///< per servo, index = id - 1
+    bool lockstep = false;
+    std::int64_t period_ns = 10'000'000;  ///< physics step per BULK_READ in lockstep mode
+    VirtualBusFaults faults{};
+  };
+
+  VirtualBus(const Options& options, std::unique_ptr<VirtualBusPhysics> physics);
+
+  /// Consumes bytes from the host and appends any replies to `out`. `reply_delay_us` receives
+  /// the summed return delay time of the replies produced (0 after start-up configuration).
+  void receive(std::span<const std::uint8_t> bytes, std::vector<std::uint8_t>& out,
+               std::int64_t& reply_delay_us) override;
+
+  const VirtualBusCounters& counters() const { return counters_; }
+  VirtualBusPhysics& physics() { return *physics_; }
+  /// Register byte of device `id` (for tests and `stride vbus` status), 0 if absent.
+  std::uint8_t peek(std::uint8_t id, std::uint8_t address) const;
+
+ private:
+  struct Device {
+    std::uint8_t id = 0;
+    const ControlTable* table = nullptr;
+    int servo_index = -1;  ///< -1 for the CM730
+    std::array<std::uint8_t, 256> mem{};
+    std::uint8_t command_error = 0;  ///< instruction/range/angle/checksum bits of this reply
+    bool registered = false;
+    std::uint8_t reg_address = 0;
+    std::vector<std::uint8_t> reg_data;
+  };
+
+  void handle(const Packet& packet, std::vector<std::uint8_t>& out, std::int64_t& delay_us);
+  Device* find(std::uint8_t id);
+  void reset_device(Device& device);
+  void refresh(Device& device);
+  void push_command(Device& device);
+  std::uint8_t status_error(Device& device);
+  bool apply_write(Device& device, std::uint8_t address, std::span<const std::uint8_t> data);
+  /// Sends a status packet (subject to faults). Returns false if nothing went on the wire.
+  bool reply(Device& device, std::span<const std::uint8_t> params, std::vector<std::uint8_t>& out,
+             std::int64_t& delay_us);
+  void advance_time();
+  bool faults_active() const;
+
+  Options options_;
+  std::unique_ptr<VirtualBusPhysics> physics_;
+  PacketParser parser_{Protocol::kV1, PacketParser::Role::kDevice};
+  std::vector<Device> devices_;
+  VirtualBusCounters counters_{};
+  std::mt19937_64 rng_;
+  std::int64_t last_advance_ns_ = 0;
+  std::uint64_t seen_bad_checksum_ = 0;
+};
+
+}  // namespace stride::hal::dxl

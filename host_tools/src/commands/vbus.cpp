@@ -1,0 +1,187 @@
+// `stride vbus --link PATH`: the virtual robot bus (20 MX servos + CM730, protocol 1.0) on a
+// pseudo-terminal, with injectable faults, until SIGINT/SIGTERM.
+#include <sched.h>
+#include <sys/mman.h>
+
+#include <atomic>
+#include <cerrno>
+#include <csignal>
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "stride/firmware/cli_args.hpp"
+#include "stride/firmware/dynamixel_config.hpp"
+#include "stride/hal/dynamixel/pty_bus_server.hpp"
+#include "stride/hal/dynamixel/virtual_bus.hpp"
+#include "stride/hal/dynamixel/virtual_bus_v2.hpp"
+#include "stride/host_tools/command.hpp"
+
+namespace {
+
+std::atomic<bool> g_vbus_stop{false};
+
+void on_vbus_signal(int) {
+  g_vbus_stop.store(true);
+}
+
+int bad(const std::string& message) {
+  std::fprintf(stderr, "stride vbus: %s\n", message.c_str());
+  return 2;
+}
+
+int run_vbus(int argc, char** argv) {
+  using namespace stride;
+  namespace dxl = hal::dxl;
+  // --fault may repeat (and take comma-separated items); collect it before CliArgs.
+  std::vector<std::string> faults;
+  std::vector<const char*> rest;
+  for (int i = 0; i < argc; ++i) {
+    const std::string word = argv[i];
+    std::string value;
+    if (word == "--fault") {
+      if (i + 1 >= argc) return bad("option --fault needs a value");
+      value = argv[++i];
+    } else if (word.rfind("--fault=", 0) == 0) {
+      value = word.substr(8);
+    } else {
+      rest.push_back(argv[i]);
+      continue;
+    }
+    std::size_t start = 0;
+    while (start <= value.size()) {
+      const auto comma = value.find(',', start);
+      faults.push_back(
+          value.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
+      if (comma == std::string::npos) break;
+      start = comma + 1;
+    }
+  }
+  fw::CliArgs args;
+  args.option("link", "path of the symlink to create to the pseudo-terminal (required)")
+      .option(
+          "fault",
+          "inject a fault (repeatable, or comma-separated): drop:P, corrupt:P (per reply), "
+          "silent:ID, overheat:ID, start:CYCLES (faults act after that many BULK_READs), seed:N")
+      .option("protocol",
+              "1: CM730 + 20 MX servos (the robot's bus); 2: 20 MX(2.0) servos, no CM730", true,
+              "1")
+      .option("lockstep",
+              "advance the servo model one period per BULK_READ (deterministic); "
+              "default: by wall-clock time",
+              false)
+      .option("period-ms", "control period for --lockstep [ms]", true, "10")
+      .option("servo-table", "servo table file", true, fw::ServoTable::default_path().string())
+      .option("no-rt",
+              "do not ask for SCHED_FIFO and mlockall (asked for by default, so that "
+              "replies are not late on a busy machine)",
+              false)
+      .option("json", "print the bus counters as one JSON object on exit", false)
+      .option("help", "show this help", false);
+  if (Status s = args.parse(static_cast<int>(rest.size()), rest.data()); !s)
+    return bad(s.message());
+  if (args.has("help")) {
+    std::printf(
+        "usage: stride vbus --link PATH [--fault KIND:VALUE]... [--lockstep] [--json]\n\n"
+        "Serves an emulated CM730 (ID 200) and 20 MX-64/MX-106 servos (IDs 1-20, models from\n"
+        "the servo table) with their protocol 1.0 control tables on a pseudo-terminal until\n"
+        "SIGINT/SIGTERM (--protocol 2: 20 MX(2.0) servos, no CM730; faults other than\n"
+        "overheat apply to protocol 1 only). Servo motion: first-order model.\n\n%s",
+        args.help().c_str());
+    return 0;
+  }
+  if (!args.has("link")) return bad("missing --link PATH");
+  dxl::VirtualBus::Options options;
+  for (const auto& f : faults) {
+    if (Status s = options.faults.add(f); !s) return bad(s.message());
+  }
+  double period_ms = 10.0;
+  if (Status s = args.get_double("period-ms", period_ms); !s) return bad(s.message());
+  if (!(period_ms > 0.0 && period_ms <= 1000.0))
+    return bad("option --period-ms: must be in (0, 1000]");
+  std::int64_t protocol = 1;
+  if (Status s = args.get_int("protocol", protocol); !s) return bad(s.message());
+  if (protocol != 1 && protocol != 2) return bad("option --protocol: must be 1 or 2");
+  fw::ServoTable table;
+  if (Status s = fw::ServoTable::load(args.get("servo-table"), table); !s) return bad(s.message());
+  options.calibration = fw::servo_calibrations(table);
+  options.lockstep = args.has("lockstep");
+  options.period_ns = static_cast<std::int64_t>(period_ms * 1e6);
+  dxl::FirstOrderPhysics::Options physics;
+  for (std::size_t i = 0; i < hal::kServoCount; ++i)
+    physics.models[i] = options.calibration[i].model;
+  std::unique_ptr<dxl::BusResponder> responder;
+  dxl::VirtualBus* bus_v1 = nullptr;
+  if (protocol == 1) {
+    auto bus = std::make_unique<dxl::VirtualBus>(options,
+                                                 std::make_unique<dxl::FirstOrderPhysics>(physics));
+    bus_v1 = bus.get();
+    responder = std::move(bus);
+  } else {
+    dxl::VirtualBusV2::Options v2;
+    v2.calibration = options.calibration;
+    v2.lockstep = options.lockstep;
+    v2.period_ns = options.period_ns;
+    v2.overheat = options.faults.overheat;
+    responder =
+        std::make_unique<dxl::VirtualBusV2>(v2, std::make_unique<dxl::FirstOrderPhysics>(physics));
+  }
+
+  std::unique_ptr<dxl::PtyBusServer> server;
+  if (Status s = dxl::PtyBusServer::create(args.get("link"), server); !s) {
+    std::fprintf(stderr, "stride vbus: %s\n", s.message().c_str());
+    return 1;
+  }
+  if (!args.has("no-rt")) {
+    sched_param param{};
+    param.sched_priority = 85;
+    if (sched_setscheduler(0, SCHED_FIFO, &param) != 0) {
+      std::fprintf(stderr, "stride vbus: warning: SCHED_FIFO refused (%s)\n", std::strerror(errno));
+    }
+    if (mlockall(MCL_CURRENT | MCL_FUTURE) != 0) {
+      std::fprintf(stderr, "stride vbus: warning: mlockall refused (%s)\n", std::strerror(errno));
+    }
+  }
+  struct sigaction action {};
+  action.sa_handler = on_vbus_signal;
+  sigemptyset(&action.sa_mask);
+  sigaction(SIGINT, &action, nullptr);
+  sigaction(SIGTERM, &action, nullptr);
+  std::fprintf(stderr, "stride vbus: serving on %s -> %s (%s)\n", server->link_path().c_str(),
+               server->slave_path().c_str(), options.lockstep ? "lockstep" : "wall clock");
+  const Status served = server->serve(*responder, g_vbus_stop);
+  const dxl::VirtualBusCounters c =
+      bus_v1 != nullptr ? bus_v1->counters() : dxl::VirtualBusCounters{};
+  if (bus_v1 != nullptr)
+    std::fprintf(
+        stderr,
+        "stride vbus: %llu instructions, %llu bulk reads, %llu sync writes, %llu replies; "
+        "faults: %llu dropped, %llu corrupted, %llu silenced; %llu bad packets received\n",
+        static_cast<unsigned long long>(c.instructions),
+        static_cast<unsigned long long>(c.bulk_reads),
+        static_cast<unsigned long long>(c.sync_writes), static_cast<unsigned long long>(c.replies),
+        static_cast<unsigned long long>(c.dropped), static_cast<unsigned long long>(c.corrupted),
+        static_cast<unsigned long long>(c.silenced),
+        static_cast<unsigned long long>(c.bad_packets));
+  if (args.has("json")) {
+    const nlohmann::json report = {
+        {"instructions", c.instructions}, {"bulk_reads", c.bulk_reads},
+        {"sync_writes", c.sync_writes},   {"replies", c.replies},
+        {"dropped", c.dropped},           {"corrupted", c.corrupted},
+        {"silenced", c.silenced},         {"bad_packets", c.bad_packets}};
+    std::printf("%s\n", report.dump().c_str());
+    std::fflush(stdout);
+  }
+  if (!served) {
+    std::fprintf(stderr, "stride vbus: %s\n", served.message().c_str());
+    return 1;
+  }
+  return 0;
+}
+
+}  // namespace
+
+STRIDE_COMMAND(vbus, "virtual robot bus (CM730 + 20 MX servos) on a pseudo-terminal", run_vbus);
