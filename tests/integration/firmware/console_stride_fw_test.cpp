@@ -347,6 +347,29 @@ TEST_F(ConsoleEndToEnd, FlashWhileTheSimulatedRobotIsAskedToWalk) {
   EXPECT_FALSE(report["fallen"].get<bool>());
 }
 
+// `status` on a Dynamixel bus: stride vbus serves an emulated CM730 and 20 servos on a pty,
+// stride-fw drives it with the serial HAL, and the console reports the bus and servo health.
+TEST_F(ConsoleEndToEnd, StatusShowsTheBusOfAVirtualRobot) {
+  const auto bus = dir_.path() / "bus";
+  Child vbus({kBin + "/stride", "vbus", "--link", bus.string()}, dir_.path() / "vbus.out",
+             dir_.path() / "vbus.err");
+  for (int i = 0; i < 2000 && !std::filesystem::exists(bus); ++i) std::this_thread::sleep_for(5ms);
+  ASSERT_TRUE(std::filesystem::exists(bus)) << vbus.err();
+  PseudoTerminal pty;
+  start_fw(pty.slave_path(), &pty, {"--hal", "serial", "--port", bus.string()});
+  std::this_thread::sleep_for(200ms);  // some ticks on the bus
+  const std::string status = pty.command("status");
+  EXPECT_EQ(final_line_of(status), "ok status");
+  const auto at = status.find("\r\nbus: replies ");
+  ASSERT_NE(at, std::string::npos) << status;
+  EXPECT_GT(std::stoll(status.substr(at + 15)), 0) << status;
+  EXPECT_NE(status.find("servo  1 r_shoulder_pitch"), std::string::npos);
+  EXPECT_EQ(status.find("health missing"), std::string::npos) << status;
+  EXPECT_EQ(final_line_of(pty.command("set stand.gain 35")), "ok stand.gain = 35");
+  (void)stop_fw();
+  (void)vbus.stop();
+}
+
 TEST_F(ConsoleEndToEnd, NoiseFloodWhileTheLoopRuns) {
   PseudoTerminal pty;
   start_fw(pty.slave_path(), &pty, {"--ticks", "300"});
