@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The whole test suite from a fresh machine: installs the dependencies, builds the unit tests
 # with AddressSanitizer + UndefinedBehaviorSanitizer and runs them, builds the release preset
-# and runs the integration tests (simulation, pseudo-terminal end-to-end runs), then
+# and runs the integration tests (simulation, pseudo-terminal end-to-end runs), fuzzes the
+# Dynamixel parsers briefly, then
 # cross-compiles the firmware for aarch64 (tests under qemu-user) and statically for the igus
 # PC (tests, staged install).
 # Exits non-zero if anything fails.
@@ -15,6 +16,9 @@ echo "== unit tests (asan preset)"
 cmake --preset asan >/dev/null
 cmake --build --preset asan -j "$jobs"
 ctest --preset asan -j "$jobs"
+
+echo "== fuzzing the Dynamixel parsers and virtual buses (libFuzzer, 15 s per target)"
+toolchain/fuzz.sh 15
 
 echo "== integration tests (release preset)"
 cmake --preset release >/dev/null

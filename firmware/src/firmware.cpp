@@ -1,8 +1,11 @@
 // Firmware composition root: registration order, parameter file, loop period.
 #include "stride/firmware/firmware.hpp"
 
+#include "stride/firmware/walk/walk_engine.hpp"
+
 #include <cmath>
 #include <cstdlib>
+#include <exception>
 
 #ifndef STRIDE_FIRMWARE_DATA_DIR
 #define STRIDE_FIRMWARE_DATA_DIR "."
@@ -30,6 +33,7 @@ std::filesystem::path data_dir() {
 // The motion engines the controller drives. Each engine registers its parameters in its
 // constructor, before the parameter file is applied.
 struct Firmware::Engines {
+  std::unique_ptr<WalkEngine> walk_engine;
   WalkControl* walk = nullptr;
   ScriptControl* script = nullptr;
 };
@@ -70,6 +74,13 @@ Status Firmware::create(const FirmwareOptions& options, std::unique_ptr<Firmware
 
   fw->engines_ = std::make_unique<Engines>();
   // Walk and script engines are constructed here once they exist (issues 5 and 6).
+  try {
+    fw->engines_->walk_engine =
+        std::make_unique<WalkEngine>(fw->params_, fw->servos_, fw->period_ns_);
+  } catch (const std::exception& e) {
+    return Status::error(e.what());
+  }
+  fw->engines_->walk = fw->engines_->walk_engine.get();
 
   fw->controller_ =
       std::make_unique<Controller>(fw->params_, fw->servos_, fw->period_ns_,

@@ -50,8 +50,9 @@ int main(int argc, char** argv) {
   }
   std::printf("pop 100, %d generations, pc 0.9, etaC 20, pm 1/n, etaM 20, seeds 1..%d\n\n",
               generations, seeds);
-  std::printf("| problem | HV ratio median | worst | best | target | IGD median | feasible "
-              "(median) | s/run |\n|---|---|---|---|---|---|---|---|\n");
+  std::printf(
+      "| problem | HV ratio median | worst | best | target | IGD median | feasible "
+      "(median) | s/run |\n|---|---|---|---|---|---|---|---|\n");
   int failures = 0;
   for (const std::string& name : names) {
     const auto problem = make_test_problem(name);

@@ -27,7 +27,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (size == 0) return 0;
   const std::size_t chunk = 1 + data[0] % 37;
   for (const bool host : {true, false}) {
-    PacketParser parser(Protocol::kV1, host ? PacketParser::Role::kHost : PacketParser::Role::kDevice);
+    PacketParser parser(Protocol::kV1,
+                        host ? PacketParser::Role::kHost : PacketParser::Role::kDevice);
     Packet p;
     std::size_t offset = 1;
     while (offset < size) {

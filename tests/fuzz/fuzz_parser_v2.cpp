@@ -14,8 +14,9 @@ using namespace stride::hal::dxl;
 namespace {
 void check(const Packet& p) {
   static std::uint8_t again[2 * kMaxPacketBytes];
-  const std::size_t n = p.is_status ? v2::encode_status(again, p.id, p.error, p.parameters())
-                                    : v2::encode_instruction(again, p.id, p.instruction, p.parameters());
+  const std::size_t n = p.is_status
+                            ? v2::encode_status(again, p.id, p.error, p.parameters())
+                            : v2::encode_instruction(again, p.id, p.instruction, p.parameters());
   if (n == 0) return;  // re-stuffing can make a maximal packet too long to build: allowed
   PacketParser back(Protocol::kV2, PacketParser::Role::kHost);
   (void)back.feed({again, n});

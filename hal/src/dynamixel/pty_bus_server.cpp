@@ -50,8 +50,7 @@ Status PtyBusServer::create(const std::string& link_path, std::unique_ptr<PtyBus
   std::unique_ptr<PtyBusServer> server(new PtyBusServer());
   server->master_fd_ = open_master(server->slave_path_);
   if (server->master_fd_ < 0) {
-    return Status::error(std::string("cannot open a pseudo-terminal: ") +
-                         std::strerror(errno));
+    return Status::error(std::string("cannot open a pseudo-terminal: ") + std::strerror(errno));
   }
   server->slave_keepalive_fd_ = ::open(server->slave_path_.c_str(), O_RDWR | O_NOCTTY | O_CLOEXEC);
   if (server->slave_keepalive_fd_ >= 0) {

@@ -105,10 +105,13 @@ Status read_settings(const stride::fw::CliArgs& args, std::size_t real_genes, Se
     if (auto st = read_int(args, "generations", 0, 1000000, v); !st) return st;
     n.generations = static_cast<int>(v);
   }
-  const std::pair<const char*, double*> reals[] = {
-      {"pc", &n.real_cross_prob},   {"etac", &n.eta_c}, {"pm", &n.real_mut_prob},
-      {"etam", &n.eta_m},           {"pbc", &n.bin_cross_prob},
-      {"pbm", &n.bin_mut_prob},     {"seed-fraction", &n.seed_mutation_fraction}};
+  const std::pair<const char*, double*> reals[] = {{"pc", &n.real_cross_prob},
+                                                   {"etac", &n.eta_c},
+                                                   {"pm", &n.real_mut_prob},
+                                                   {"etam", &n.eta_m},
+                                                   {"pbc", &n.bin_cross_prob},
+                                                   {"pbm", &n.bin_mut_prob},
+                                                   {"seed-fraction", &n.seed_mutation_fraction}};
   for (const auto& [name, target] : reals) {
     if (args.has(name)) {
       if (auto st = args.get_double(name, *target); !st) return st;
@@ -152,7 +155,8 @@ int run_optimise(int argc, char** argv) {
         args.help().c_str());
     return 0;
   }
-  if (!args.positional().empty()) return bad_input("unexpected argument '" + args.positional()[0] + "'");
+  if (!args.positional().empty())
+    return bad_input("unexpected argument '" + args.positional()[0] + "'");
   if (!args.has("out")) return bad_input("--out DIR is required");
   const std::filesystem::path dir = args.get("out");
   const bool resume = args.has("resume");
@@ -175,7 +179,8 @@ int run_optimise(int argc, char** argv) {
       return bad_input("--resume: the NSGA-II options given differ from the run's run.json");
     }
   } else {
-    if (!args.has("problem")) return bad_input("--problem NAME is required (" + problem_list() + ")");
+    if (!args.has("problem"))
+      return bad_input("--problem NAME is required (" + problem_list() + ")");
     if (auto st = make_problem(args.get("problem"), problem); !st) return bad_input(st.message());
     s.config.problem = problem->name();
     if (auto st = read_settings(args, problem->shape().reals.size(), s); !st) {
@@ -198,7 +203,8 @@ int run_optimise(int argc, char** argv) {
     return bad_input(st.message());
   }
   if (s.slow_ms > 0) {
-    problem = std::make_unique<SlowProblem>(std::move(problem), std::chrono::milliseconds(s.slow_ms));
+    problem =
+        std::make_unique<SlowProblem>(std::move(problem), std::chrono::milliseconds(s.slow_ms));
   }
 
   std::unique_ptr<opt::Evaluator> evaluator;

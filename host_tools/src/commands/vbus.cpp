@@ -19,6 +19,9 @@
 #include "stride/hal/dynamixel/virtual_bus.hpp"
 #include "stride/hal/dynamixel/virtual_bus_v2.hpp"
 #include "stride/host_tools/command.hpp"
+#include "stride/sim_hal/episode.hpp"
+#include "stride/sim_hal/sim_bus_physics.hpp"
+#include "stride/sim_hal/sim_cli.hpp"
 
 namespace {
 
@@ -79,8 +82,13 @@ int run_vbus(int argc, char** argv) {
               "do not ask for SCHED_FIFO and mlockall (asked for by default, so that "
               "replies are not late on a busy machine)",
               false)
+      .option("sim",
+              "back the servos and the IMU with the Simbody simulation of the robot "
+              "(protocol 1; implies --lockstep: one control period per BULK_READ)",
+              false)
       .option("json", "print the bus counters as one JSON object on exit", false)
       .option("help", "show this help", false);
+  sim::declare_world_options(args);
   if (Status s = args.parse(static_cast<int>(rest.size()), rest.data()); !s)
     return bad(s.message());
   if (args.has("help")) {
@@ -89,7 +97,8 @@ int run_vbus(int argc, char** argv) {
         "Serves an emulated CM730 (ID 200) and 20 MX-64/MX-106 servos (IDs 1-20, models from\n"
         "the servo table) with their protocol 1.0 control tables on a pseudo-terminal until\n"
         "SIGINT/SIGTERM (--protocol 2: 20 MX(2.0) servos, no CM730; faults other than\n"
-        "overheat apply to protocol 1 only). Servo motion: first-order model.\n\n%s",
+        "overheat apply to protocol 1 only). Servo motion: first-order model, or with --sim\n"
+        "the Simbody simulation of the robot, advanced one period per BULK_READ.\n\n%s",
         args.help().c_str());
     return 0;
   }
@@ -108,16 +117,33 @@ int run_vbus(int argc, char** argv) {
   fw::ServoTable table;
   if (Status s = fw::ServoTable::load(args.get("servo-table"), table); !s) return bad(s.message());
   options.calibration = fw::servo_calibrations(table);
-  options.lockstep = args.has("lockstep");
+  const bool use_sim = args.has("sim");
+  if (use_sim && protocol != 1) return bad("option --sim: needs --protocol 1 (the CM730's IMU)");
+  options.lockstep = args.has("lockstep") || use_sim;
   options.period_ns = static_cast<std::int64_t>(period_ms * 1e6);
   dxl::FirstOrderPhysics::Options physics;
   for (std::size_t i = 0; i < hal::kServoCount; ++i)
     physics.models[i] = options.calibration[i].model;
+  std::unique_ptr<dxl::VirtualBusPhysics> motion =
+      std::make_unique<dxl::FirstOrderPhysics>(physics);
+  sim::SimBusPhysics* sim_physics = nullptr;
+  if (use_sim) {
+    sim::WorldOptions world_options;
+    if (Status s = sim::read_world_options(args, world_options); !s) return bad(s.message());
+    world_options.control_period_ns = options.period_ns;
+    std::unique_ptr<sim::SimWorld> world;
+    if (Status s = sim::SimWorld::create(world_options, world); !s) {
+      std::fprintf(stderr, "stride vbus: %s\n", s.message().c_str());
+      return 1;
+    }
+    auto backed = std::make_unique<sim::SimBusPhysics>(std::move(world));
+    sim_physics = backed.get();
+    motion = std::move(backed);
+  }
   std::unique_ptr<dxl::BusResponder> responder;
   dxl::VirtualBus* bus_v1 = nullptr;
   if (protocol == 1) {
-    auto bus = std::make_unique<dxl::VirtualBus>(options,
-                                                 std::make_unique<dxl::FirstOrderPhysics>(physics));
+    auto bus = std::make_unique<dxl::VirtualBus>(options, std::move(motion));
     bus_v1 = bus.get();
     responder = std::move(bus);
   } else {
@@ -150,8 +176,9 @@ int run_vbus(int argc, char** argv) {
   sigemptyset(&action.sa_mask);
   sigaction(SIGINT, &action, nullptr);
   sigaction(SIGTERM, &action, nullptr);
-  std::fprintf(stderr, "stride vbus: serving on %s -> %s (%s)\n", server->link_path().c_str(),
-               server->slave_path().c_str(), options.lockstep ? "lockstep" : "wall clock");
+  std::fprintf(stderr, "stride vbus: serving on %s -> %s (%s%s)\n", server->link_path().c_str(),
+               server->slave_path().c_str(), options.lockstep ? "lockstep" : "wall clock",
+               use_sim ? ", Simbody simulation" : "");
   const Status served = server->serve(*responder, g_vbus_stop);
   const dxl::VirtualBusCounters c =
       bus_v1 != nullptr ? bus_v1->counters() : dxl::VirtualBusCounters{};
@@ -166,12 +193,25 @@ int run_vbus(int argc, char** argv) {
         static_cast<unsigned long long>(c.dropped), static_cast<unsigned long long>(c.corrupted),
         static_cast<unsigned long long>(c.silenced),
         static_cast<unsigned long long>(c.bad_packets));
+  nlohmann::json sim_report;
+  if (sim_physics != nullptr) {
+    const sim::SimWorld& w = sim_physics->world();
+    sim_report = {{"ticks", sim_physics->ticks()},
+                  {"sim_time_s", w.time_s()},
+                  {"status", sim::to_string(w.status())},
+                  {"failure_reason", w.failure_reason()},
+                  {"torso_height_m", w.ground_truth().torso.translation().z()},
+                  {"state_hash", sim::hash_hex(w.state_hash())}};
+    std::fprintf(stderr, "stride vbus: simulation %s after %.2f s, torso height %.3f m\n",
+                 sim::to_string(w.status()), w.time_s(),
+                 sim_report["torso_height_m"].get<double>());
+  }
   if (args.has("json")) {
-    const nlohmann::json report = {
-        {"instructions", c.instructions}, {"bulk_reads", c.bulk_reads},
-        {"sync_writes", c.sync_writes},   {"replies", c.replies},
-        {"dropped", c.dropped},           {"corrupted", c.corrupted},
-        {"silenced", c.silenced},         {"bad_packets", c.bad_packets}};
+    nlohmann::json report = {{"instructions", c.instructions}, {"bulk_reads", c.bulk_reads},
+                             {"sync_writes", c.sync_writes},   {"replies", c.replies},
+                             {"dropped", c.dropped},           {"corrupted", c.corrupted},
+                             {"silenced", c.silenced},         {"bad_packets", c.bad_packets}};
+    if (!sim_report.is_null()) report["sim"] = sim_report;
     std::printf("%s\n", report.dump().c_str());
     std::fflush(stdout);
   }

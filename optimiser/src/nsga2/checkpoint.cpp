@@ -76,10 +76,12 @@ Status parse_settings(const json& j, Nsga2Settings& s) {
     s.pop_size = j.at("pop_size").get<int>();
     s.generations = j.at("generations").get<int>();
     const std::pair<const char*, double*> reals[] = {
-        {"real_cross_prob", &s.real_cross_prob}, {"real_mut_prob", &s.real_mut_prob},
+        {"real_cross_prob", &s.real_cross_prob},
+        {"real_mut_prob", &s.real_mut_prob},
         {"eta_c", &s.eta_c},
         {"eta_m", &s.eta_m},
-        {"bin_cross_prob", &s.bin_cross_prob},   {"bin_mut_prob", &s.bin_mut_prob},
+        {"bin_cross_prob", &s.bin_cross_prob},
+        {"bin_mut_prob", &s.bin_mut_prob},
         {"seed_mutation_fraction", &s.seed_mutation_fraction}};
     for (const auto& [name, target] : reals) {
       if (!parse_exact_double(j.at(name), *target)) {
@@ -184,8 +186,7 @@ Status Nsga2::restore(const json& cp, const ProblemShape& shape,
       if (auto st = parse_array(j.at("objectives"), "objectives", ind.result.objectives); !st) {
         return st;
       }
-      if (auto st = parse_array(j.at("constraints"), "constraints", ind.result.constraints);
-          !st) {
+      if (auto st = parse_array(j.at("constraints"), "constraints", ind.result.constraints); !st) {
         return st;
       }
       if (!parse_exact_double(j.at("violation"), ind.result.violation) ||

@@ -22,7 +22,8 @@ EvaluationOutcome evaluate_safely(const Problem& problem, const Genome& genome) 
 
 void SerialEvaluator::evaluate(const Problem& problem, const std::vector<Candidate>& batch,
                                const ReportFn& report) {
-  for (std::size_t i = 0; i < batch.size(); ++i) report(i, evaluate_safely(problem, batch[i].genome));
+  for (std::size_t i = 0; i < batch.size(); ++i)
+    report(i, evaluate_safely(problem, batch[i].genome));
 }
 
 void ThreadPoolEvaluator::evaluate(const Problem& problem, const std::vector<Candidate>& batch,

@@ -17,8 +17,9 @@ void rank_and_crowd(std::vector<Individual>& group, std::vector<std::vector<int>
   std::vector<double> violations;
   objectives.reserve(group.size());
   violations.reserve(group.size());
-  for (const Individual& ind : group) {
-    objectives.push_back(ind.result.objectives);
+  // Borrow the objective vectors (moved back below) instead of copying them.
+  for (Individual& ind : group) {
+    objectives.push_back(std::move(ind.result.objectives));
     violations.push_back(ind.result.violation);
   }
   const std::vector<int> ranks = constrained_ranks(objectives, violations);
@@ -28,6 +29,7 @@ void rank_and_crowd(std::vector<Individual>& group, std::vector<std::vector<int>
   for (std::size_t i = 0; i < group.size(); ++i) {
     group[i].rank = ranks[i];
     group[i].crowding = distance[i];
+    group[i].result.objectives = std::move(objectives[i]);
   }
   if (fronts_out != nullptr) *fronts_out = std::move(fronts);
 }
@@ -35,7 +37,11 @@ void rank_and_crowd(std::vector<Individual>& group, std::vector<std::vector<int>
 }  // namespace
 
 Nsga2::Nsga2(const Nsga2Settings& settings, const ProblemShape& shape)
-    : settings_(settings), shape_(shape), rng_(settings.seed) {}
+    : settings_(settings), shape_(shape), rng_(settings.seed) {
+  // One entry per evaluation at most: reserve for a whole run (capped) to avoid rehashing.
+  cache_.reserve(static_cast<std::size_t>(
+      std::min<std::int64_t>(std::int64_t{settings.pop_size} * settings.generations, 1 << 20)));
+}
 
 Status Nsga2::create(const Nsga2Settings& settings, const ProblemShape& shape,
                      const std::optional<Genome>& start, std::unique_ptr<Nsga2>& out) {
@@ -60,9 +66,8 @@ void Nsga2::make_initial_batch(const std::optional<Genome>& start) {
       if (i == 0) continue;  // the start genome itself, unmutated
       for (std::size_t k = 0; k < g.reals.size(); ++k) {
         if (!rng_.chance(settings_.seed_mutation_fraction)) continue;
-        g.reals[k] = polynomial_mutation_value(g.reals[k], shape_.reals[k].min,
-                                               shape_.reals[k].max, settings_.eta_m,
-                                               rng_.uniform01());
+        g.reals[k] = polynomial_mutation_value(g.reals[k], shape_.reals[k].min, shape_.reals[k].max,
+                                               settings_.eta_m, rng_.uniform01());
       }
       std::size_t first_bit = 0;
       for (const BinaryGene& gene : shape_.binaries) {
@@ -123,7 +128,7 @@ const Individual* Nsga2::batch_member(std::uint64_t id) const {
   return &batch_[index];
 }
 
-Status Nsga2::tell(std::uint64_t id, const EvaluationOutcome& outcome) {
+Status Nsga2::tell(std::uint64_t id, EvaluationOutcome outcome) {
   const Individual* member = batch_member(id);
   if (member == nullptr) {
     return Status::error("genome " + std::to_string(id) + " is not in the current batch");
@@ -137,11 +142,11 @@ Status Nsga2::tell(std::uint64_t id, const EvaluationOutcome& outcome) {
   if (batch_[index].evaluated) {
     return Status::error("genome " + std::to_string(id) + " already has a result");
   }
-  const Result result = sanitise(shape_, outcome);
+  batch_[index].result = sanitise(shape_, std::move(outcome));
+  const Result& result = batch_[index].result;
   ++counters_.evaluations;
   if (result.failed) ++counters_.failures;
   cache_.insert_or_assign(batch_keys_[index], result);
-  batch_[index].result = result;
   batch_[index].evaluated = true;
   for (std::size_t j = 0; j < batch_.size(); ++j) {
     if (alias_of_[j] == static_cast<int>(index)) {
@@ -237,8 +242,8 @@ void Nsga2::make_children() {
     }
   }
   for (Individual& child : batch_) {
-    polynomial_mutation(child.genome.reals, shape_.reals, settings_.real_mut_prob,
-                        settings_.eta_m, rng_);
+    polynomial_mutation(child.genome.reals, shape_.reals, settings_.real_mut_prob, settings_.eta_m,
+                        rng_);
     bit_flip_mutation(child.genome.bits, settings_.bin_mut_prob, rng_);
     child.id = next_id_++;
   }

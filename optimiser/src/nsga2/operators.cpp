@@ -31,8 +31,8 @@ std::pair<double, double> sbx_pair(double y1, double y2, double yl, double yu, d
 }
 
 void sbx_crossover(const std::vector<double>& p1, const std::vector<double>& p2,
-                   const std::vector<RealLimits>& limits, double cross_prob, double eta_c,
-                   Rng& rng, std::vector<double>& c1, std::vector<double>& c2) {
+                   const std::vector<RealLimits>& limits, double cross_prob, double eta_c, Rng& rng,
+                   std::vector<double>& c1, std::vector<double>& c2) {
   c1 = p1;
   c2 = p2;
   if (!rng.chance(cross_prob)) return;
@@ -72,8 +72,8 @@ int polynomial_mutation(std::vector<double>& genes, const std::vector<RealLimits
   int changed = 0;
   for (std::size_t i = 0; i < genes.size(); ++i) {
     if (!rng.chance(mut_prob)) continue;
-    genes[i] = polynomial_mutation_value(genes[i], limits[i].min, limits[i].max, eta_m,
-                                         rng.uniform01());
+    genes[i] =
+        polynomial_mutation_value(genes[i], limits[i].min, limits[i].max, eta_m, rng.uniform01());
     ++changed;
   }
   return changed;

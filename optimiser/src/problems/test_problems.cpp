@@ -99,7 +99,7 @@ double zdt_g_sum(const std::vector<double>& x) {
   return 1.0 + 9.0 * sum / static_cast<double>(x.size() - 1);
 }
 
-constexpr int kDense = 20001;
+constexpr int kDense = 10001;
 
 std::unique_ptr<Problem> zdt(int which) {
   const std::string name = "zdt" + std::to_string(which);
@@ -129,9 +129,8 @@ std::unique_ptr<Problem> zdt(int which) {
             return two(x[0], g * (1 - std::sqrt(r) - r * std::sin(10 * kPi * x[0])));
           },
           [] {
-            return curve(0, 1, 50001, [](double f) {
-              return 1 - std::sqrt(f) - f * std::sin(10 * kPi * f);
-            });
+            return curve(0, 1, 20001,
+                         [](double f) { return 1 - std::sqrt(f) - f * std::sin(10 * kPi * f); });
           });
     case 4: {
       ProblemShape s = box(10, -5, 5, 2, 0);
@@ -233,8 +232,7 @@ std::unique_ptr<Problem> dtlz(int which) {
 }
 
 EvaluationOutcome bnh(const std::vector<double>& x) {
-  return two(4 * x[0] * x[0] + 4 * x[1] * x[1],
-             (x[0] - 5) * (x[0] - 5) + (x[1] - 5) * (x[1] - 5),
+  return two(4 * x[0] * x[0] + 4 * x[1] * x[1], (x[0] - 5) * (x[0] - 5) + (x[1] - 5) * (x[1] - 5),
              {25 - (x[0] - 5) * (x[0] - 5) - x[1] * x[1],
               (x[0] - 8) * (x[0] - 8) + (x[1] + 3) * (x[1] + 3) - 7.7});
 }
@@ -256,8 +254,8 @@ EvaluationOutcome osy(const std::vector<double>& x) {
   EvaluationOutcome o;
   o.objectives = {-(25 * sq(x[0] - 2) + sq(x[1] - 2) + sq(x[2] - 1) + sq(x[3] - 4) + sq(x[4] - 1)),
                   sq(x[0]) + sq(x[1]) + sq(x[2]) + sq(x[3]) + sq(x[4]) + sq(x[5])};
-  o.constraints = {x[0] + x[1] - 2,       6 - x[0] - x[1],          2 - x[1] + x[0],
-                   2 - x[0] + 3 * x[1],   4 - sq(x[2] - 3) - x[3],  sq(x[4] - 3) + x[5] - 4};
+  o.constraints = {x[0] + x[1] - 2,     6 - x[0] - x[1],         2 - x[1] + x[0],
+                   2 - x[0] + 3 * x[1], 4 - sq(x[2] - 3) - x[3], sq(x[4] - 3) + x[5] - 4};
   return o;
 }
 
@@ -279,23 +277,23 @@ std::unique_ptr<Problem> constrained(const std::string& name) {
     s.reals[1] = RealLimits{0, 3};
     return std::make_unique<TestProblem>(name, s, bnh, [] {
       Points xs;  // x1 = x2 in [0, 3], then x2 = 3 with x1 in [3, 5]
-      for (int i = 0; i <= 10000; ++i) xs.push_back({3.0 * i / 10000, 3.0 * i / 10000});
-      for (int i = 1; i <= 10000; ++i) xs.push_back({3 + 2.0 * i / 10000, 3});
+      for (int i = 0; i <= 6000; ++i) xs.push_back({3.0 * i / 6000, 3.0 * i / 6000});
+      for (int i = 1; i <= 4000; ++i) xs.push_back({3 + 2.0 * i / 4000, 3});
       return feasible_objectives(xs, bnh);
     });
   }
   if (name == "srn") {
     return std::make_unique<TestProblem>(name, box(2, -20, 20, 2, 2), srn, [] {
       Points xs;  // x1 = -2.5, x2 in [2.5, 14.79]
-      for (int i = 0; i <= 20000; ++i) xs.push_back({-2.5, 2.5 + 12.29 * i / 20000});
+      for (int i = 0; i <= 10000; ++i) xs.push_back({-2.5, 2.5 + 12.29 * i / 10000});
       return feasible_objectives(xs, srn);
     });
   }
   if (name == "tnk") {
     return std::make_unique<TestProblem>(name, box(2, 0, kPi, 2, 2), tnk, [] {
       Points xs;  // the boundary r^2 = 1 + 0.1 cos(16 t) of the first constraint
-      for (int i = 0; i <= 50000; ++i) {
-        const double t = kPi / 2 * i / 50000;
+      for (int i = 0; i <= 20000; ++i) {
+        const double t = kPi / 2 * i / 20000;
         const double r = std::sqrt(1 + 0.1 * std::cos(16 * t));
         xs.push_back({r * std::cos(t), r * std::sin(t)});
       }
@@ -309,7 +307,7 @@ std::unique_ptr<Problem> constrained(const std::string& name) {
     s.reals[4] = RealLimits{1, 5};
     return std::make_unique<TestProblem>(name, s, osy, [] {
       Points xs;  // the five segments of Deb (2001), table 8.8
-      const int n = 5000;
+      const int n = 2000;
       for (int i = 0; i <= n; ++i) {
         const double t = static_cast<double>(i) / n;
         xs.push_back({5, 1, 1 + 4 * t, 0, 5, 0});
@@ -328,9 +326,8 @@ std::unique_ptr<Problem> constrained(const std::string& name) {
 }  // namespace
 
 const std::vector<std::string>& test_problem_names() {
-  static const std::vector<std::string> names = {"zdt1",  "zdt2", "zdt3", "zdt4",
-                                                 "zdt6",  "dtlz1", "dtlz2", "bnh",
-                                                 "srn",   "tnk",  "osy"};
+  static const std::vector<std::string> names = {"zdt1",  "zdt2", "zdt3", "zdt4", "zdt6", "dtlz1",
+                                                 "dtlz2", "bnh",  "srn",  "tnk",  "osy"};
   return names;
 }
 

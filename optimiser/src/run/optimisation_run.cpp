@@ -39,7 +39,8 @@ json shape_json(const ProblemShape& shape) {
   json reals = json::array();
   for (const RealLimits& l : shape.reals) reals.push_back({l.min, l.max});
   json bins = json::array();
-  for (const BinaryGene& b : shape.binaries) bins.push_back({{"bits", b.bits}, {"limits", {b.min, b.max}}});
+  for (const BinaryGene& b : shape.binaries)
+    bins.push_back({{"bits", b.bits}, {"limits", {b.min, b.max}}});
   return json{{"objectives", shape.objectives},
               {"constraints", shape.constraints},
               {"realLimits", reals},
@@ -237,8 +238,9 @@ Status run_optimisation(const Problem& problem, const RunConfig& config, Evaluat
     json existing;
     if (auto st = read_json(run_path, existing); !st) return st;
     if (existing != description) {
-      return Status::error(run_path.string() + " describes another run (problem, settings or "
-                                               "task differ)");
+      return Status::error(run_path.string() +
+                           " describes another run (problem, settings or "
+                           "task differ)");
     }
     std::size_t evaluation_lines = 0;
     std::size_t generation_lines = 0;
@@ -289,10 +291,10 @@ Status run_optimisation(const Problem& problem, const RunConfig& config, Evaluat
   auto write_checkpoint = [&]() -> Status {
     if (auto st = evaluations.sync(); !st) return st;
     if (auto st = generations.sync(); !st) return st;
-    const json cp = {{"engine", engine->checkpoint()},
-                     {"run",
-                      {{"evaluation_lines", evaluations.lines()},
-                       {"generation_lines", generations.lines()}}}};
+    const json cp = {
+        {"engine", engine->checkpoint()},
+        {"run",
+         {{"evaluation_lines", evaluations.lines()}, {"generation_lines", generations.lines()}}}};
     return fw::write_file_atomically(checkpoint_path, cp.dump() + "\n");
   };
   if (!options.resume) {
@@ -309,7 +311,7 @@ Status run_optimisation(const Problem& problem, const RunConfig& config, Evaluat
     Status failure;
     evaluator.evaluate(problem, batch, [&](std::size_t index, EvaluationOutcome outcome) {
       if (!failure.is_ok() || index >= batch.size() || told[index]) return;
-      if (auto st = engine->tell(batch[index].id, outcome); !st) {
+      if (auto st = engine->tell(batch[index].id, std::move(outcome)); !st) {
         failure = st;
         return;
       }

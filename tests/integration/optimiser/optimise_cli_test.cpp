@@ -79,15 +79,16 @@ std::string without_wall_time(std::string text) {
 
 TEST(OptimiseCli, SigkillMidGenerationThenResumeReproducesTheUninterruptedRun) {
   test::TempDir tmp;
-  const std::vector<std::string> common = {"optimise", "--problem", "zdt1", "--pop", "20",
-                                           "--generations", "12", "--seed", "3"};
+  const std::vector<std::string> common = {"optimise",      "--problem", "zdt1",   "--pop", "20",
+                                           "--generations", "12",        "--seed", "3"};
   auto with = [&](std::vector<std::string> extra) {
     std::vector<std::string> a = common;
     a.insert(a.end(), extra.begin(), extra.end());
     return a;
   };
   const fs::path ref = tmp.path() / "ref";
-  ASSERT_EQ(run_stride(with({"--out", ref.string()}), tmp.path()), 0) << read(tmp.path() / "stderr");
+  ASSERT_EQ(run_stride(with({"--out", ref.string()}), tmp.path()), 0)
+      << read(tmp.path() / "stderr");
 
   const fs::path cut = tmp.path() / "cut";
   int kills = 0;
@@ -95,8 +96,8 @@ TEST(OptimiseCli, SigkillMidGenerationThenResumeReproducesTheUninterruptedRun) {
     // Slow evaluations (3 ms each) so that the kill lands inside a generation.
     std::vector<std::string> args =
         kills == 0 ? with({"--out", cut.string(), "--slow-eval-ms", "3"})
-                   : std::vector<std::string>{"optimise", "--out", cut.string(), "--resume",
-                                              "--slow-eval-ms", "3"};
+                   : std::vector<std::string>{"optimise", "--out",          cut.string(),
+                                              "--resume", "--slow-eval-ms", "3"};
     const pid_t pid = launch(args, tmp.path());
     std::size_t beyond = 0;
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
@@ -159,10 +160,10 @@ TEST(OptimiseCli, BadInputExitsTwoWithOneLineNamingIt) {
     EXPECT_NE(err.find(word), std::string::npos) << err;
     EXPECT_FALSE(fs::exists(out)) << "bad input must not create the run directory";
   }
-  ASSERT_EQ(run_stride({"optimise", "--problem", "bnh", "--pop", "8", "--generations", "2",
-                        "--out", out},
-                       tmp.path()),
-            0);
+  ASSERT_EQ(
+      run_stride({"optimise", "--problem", "bnh", "--pop", "8", "--generations", "2", "--out", out},
+                 tmp.path()),
+      0);
   EXPECT_EQ(run_stride({"optimise", "--problem", "bnh", "--out", out}, tmp.path()), 2);
   EXPECT_EQ(run_stride({"optimise", "--out", out, "--resume", "--pop", "12"}, tmp.path()), 2);
   EXPECT_EQ(run_stride({"optimise", "--help"}, tmp.path()), 0);

@@ -207,10 +207,14 @@ class FailingProblem final : public Problem {
     const double x = g.reals[1];
     if (x < 0.1) return EvaluationOutcome::failure("simulated time-out");
     EvaluationOutcome o = inner_->evaluate(g);
-    if (x < 0.2) o.objectives[0] = NAN;
-    else if (x < 0.3) o.objectives[1] = INFINITY;
-    else if (x < 0.35) o.objectives.pop_back();
-    else if (x < 0.4) o.objectives[0] = 1e300;
+    if (x < 0.2)
+      o.objectives[0] = NAN;
+    else if (x < 0.3)
+      o.objectives[1] = INFINITY;
+    else if (x < 0.35)
+      o.objectives.pop_back();
+    else if (x < 0.4)
+      o.objectives[0] = 1e300;
     return o;
   }
 
@@ -225,7 +229,8 @@ TEST(Nsga2, FailedEvaluationsBecomeInfeasibleAndNoNanReachesSorting) {
   std::unique_ptr<Nsga2> engine;
   ASSERT_TRUE(Nsga2::create(s, problem.shape(), std::nullopt, engine).is_ok());
   const std::vector<Candidate> first = engine->ask();
-  for (const Candidate& c : first) ASSERT_TRUE(engine->tell(c.id, problem.evaluate(c.genome)).is_ok());
+  for (const Candidate& c : first)
+    ASSERT_TRUE(engine->tell(c.id, problem.evaluate(c.genome)).is_ok());
   int failed = 0;
   for (const Individual& ind : engine->batch()) {
     for (const double f : ind.result.objectives) ASSERT_TRUE(std::isfinite(f));
@@ -377,8 +382,10 @@ TEST(Nsga2, ElitistSurvivalKeepsWholeFrontsThenTheLeastCrowded) {
       EXPECT_FALSE(kept);
     }
     if (ranks[i] == worst_rank) {
-      if (kept) min_kept = std::min(min_kept, crowd[i]);
-      else max_dropped = std::max(max_dropped, crowd[i]);
+      if (kept)
+        min_kept = std::min(min_kept, crowd[i]);
+      else
+        max_dropped = std::max(max_dropped, crowd[i]);
     }
   }
   EXPECT_GE(min_kept, max_dropped);

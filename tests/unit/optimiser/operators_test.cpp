@@ -35,8 +35,9 @@ TEST(PolynomialMutation, MatchesHandComputedValues) {
 }
 
 /// Compares a histogram of `draw()` over [lo, hi) with the probabilities from `cdf`.
-void expect_matches_cdf(const std::function<double()>& draw, const std::function<double(double)>& cdf,
-                        double lo, double hi, int bins, int samples, double tolerance) {
+void expect_matches_cdf(const std::function<double()>& draw,
+                        const std::function<double(double)>& cdf, double lo, double hi, int bins,
+                        int samples, double tolerance) {
   std::vector<int> counts(static_cast<std::size_t>(bins), 0);
   int outside = 0;
   for (int i = 0; i < samples; ++i) {
@@ -78,7 +79,7 @@ void check_sbx_density(double y1, double y2, double eta) {
   Rng rng(42);
   const double mid = 0.5 * (y1 + y2);
   const double s = y2 - y1;
-  const double beta1 = 1 + 2 * y1 / s;        // limits [0, 1]
+  const double beta1 = 1 + 2 * y1 / s;  // limits [0, 1]
   const double beta2 = 1 + 2 * (1 - y2) / s;
   // c1 = mid - betaq1 s/2  =>  P(c1 <= x) = 1 - F1(2 (mid - x) / s)
   expect_matches_cdf([&] { return sbx_pair(y1, y2, 0, 1, eta, rng.uniform01()).first; },
@@ -90,8 +91,12 @@ void check_sbx_density(double y1, double y2, double eta) {
                      25, 200000, 0.005);
 }
 
-TEST(Sbx, ChildrenFollowTheBoundedDensityAwayFromLimits) { check_sbx_density(0.4, 0.6, 2.0); }
-TEST(Sbx, ChildrenFollowTheTruncatedDensityNearALimit) { check_sbx_density(0.05, 0.25, 5.0); }
+TEST(Sbx, ChildrenFollowTheBoundedDensityAwayFromLimits) {
+  check_sbx_density(0.4, 0.6, 2.0);
+}
+TEST(Sbx, ChildrenFollowTheTruncatedDensityNearALimit) {
+  check_sbx_density(0.05, 0.25, 5.0);
+}
 
 TEST(PolynomialMutation, FollowsTheBoundedDensity) {
   const double y = 0.2;

@@ -53,8 +53,8 @@ TEST(RunDirectory, WritesEveryFile) {
   RunSummary summary;
   ASSERT_TRUE(run_optimisation(*problem, config("bnh"), evaluator, options, summary).is_ok());
   EXPECT_EQ(calls, 6);
-  for (const char* f : {"run.json", "evaluations.jsonl", "generations.jsonl", "checkpoint.json",
-                        "pareto.csv"}) {
+  for (const char* f :
+       {"run.json", "evaluations.jsonl", "generations.jsonl", "checkpoint.json", "pareto.csv"}) {
     EXPECT_TRUE(fs::exists(options.dir / f)) << f;
   }
   const std::string evaluations = read(options.dir / "evaluations.jsonl");
@@ -136,8 +136,9 @@ TEST(RunDirectory, DamagedCheckpointIsAClearError) {
   options.dir = tmp.path();
   RunSummary summary;
   ASSERT_TRUE(run_optimisation(*problem, config("zdt2"), serial, options, summary).is_ok());
-  tmp.write("checkpoint.json", "{\"engine\": {\"format\": \"x\"}, \"run\": {\"evaluation_lines\": 3, "
-                               "\"generation_lines\": 1}}");
+  tmp.write("checkpoint.json",
+            "{\"engine\": {\"format\": \"x\"}, \"run\": {\"evaluation_lines\": 3, "
+            "\"generation_lines\": 1}}");
   options.resume = true;
   const Status st = run_optimisation(*problem, config("zdt2"), serial, options, summary);
   ASSERT_FALSE(st.is_ok());

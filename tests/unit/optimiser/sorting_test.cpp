@@ -84,7 +84,7 @@ TEST(Crowding, HandExample) {
   EXPECT_EQ(d[3], kInf);
   EXPECT_NEAR(d[1], 0.5 / 1 + 8.0 / 10, 1e-15);  // f1 gap 0.5, f2 gap (10 - 2) / 10
   EXPECT_NEAR(d[2], 0.9 / 1 + 6.0 / 10, 1e-15);  // f1 gap 0.9, f2 gap (6 - 0) / 10
-  EXPECT_EQ(d[4], -1.0);                          // not in the front: untouched
+  EXPECT_EQ(d[4], -1.0);                         // not in the front: untouched
   std::vector<double> two(pts.size(), 0.0);
   crowding_distances(pts, {1, 2}, two);
   EXPECT_EQ(two[1], kInf);

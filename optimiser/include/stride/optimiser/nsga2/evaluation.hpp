@@ -15,9 +15,9 @@
 
 namespace stride::opt {
 
-inline constexpr double kMaxMagnitude = 1e30;      ///< larger |values| count as failures
-inline constexpr double kFailedObjective = 1e30;   ///< objectives of a failed evaluation
-inline constexpr double kFailedViolation = 1e30;   ///< violation of a failed evaluation
+inline constexpr double kMaxMagnitude = 1e30;     ///< larger |values| count as failures
+inline constexpr double kFailedObjective = 1e30;  ///< objectives of a failed evaluation
+inline constexpr double kFailedViolation = 1e30;  ///< violation of a failed evaluation
 
 struct EvaluationOutcome {
   std::vector<double> objectives;
@@ -46,6 +46,6 @@ struct Result {
 };
 
 /// Checks counts and values and computes the violation (see the file comment).
-Result sanitise(const ProblemShape& shape, const EvaluationOutcome& outcome);
+Result sanitise(const ProblemShape& shape, EvaluationOutcome outcome);
 
 }  // namespace stride::opt

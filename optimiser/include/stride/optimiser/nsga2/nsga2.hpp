@@ -73,7 +73,7 @@ class Nsga2 {
   /// Members of the current batch still waiting for a result (empty when none).
   std::vector<Candidate> ask() const;
   /// Records the result of batch member `id`; an unknown id or a second result is an error.
-  Status tell(std::uint64_t id, const EvaluationOutcome& outcome);
+  Status tell(std::uint64_t id, EvaluationOutcome outcome);
   bool batch_complete() const;
   /// Integrates the complete batch and builds the next one (see the file comment).
   Status advance();

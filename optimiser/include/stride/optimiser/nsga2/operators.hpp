@@ -37,8 +37,8 @@ std::pair<double, double> sbx_pair(double y1, double y2, double yl, double yu, d
 
 /// SBX on all real genes of two parents; writes the two children.
 void sbx_crossover(const std::vector<double>& p1, const std::vector<double>& p2,
-                   const std::vector<RealLimits>& limits, double cross_prob, double eta_c,
-                   Rng& rng, std::vector<double>& c1, std::vector<double>& c2);
+                   const std::vector<RealLimits>& limits, double cross_prob, double eta_c, Rng& rng,
+                   std::vector<double>& c1, std::vector<double>& c2);
 
 /// The mutated value of one gene for a given u.
 double polynomial_mutation_value(double y, double yl, double yu, double eta_m, double u);

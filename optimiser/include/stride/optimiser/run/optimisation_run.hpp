@@ -31,7 +31,7 @@ namespace stride::opt {
 struct RunConfig {
   std::string problem;  ///< problem or task name
   Nsga2Settings settings;
-  std::optional<Genome> start;            ///< seeds the initial population when set
+  std::optional<Genome> start;                     ///< seeds the initial population when set
   nlohmann::json task = nlohmann::json::object();  ///< task configuration, recorded as is
 };
 
@@ -41,8 +41,8 @@ struct GenerationRecord {
   std::uint64_t evaluations = 0;
   std::uint64_t failures = 0;
   std::uint64_t cache_hits = 0;
-  int feasible = 0;    ///< feasible members of the population
-  int front_size = 0;  ///< members of the first front
+  int feasible = 0;                         ///< feasible members of the population
+  int front_size = 0;                       ///< members of the first front
   std::optional<double> hypervolume;        ///< normalised, reference point 1.1 per objective
   std::optional<double> hypervolume_ratio;  ///< hypervolume / the true front's
   std::optional<double> igd;                ///< normalised

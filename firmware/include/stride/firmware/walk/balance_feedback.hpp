@@ -1,0 +1,42 @@
+// BalanceFeedback: optional gyro feedback to the support leg's ankles and hips, the way the
+// UPenn walk (and NUbots' port, where it was disabled) stabilises an open-loop gait. Not part
+// of the 46-parameter genome. Defaults: gains found by a random search in the simulator with
+// the 46 at Ind_O (the open-loop walk fell in every simulated run; see the walk README);
+// setting every gain to 0 gives the seed's open-loop walk.
+//
+//   g_f  <- g_f + alpha (g - g_f),  alpha = dt / (dt + walk.balance.filter_time)   [rad/s]
+//   shift_j = clamp(k_j * deadband(g_f), -max_shift, +max_shift)                    [rad]
+//   ankle_pitch += shift(k_ankle_pitch, g_y),  hip_pitch += shift(k_hip_pitch, g_y)
+//   ankle_roll  += shift(k_ankle_roll, g_x),   hip_roll  += shift(k_hip_roll, g_x)
+// g is the torso gyro (rad/s, torso frame). Signs: a torso pitching forward (g_y > 0) gets
+// more toe-down ankle and more backward hip pitch on the support leg, both of which rotate the
+// torso back; likewise for roll. Gains k_j are in seconds (rad of joint per rad/s of rate).
+#pragma once
+
+#include "stride/firmware/parameter_store.hpp"
+#include "stride/hal/sensor_frame.hpp"
+
+namespace stride::fw::walk {
+
+struct BalanceShift {
+  double ankle_pitch = 0.0, ankle_roll = 0.0, hip_pitch = 0.0, hip_roll = 0.0;  ///< [rad]
+};
+
+class BalanceFeedback {
+ public:
+  /// Registers walk.balance.* (start-up only; throws on a name clash).
+  BalanceFeedback(ParameterStore& store, double period_s);
+
+  void reset() noexcept;
+  /// Filters this tick's gyro and returns the joint shifts for the support leg. Real-time.
+  BalanceShift update(const hal::Cm730State& imu) noexcept;
+
+ private:
+  const ParameterStore& store_;
+  double period_s_;
+  ParamHandle ankle_pitch_gain_, ankle_roll_gain_, hip_pitch_gain_, hip_roll_gain_;
+  ParamHandle filter_time_, deadband_, max_shift_;
+  double gyro_x_ = 0.0, gyro_y_ = 0.0;
+};
+
+}  // namespace stride::fw::walk

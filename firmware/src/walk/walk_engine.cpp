@@ -1,0 +1,326 @@
+// WalkEngine: state machine, step planning and per-tick target generation (see the header and
+// firmware/walk/README.md).
+#include "stride/firmware/walk/walk_engine.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+
+#include "stride/firmware/walk/arm_swing.hpp"
+#include "stride/firmware/walk/swing_foot.hpp"
+
+namespace stride::fw {
+namespace {
+
+using walk::Foot;
+using walk::Pose2;
+
+std::size_t servo_index(const ServoTable& servos, const char* name) {
+  const auto index = servos.index_of(name);
+  if (!index) throw std::runtime_error(std::string("walk engine: servo table has no ") + name);
+  return *index;
+}
+
+double gain_register(double gain) {
+  return std::clamp(std::round(2.54 * gain), 0.0, 254.0);
+}
+
+Eigen::Matrix3d yaw_pitch(double yaw, double pitch) {
+  return (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) *
+          Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()))
+      .toRotationMatrix();
+}
+
+}  // namespace
+
+WalkEngine::WalkEngine(ParameterStore& store, const ServoTable& servos, std::int64_t period_ns)
+    : parameter_set_(store),
+      period_s_(static_cast<double>(period_ns) * 1e-9),
+      balance_(store, period_s_) {
+  if (period_ns <= 0) throw std::invalid_argument("walk engine: control period must be > 0");
+  left_leg_index_ = {servo_index(servos, "l_hip_yaw"),     servo_index(servos, "l_hip_roll"),
+                     servo_index(servos, "l_hip_pitch"),   servo_index(servos, "l_knee"),
+                     servo_index(servos, "l_ankle_pitch"), servo_index(servos, "l_ankle_roll")};
+  right_leg_index_ = {servo_index(servos, "r_hip_yaw"),     servo_index(servos, "r_hip_roll"),
+                      servo_index(servos, "r_hip_pitch"),   servo_index(servos, "r_knee"),
+                      servo_index(servos, "r_ankle_pitch"), servo_index(servos, "r_ankle_roll")};
+  left_arm_index_ = {servo_index(servos, "l_shoulder_pitch"),
+                     servo_index(servos, "l_shoulder_roll"), servo_index(servos, "l_elbow")};
+  right_arm_index_ = {servo_index(servos, "r_shoulder_pitch"),
+                      servo_index(servos, "r_shoulder_roll"), servo_index(servos, "r_elbow")};
+  std::size_t k = 0;
+  for (auto i : left_arm_index_) driven_index_[k++] = i;
+  for (auto i : right_arm_index_) driven_index_[k++] = i;
+  for (auto i : left_leg_index_) driven_index_[k++] = i;
+  for (auto i : right_leg_index_) driven_index_[k++] = i;
+  parameter_set_.read(params_);
+  reset_stance();
+}
+
+void WalkEngine::reset_stance() noexcept {
+  const double half_width = walk::nominal_foot_offset(params_).y;
+  left_destination_ = {0.0, half_width, 0.0};
+  right_destination_ = {0.0, -half_width, 0.0};
+  left_source_ = left_destination_;
+  right_source_ = right_destination_;
+  torso_destination_ = walk::torso_between(left_destination_, right_destination_, params_);
+  torso_source_ = torso_destination_;
+  support_ = torso_destination_;
+  swing_ = Foot::kRight;
+  velocity_ = {};
+  step_count_ = 0;
+}
+
+void WalkEngine::start(const hal::SensorFrame& sensors, const hal::CommandFrame& last_sent,
+                       hal::Tick tick) noexcept {
+  parameter_set_.read(params_);
+  reset_stance();
+  state_ = State::kStarting;
+  stop_requested_ = false;
+  start_tick_ = tick;
+  step_begin_s_ = 0.0;
+  balance_.reset();
+  std::array<double, hal::kServoCount> pose{};
+  for (std::size_t k = 0; k < kDriven; ++k) {
+    const std::size_t i = driven_index_[k];
+    const double from = last_sent.servos[i].torque_enable ? last_sent.servos[i].position_rad
+                                                          : sensors.servos[i].position_rad;
+    blend_from_[k] = std::isfinite(from) ? from : 0.0;
+    pose[i] = blend_from_[k];
+  }
+  adopt_stance(pose);
+}
+
+void WalkEngine::adopt_stance(const std::array<double, hal::kServoCount>& pose) noexcept {
+  // Where the feet are now (forward kinematics of the pose being held), projected into the
+  // walk plane with the torso reference point at the origin: the walk starts from these feet
+  // (the start blend moves only the torso), so nothing has to slide while both feet are down.
+  const Eigen::Matrix3d trunk = yaw_pitch(0.0, params_.body_tilt);
+  const Eigen::Vector3d reference(walk::LegGeometry::kHipX, 0.0,
+                                  walk::LegGeometry::kHipZ + kTorsoAboveHip);
+  auto foot_in_plane = [&](const walk::LegKinematics& leg,
+                           const std::array<std::size_t, 6>& index) {
+    const walk::LegJoints q{pose[index[0]], pose[index[1]], pose[index[2]],
+                            pose[index[3]], pose[index[4]], pose[index[5]]};
+    const walk::Pose3 foot = leg.forward(q);
+    const Eigen::Vector3d p = trunk * (foot.position - reference);
+    const Eigen::Matrix3d r = trunk * foot.rotation;
+    return Pose2{p.x(), p.y(), std::atan2(r(1, 0), r(0, 0))};
+  };
+  const Pose2 left = foot_in_plane(left_leg_, left_leg_index_);
+  const Pose2 right = foot_in_plane(right_leg_, right_leg_index_);
+  const walk::Pose2 rel = walk::relative(right, left);
+  const bool plausible = std::isfinite(rel.x) && std::isfinite(rel.y) && std::isfinite(rel.theta) &&
+                         std::abs(rel.x) < 0.15 && rel.y > 0.08 && rel.y < 0.4 &&
+                         std::abs(rel.theta) < 0.5;
+  if (!plausible) return;  // keep the nominal stance of reset_stance()
+  left_destination_ = left_source_ = left;
+  right_destination_ = right_source_ = right;
+  torso_destination_ = walk::torso_between(left, right, params_);
+  torso_source_ = torso_destination_;
+  support_ = torso_destination_;
+}
+
+bool WalkEngine::done() const noexcept {
+  return state_ == State::kStopped;
+}
+
+void WalkEngine::set_velocity(double vx, double vy, double vtheta) noexcept {
+  command_ = {vx, vy, vtheta};  // scaled (NaN -> 0, clamped) at each step start
+}
+
+void WalkEngine::request_stop() noexcept {
+  stop_requested_ = true;
+  if (state_ == State::kWalking) state_ = State::kStopRequest;
+}
+
+void WalkEngine::begin_step() noexcept {
+  parameter_set_.read(params_);
+  ++step_count_;
+  const auto target = walk::scale_command(command_, params_);
+  velocity_ = walk::accelerate(velocity_, target, params_.step_time, params_);
+  if (step_count_ <= kStepsWithoutLift) velocity_ = {};
+  left_source_ = left_destination_;
+  right_source_ = right_destination_;
+  torso_source_ = torso_destination_;
+  if (state_ == State::kLastStep) {
+    state_ = State::kStopped;
+    velocity_ = {};
+    return;
+  }
+  swing_ = walk::other(swing_);
+  const bool left_swings = swing_ == Foot::kLeft;
+  const Pose2& support_foot = left_swings ? right_source_ : left_source_;
+  Pose2& swing_destination = left_swings ? left_destination_ : right_destination_;
+  const Pose2& swing_source = left_swings ? left_source_ : right_source_;
+  if (state_ == State::kStopRequest) {
+    state_ = State::kLastStep;
+    velocity_ = {};
+    swing_destination = walk::plan_closing_step(swing_, support_foot, params_);
+  } else {
+    swing_destination =
+        walk::plan_swing_destination(swing_, swing_source, support_foot, velocity_, params_);
+  }
+  torso_destination_ = walk::torso_between(left_destination_, right_destination_, params_);
+  support_ = walk::support_point(walk::other(swing_), support_foot, params_);
+  const auto& p = params_;
+  lipm_x_.solve(torso_source_.x, torso_destination_.x, support_.x, p.step_time, p.zmp_time,
+                p.single_support_start, p.single_support_end);
+  lipm_y_.solve(torso_source_.y, torso_destination_.y, support_.y, p.step_time, p.zmp_time,
+                p.single_support_start, p.single_support_end);
+}
+
+void WalkEngine::step(const hal::SensorFrame& sensors, hal::Tick tick,
+                      hal::CommandFrame& out) noexcept {
+  tick_clamped_ = false;
+  balance_shift_ = balance_.update(sensors.cm730);
+  const double t = static_cast<double>(std::max<hal::Tick>(0, tick - start_tick_)) * period_s_;
+  double blend = 1.0;
+  if (state_ == State::kStarting) {
+    if (t < kStartBlendTime) {
+      const double u = t / kStartBlendTime;
+      blend = u * u * (3.0 - 2.0 * u);
+    } else {
+      state_ = stop_requested_ ? State::kStopped : State::kWalking;
+      if (state_ == State::kWalking) {
+        step_begin_s_ = 0.0;
+        begin_step();
+      }
+    }
+  }
+  if (state_ == State::kWalking || state_ == State::kStopRequest || state_ == State::kLastStep) {
+    const double walking_time = t - kStartBlendTime;
+    double time_in_step = walking_time - step_begin_s_;
+    for (int guard = 0; guard < 8 && time_in_step >= params_.step_time; ++guard) {
+      step_begin_s_ += params_.step_time;
+      begin_step();
+      if (state_ == State::kStopped) break;
+      time_in_step = walking_time - step_begin_s_;
+    }
+    if (state_ == State::kStopped) {
+      compute_targets(0.0, true);
+    } else {
+      compute_targets(std::clamp(time_in_step, 0.0, params_.step_time), false);
+    }
+  } else {
+    compute_targets(0.0, true);
+  }
+  if (tick_clamped_) ++ik_clamped_ticks_;
+  snapshot_.ik_clamped = tick_clamped_;
+  snapshot_.state = state_;
+  snapshot_.step_count = step_count_;
+  snapshot_.swing = swing_;
+  snapshot_.support_point = support_;
+  snapshot_.velocity = velocity_;
+
+  const double arm_gain = gain_register(params_.gain_arms);
+  const double leg_gain = gain_register(params_.gain_legs);
+  for (std::size_t k = 0; k < kDriven; ++k) {
+    const std::size_t i = driven_index_[k];
+    hal::ServoCommand& command = out.servos[i];
+    command.position_rad = blend_from_[k] + blend * (targets_[i] - blend_from_[k]);
+    command.moving_speed_rad_s = 0.0;
+    command.p_gain = k < 6 ? arm_gain : leg_gain;
+    command.i_gain = 0.0;
+    command.d_gain = 0.0;
+    command.torque_limit = 1.0;
+    command.torque_enable = true;
+  }
+  out.tick = tick;
+}
+
+void WalkEngine::compute_targets(double time_in_step, bool standing) noexcept {
+  const auto& p = params_;
+  Pose2 left = left_destination_;
+  Pose2 right = right_destination_;
+  Pose2 torso;
+  double phase = 0.5;
+  double left_lift = 0.0;
+  double right_lift = 0.0;
+  double left_roll = 0.0;
+  double right_roll = 0.0;
+  if (standing) {
+    torso = walk::torso_between(left, right, p);
+  } else {
+    phase = std::clamp(time_in_step / p.step_time, 0.0, 1.0);
+    torso = walk::interpolate(torso_source_, torso_destination_, phase);
+    torso.x = lipm_x_.position(time_in_step);
+    torso.y = lipm_y_.position(time_in_step);
+    const auto profile = walk::swing_profile(phase, p.single_support_start, p.single_support_end);
+    const double lift = step_count_ > kStepsWithoutLift
+                            ? p.step_height * profile.vertical * walk::lift_factor(velocity_, p)
+                            : 0.0;
+    const double compensation = p.hip_roll_compensation * profile.compensation;
+    if (swing_ == Foot::kLeft) {
+      left = walk::interpolate(left_source_, left_destination_, profile.horizontal);
+      right = right_source_;
+      left_lift = lift;
+      right_roll = -compensation;
+    } else {
+      right = walk::interpolate(right_source_, right_destination_, profile.horizontal);
+      left = left_source_;
+      right_lift = lift;
+      left_roll = compensation;
+    }
+  }
+  // The support leg takes the balance feedback (both legs while standing).
+  const bool left_supports = standing || swing_ == Foot::kRight;
+  const bool right_supports = standing || swing_ == Foot::kLeft;
+  solve_leg(left_leg_, left, left_lift, torso, left_roll, left_supports, left_leg_index_);
+  solve_leg(right_leg_, right, right_lift, torso, right_roll, right_supports, right_leg_index_);
+  write_arms(phase, torso, left, right);
+  snapshot_.phase = phase;
+  snapshot_.torso = torso;
+  snapshot_.left_foot = left;
+  snapshot_.right_foot = right;
+  snapshot_.left_lift = left_lift;
+  snapshot_.right_lift = right_lift;
+}
+
+void WalkEngine::solve_leg(const walk::LegKinematics& leg, const Pose2& foot, double lift,
+                           const Pose2& torso, double hip_roll_offset, bool support,
+                           const std::array<std::size_t, 6>& servo_index) noexcept {
+  const Eigen::Matrix3d trunk_rotation = yaw_pitch(torso.theta, params_.body_tilt);
+  const Eigen::Vector3d torso_position(torso.x, torso.y, params_.body_height);
+  const Eigen::Vector3d ankle(foot.x, foot.y, lift + walk::LegGeometry::kAnkleHeight);
+  const Eigen::Vector3d reference(walk::LegGeometry::kHipX, 0.0,
+                                  walk::LegGeometry::kHipZ + kTorsoAboveHip);
+  walk::Pose3 target;
+  target.position = reference + trunk_rotation.transpose() * (ankle - torso_position);
+  target.rotation = trunk_rotation.transpose() *
+                    Eigen::AngleAxisd(foot.theta, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  const walk::LegIkResult ik = leg.inverse(target);
+  tick_clamped_ = tick_clamped_ || ik.clamped;
+  walk::LegJoints q = ik.joints;
+  q.hip_roll += hip_roll_offset;
+  if (support) {
+    q.hip_roll += balance_shift_.hip_roll;
+    q.hip_pitch += balance_shift_.hip_pitch;
+    q.ankle_pitch += balance_shift_.ankle_pitch;
+    q.ankle_roll += balance_shift_.ankle_roll;
+  }
+  targets_[servo_index[0]] = q.hip_yaw;
+  targets_[servo_index[1]] = q.hip_roll;
+  targets_[servo_index[2]] = q.hip_pitch;
+  targets_[servo_index[3]] = q.knee;
+  targets_[servo_index[4]] = q.ankle_pitch;
+  targets_[servo_index[5]] = q.ankle_roll;
+}
+
+void WalkEngine::write_arms(double phase, const Pose2& torso, const Pose2& left_foot,
+                            const Pose2& right_foot) noexcept {
+  const auto arms = walk::arm_swing(phase, swing_, walk::relative(torso, left_foot),
+                                    walk::relative(torso, right_foot), params_);
+  // Table E arm pitches are NUbots angles: URDF shoulder pitch = NUbots - pi/2 (igus.md 1.5).
+  constexpr double kPitchOffset = std::numbers::pi / 2.0;
+  targets_[left_arm_index_[0]] = arms.left.pitch - kPitchOffset;
+  targets_[left_arm_index_[1]] = arms.left.roll;
+  targets_[left_arm_index_[2]] = arms.left.elbow;
+  targets_[right_arm_index_[0]] = arms.right.pitch - kPitchOffset;
+  targets_[right_arm_index_[1]] = arms.right.roll;
+  targets_[right_arm_index_[2]] = arms.right.elbow;
+}
+
+}  // namespace stride::fw
