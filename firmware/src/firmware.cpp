@@ -1,11 +1,12 @@
 // Firmware composition root: registration order, parameter file, loop period.
 #include "stride/firmware/firmware.hpp"
 
-#include "stride/firmware/walk/walk_engine.hpp"
-
 #include <cmath>
 #include <cstdlib>
 #include <exception>
+
+#include "stride/firmware/script/script_engine.hpp"
+#include "stride/firmware/walk/walk_engine.hpp"
 
 #ifndef STRIDE_FIRMWARE_DATA_DIR
 #define STRIDE_FIRMWARE_DATA_DIR "."
@@ -36,6 +37,7 @@ struct Firmware::Engines {
   std::unique_ptr<WalkEngine> walk_engine;
   WalkControl* walk = nullptr;
   ScriptControl* script = nullptr;
+  std::unique_ptr<ScriptEngine> script_engine;
 };
 
 Firmware::~Firmware() = default;
@@ -69,11 +71,9 @@ Status Firmware::create(const FirmwareOptions& options, std::unique_ptr<Firmware
   }
   const double rate_hz = fw->params_.value(rate_handle);
   fw->period_ns_ = static_cast<std::int64_t>(std::llround(1e9 / rate_hz));
-  const double period_s = static_cast<double>(fw->period_ns_) * 1e-9;
-  (void)period_s;
 
   fw->engines_ = std::make_unique<Engines>();
-  // Walk and script engines are constructed here once they exist (issues 5 and 6).
+  // The motion engines register their parameters here, before the parameter file applies.
   try {
     fw->engines_->walk_engine =
         std::make_unique<WalkEngine>(fw->params_, fw->servos_, fw->period_ns_);
@@ -81,6 +81,13 @@ Status Firmware::create(const FirmwareOptions& options, std::unique_ptr<Firmware
     return Status::error(e.what());
   }
   fw->engines_->walk = fw->engines_->walk_engine.get();
+  // Scripts are loaded before the controller: the motion manager resolves the get-up scripts.
+  fw->engines_->script_engine =
+      std::make_unique<ScriptEngine>(fw->period_ns_, fw->params_, fw->servos_);
+  const std::filesystem::path scripts_dir =
+      options.scripts_dir.empty() ? data_dir() / "scripts" : options.scripts_dir;
+  if (Status s = fw->engines_->script_engine->load_folder(scripts_dir); !s) return s;
+  fw->engines_->script = fw->engines_->script_engine.get();
 
   fw->controller_ =
       std::make_unique<Controller>(fw->params_, fw->servos_, fw->period_ns_,

@@ -184,8 +184,13 @@ void MotionManager::step(const hal::SensorFrame& sensors, hal::Tick tick, bool f
       }
       if (params_.value(get_up_enabled_) != 0.0 && lying >= params_.value(fallen_settle_time_)) {
         const auto& a = sensors.cm730.accel_mps2;
-        const bool on_front = a[0] < 0.0;                    // torso x axis points down
-        const bool clear = std::abs(a[0]) > std::abs(a[1]);  // not lying on a side
+        const bool on_front = a[0] < 0.0;  // torso x axis points down
+        // On a side, wait one more settle time (it may still roll over), then play the script of
+        // the side the torso leans to: its first frames tip the robot onto its front or back,
+        // and the retry picks the script for that side. (Without this a robot lying still on a
+        // side stayed down for ever.)
+        const bool clear =
+            std::abs(a[0]) > std::abs(a[1]) || lying >= 2.0 * params_.value(fallen_settle_time_);
         const int index = on_front ? get_up_front_ : get_up_back_;
         if (clear && index >= 0 &&
             start_script(index, on_front ? "get_up_front" : "get_up_back", sensors, last, tick)) {

@@ -40,4 +40,5 @@ stride::Status make(const stride::fw::CliArgs& args, std::int64_t period_ns,
 
 }  // namespace
 
-STRIDE_HAL_BACKEND(sim, "Simbody simulation in lockstep (--realtime: paced by the clock)", declare, make);
+STRIDE_HAL_BACKEND(sim, "Simbody simulation in lockstep (--realtime: paced by the clock)", declare,
+                   make);

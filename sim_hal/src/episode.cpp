@@ -58,7 +58,8 @@ EpisodeResult run_episode(SimRobot& robot, const StepFunction& controller,
     if (world.status() != WorldStatus::kRunning) break;
     if (t >= options.metrics_start_s) {
       const auto& a = sensors.cm730.accel_mps2;
-      result.max_accel = std::max(result.max_accel, std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]));
+      result.max_accel =
+          std::max(result.max_accel, std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]));
       result.max_fps = std::max(result.max_fps, std::sqrt(a[0] * a[0] + a[1] * a[1]));
     }
     const double forward = torso.translation().x() - start.torso.translation().x();

@@ -5,11 +5,11 @@
 
 #include <Eigen/Eigenvalues>
 
+#include <urdf_parser/urdf_parser.h>
 #include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
-#include <urdf_parser/urdf_parser.h>
 
 namespace stride::sim {
 namespace {
@@ -23,7 +23,9 @@ Eigen::Isometry3d to_isometry(const urdf::Pose& pose) {
   return out;
 }
 
-bool finite(const Eigen::Vector3d& v) { return v.allFinite(); }
+bool finite(const Eigen::Vector3d& v) {
+  return v.allFinite();
+}
 
 bool valid_inertia(const Eigen::Matrix3d& inertia) {
   if (!inertia.allFinite()) return false;
@@ -39,8 +41,9 @@ bool valid_inertia(const Eigen::Matrix3d& inertia) {
 void merge_into(LinkSpec& parent, const LinkSpec& child, const Eigen::Isometry3d& pose) {
   const double m = parent.mass + child.mass;
   const Eigen::Vector3d child_com = pose * child.com;
-  const Eigen::Vector3d com = m > 0 ? Eigen::Vector3d((parent.mass * parent.com + child.mass * child_com) / m)
-                                    : Eigen::Vector3d::Zero();
+  const Eigen::Vector3d com =
+      m > 0 ? Eigen::Vector3d((parent.mass * parent.com + child.mass * child_com) / m)
+            : Eigen::Vector3d::Zero();
   auto shift = [](double mass, const Eigen::Vector3d& d) {
     return mass * (d.squaredNorm() * Eigen::Matrix3d::Identity() - d * d.transpose());
   };
@@ -124,7 +127,8 @@ class Builder {
     for (const urdf::JointSharedPtr& joint : children) {
       const urdf::LinkConstSharedPtr child = urdf_.getLink(joint->child_link_name);
       if (!child) return error("joint '" + joint->name + "': missing child link");
-      const Eigen::Isometry3d origin = link_in_body * to_isometry(joint->parent_to_joint_origin_transform);
+      const Eigen::Isometry3d origin =
+          link_in_body * to_isometry(joint->parent_to_joint_origin_transform);
       if (!finite(origin.translation()) || !origin.linear().allFinite())
         return error("joint '" + joint->name + "': non-finite origin");
       LinkSpec child_spec;
@@ -174,8 +178,8 @@ class Builder {
       child_spec.parent_joint = static_cast<int>(joints.size());
       links.push_back(child_spec);
       joints.push_back(spec);
-      if (Status s = add_children(*child, spec.child_link, Eigen::Isometry3d::Identity(), links,
-                                  joints);
+      if (Status s =
+              add_children(*child, spec.child_link, Eigen::Isometry3d::Identity(), links, joints);
           !s)
         return s;
     }

@@ -29,7 +29,8 @@ MotorCurve motor_curve(fw::ServoModel model, double voltage_v) {
   static constexpr double kMx106Rpm[3] = {41.0, 45.0, 55.0};
   const bool mx64 = model == fw::ServoModel::kMx64;
   MotorCurve out;
-  out.stall_torque_nm = std::max(0.0, interpolate(kVolts, mx64 ? kMx64Torque : kMx106Torque, voltage_v));
+  out.stall_torque_nm =
+      std::max(0.0, interpolate(kVolts, mx64 ? kMx64Torque : kMx106Torque, voltage_v));
   out.no_load_speed_rad_s =
       std::max(1e-3, interpolate(kVolts, mx64 ? kMx64Rpm : kMx106Rpm, voltage_v) * kRpm);
   out.gear_ratio = mx64 ? 200.0 : 225.0;
@@ -76,8 +77,10 @@ double ServoModel::step(double q, double w, double h) {
   joint_tau -= std::copysign(stiction, w);
   // 5. End stops.
   if (p.limited) {
-    if (q > p.upper) joint_tau -= p.stop_stiffness * (q - p.upper) + p.stop_damping * std::max(w, 0.0);
-    if (q < p.lower) joint_tau += p.stop_stiffness * (p.lower - q) - p.stop_damping * std::min(w, 0.0);
+    if (q > p.upper)
+      joint_tau -= p.stop_stiffness * (q - p.upper) + p.stop_damping * std::max(w, 0.0);
+    if (q < p.lower)
+      joint_tau += p.stop_stiffness * (p.lower - q) - p.stop_damping * std::min(w, 0.0);
   }
   // Thermal first-order model: heats with (tau / tau_s)^2.
   const double rel = p.stall_torque_nm > 0 ? tau / p.stall_torque_nm : 0.0;
@@ -87,8 +90,9 @@ double ServoModel::step(double q, double w, double h) {
 }
 
 double ServoModel::load() const {
-  return params_.stall_torque_nm > 0 ? std::clamp(motor_torque_ / params_.stall_torque_nm, -1.0, 1.0)
-                                     : 0.0;
+  return params_.stall_torque_nm > 0
+             ? std::clamp(motor_torque_ / params_.stall_torque_nm, -1.0, 1.0)
+             : 0.0;
 }
 
 }  // namespace stride::sim

@@ -6,7 +6,8 @@ namespace stride::sim {
 void declare_world_options(fw::CliArgs& args) {
   args.option("seed", "world random seed (randomisation and sensor noise)", true, "1");
   args.option("noise", "sensor noise and per-episode IMU bias: on|off", true, "on");
-  args.option("physics-step-us", "fixed physics step [us], must divide the control period", true, "2000");
+  args.option("physics-step-us", "fixed physics step [us], must divide the control period", true,
+              "2000");
 }
 
 Status read_world_options(const fw::CliArgs& args, WorldOptions& out) {

@@ -7,7 +7,9 @@ SimRobot::SimRobot(std::unique_ptr<SimWorld> world) : world_(std::move(world)) {
   for (hal::DeviceDiagnostics& d : diagnostics_.devices) d.health = hal::DeviceHealth::kOk;
 }
 
-std::int64_t SimRobot::period_ns() const noexcept { return world_->options().control_period_ns; }
+std::int64_t SimRobot::period_ns() const noexcept {
+  return world_->options().control_period_ns;
+}
 
 hal::Tick SimRobot::sleep_until(hal::Tick tick) noexcept {
   while (tick_ < tick) {
@@ -52,9 +54,12 @@ void SimRobot::read(hal::SensorFrame& out) noexcept {
 }
 
 void SimRobot::write(const hal::CommandFrame& commands) noexcept {
-  for (std::size_t i = 0; i < hal::kServoCount; ++i) world_->set_servo_command(i, commands.servos[i]);
+  for (std::size_t i = 0; i < hal::kServoCount; ++i)
+    world_->set_servo_command(i, commands.servos[i]);
 }
 
-void SimRobot::set_torque_enable(bool enabled) noexcept { world_->set_torque_enable(enabled); }
+void SimRobot::set_torque_enable(bool enabled) noexcept {
+  world_->set_torque_enable(enabled);
+}
 
 }  // namespace stride::sim

@@ -19,8 +19,12 @@ using SimTK::Vec3;
 
 namespace {
 
-Vec3 to_vec3(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
-Eigen::Vector3d to_eigen(const Vec3& v) { return {v[0], v[1], v[2]}; }
+Vec3 to_vec3(const Eigen::Vector3d& v) {
+  return {v.x(), v.y(), v.z()};
+}
+Eigen::Vector3d to_eigen(const Vec3& v) {
+  return {v[0], v[1], v[2]};
+}
 
 SimTK::Rotation to_rotation(const Eigen::Matrix3d& m) {
   SimTK::Mat33 mat;
@@ -99,7 +103,7 @@ struct SimWorld::Impl {
   std::vector<int> quaternion_q;  ///< first q index of each free body's quaternion
   std::vector<int> joint_q, joint_u;
   std::vector<int> body_index;  ///< per model link: its MobilizedBodyIndex
-  int ball_index = 0;  ///< per model joint: index into the matter's q and u
+  int ball_index = 0;           ///< per model joint: index into the matter's q and u
 
   // Per model joint.
   std::vector<int> joint_servo;  ///< servo index or -1
@@ -168,8 +172,10 @@ class AppliedForces final : public SimTK::Force::Custom::Implementation {
                  SimTK::Vector_<Vec3>&, SimTK::Vector& mobility_forces) const override {
     const SimWorld::Impl& w = *world_;
     (void)state;
-    for (std::size_t j = 0; j < w.joint_u.size(); ++j) mobility_forces[w.joint_u[j]] += w.joint_tau[j];
-    for (std::size_t l = 0; l < w.body_index.size(); ++l) body_forces[w.body_index[l]] += w.body_force[l];
+    for (std::size_t j = 0; j < w.joint_u.size(); ++j)
+      mobility_forces[w.joint_u[j]] += w.joint_tau[j];
+    for (std::size_t l = 0; l < w.body_index.size(); ++l)
+      body_forces[w.body_index[l]] += w.body_force[l];
     if (w.has_ball) body_forces[w.ball_index] += w.ball_force;
   }
   Real calcPotentialEnergy(const SimTK::State&) const override { return 0.0; }
@@ -200,8 +206,9 @@ Status SimWorld::Impl::configure() {
   const fw::ServoTable* table = o.servo_models_from_table ? &fw::ServoTable::defaults() : nullptr;
   for (std::size_t i = 0; i < hal::kServoCount; ++i) {
     const int j = model.joint_index(o.servo_joints[i]);
-    if (j < 0) return Status::error(o.urdf.string() + ": no joint '" + o.servo_joints[i] +
-                                    "' for servo " + std::to_string(i + 1));
+    if (j < 0)
+      return Status::error(o.urdf.string() + ": no joint '" + o.servo_joints[i] + "' for servo " +
+                           std::to_string(i + 1));
     if (joint_servo[static_cast<std::size_t>(j)] >= 0)
       return Status::error("joint '" + o.servo_joints[i] + "' is mapped to two servos");
     joint_servo[static_cast<std::size_t>(j)] = static_cast<int>(i);
@@ -215,10 +222,13 @@ Status SimWorld::Impl::configure() {
   points.clear();
   for (std::size_t l = 0; l < model.links().size(); ++l) {
     const LinkSpec& link = model.links()[l];
-    const int foot = static_cast<int>(l) == left_foot ? 1 : static_cast<int>(l) == right_foot ? 2 : 0;
+    const int foot = static_cast<int>(l) == left_foot    ? 1
+                     : static_cast<int>(l) == right_foot ? 2
+                                                         : 0;
     for (const CollisionSphere& s : link.spheres) {
       points.push_back({static_cast<int>(l), to_vec3(s.center), s.radius, foot});
-      shapes.push_back({static_cast<int>(l), false, Transform(Vec3(to_vec3(s.center))), Vec3(0), s.radius});
+      shapes.push_back(
+          {static_cast<int>(l), false, Transform(Vec3(to_vec3(s.center))), Vec3(0), s.radius});
     }
     for (const CollisionBox& b : link.boxes) {
       const Transform pose(to_rotation(b.pose.linear()), to_vec3(b.pose.translation()));
@@ -269,16 +279,18 @@ void SimWorld::Impl::build() {
     SimTK::Inertia about_origin = SimTK::Inertia(inertia).shiftFromMassCenter(com, mass);
     if (link.parent_joint < 0) {
       SimTK::Body::Rigid body(SimTK::MassProperties(mass, com, about_origin));
-      bodies.push_back(SimTK::MobilizedBody::Free(matter->Ground(), Transform(), body, Transform()));
+      bodies.push_back(
+          SimTK::MobilizedBody::Free(matter->Ground(), Transform(), body, Transform()));
       continue;
     }
     const JointSpec& joint = model.joints()[static_cast<std::size_t>(link.parent_joint)];
     const Vec3 axis = to_vec3(joint.axis);
     const int servo = joint_servo[static_cast<std::size_t>(link.parent_joint)];
     if (servo >= 0) {
-      const MotorCurve curve = motor_curve(servo_models[static_cast<std::size_t>(servo)],
-                                           options.battery_voltage_v);
-      const Real reflected = options.servo.rotor_inertia_kg_m2 * curve.gear_ratio * curve.gear_ratio;
+      const MotorCurve curve =
+          motor_curve(servo_models[static_cast<std::size_t>(servo)], options.battery_voltage_v);
+      const Real reflected =
+          options.servo.rotor_inertia_kg_m2 * curve.gear_ratio * curve.gear_ratio;
       about_origin = add_rotor_inertia(about_origin, axis, reflected);
     }
     SimTK::Body::Rigid body(SimTK::MassProperties(mass, com, about_origin));
@@ -292,7 +304,8 @@ void SimWorld::Impl::build() {
   has_ball = options.ball.present;
   if (has_ball) {
     const BallOptions& b = options.ball;
-    SimTK::Body::Rigid body(SimTK::MassProperties(b.mass_kg, Vec3(0), SimTK::Inertia(b.inertia_kg_m2)));
+    SimTK::Body::Rigid body(
+        SimTK::MassProperties(b.mass_kg, Vec3(0), SimTK::Inertia(b.inertia_kg_m2)));
     ball = SimTK::MobilizedBody::Free(matter->Ground(), Transform(), body, Transform());
   }
   system->realizeTopology();
@@ -301,7 +314,8 @@ void SimWorld::Impl::build() {
   joint_q.clear();
   joint_u.clear();
   body_index.clear();
-  for (const SimTK::MobilizedBody& b : bodies) body_index.push_back(static_cast<int>(b.getMobilizedBodyIndex()));
+  for (const SimTK::MobilizedBody& b : bodies)
+    body_index.push_back(static_cast<int>(b.getMobilizedBodyIndex()));
   if (has_ball) ball_index = static_cast<int>(ball.getMobilizedBodyIndex());
   for (const JointSpec& j : model.joints()) {
     const SimTK::MobilizedBody& mb = bodies[static_cast<std::size_t>(j.child_link)];
@@ -337,8 +351,10 @@ void SimWorld::Impl::ground_contact(ContactPoint& point, const Transform& x, con
     point.anchor_x = at[0];
     point.anchor_y = at[1];
   }
-  Real fx = -c.tangential_stiffness_n_m * (at[0] - point.anchor_x) - c.tangential_damping_n_s_m * vel[0];
-  Real fy = -c.tangential_stiffness_n_m * (at[1] - point.anchor_y) - c.tangential_damping_n_s_m * vel[1];
+  Real fx =
+      -c.tangential_stiffness_n_m * (at[0] - point.anchor_x) - c.tangential_damping_n_s_m * vel[0];
+  Real fy =
+      -c.tangential_stiffness_n_m * (at[1] - point.anchor_y) - c.tangential_damping_n_s_m * vel[1];
   const Real ft = std::sqrt(fx * fx + fy * fy);
   const Real max_ft = friction * fn;
   if (ft > max_ft) {  // sliding: scale to the cone and drag the anchor along
@@ -392,8 +408,8 @@ void SimWorld::Impl::ball_robot_contact() {
     const SpatialVec& vl = link_v[l];
     const Vec3 v_link = vl[1] + (vl[0] % (at - xl.p()));
     const Real approach = ~(v_ball - v_link) * normal;
-    const Real fn = std::max<Real>(0.0, c.ball_robot_stiffness_n_m * (reach - dist) -
-                                            c.ball_robot_damping_n_s_m * approach);
+    const Real fn = std::max<Real>(
+        0.0, c.ball_robot_stiffness_n_m * (reach - dist) - c.ball_robot_damping_n_s_m * approach);
     const Vec3 force = fn * normal;  // on the ball
     ball_force[0] += (at - xb.p()) % force;
     ball_force[1] += force;
@@ -414,7 +430,8 @@ void SimWorld::Impl::compute_forces() {
       joint_tau[j] = servos[static_cast<std::size_t>(servo)].step(q, w, h);
     } else {
       const JointSpec& spec = model.joints()[j];
-      joint_tau[j] = -spec.damping * w - std::copysign(std::min(spec.friction, 1e-3 * std::abs(w) / h), w);
+      joint_tau[j] =
+          -spec.damping * w - std::copysign(std::min(spec.friction, 1e-3 * std::abs(w) / h), w);
     }
   }
   // Contact.
@@ -476,8 +493,8 @@ bool SimWorld::Impl::step_once() {
   } catch (const std::exception& e) {
     std::string what = e.what();
     std::replace(what.begin(), what.end(), '\n', ' ');
-    fail(WorldStatus::kIntegratorFailure, "Simbody failed at t=" + std::to_string(state.getTime()) +
-                                              " s: " + what.substr(0, 200));
+    fail(WorldStatus::kIntegratorFailure,
+         "Simbody failed at t=" + std::to_string(state.getTime()) + " s: " + what.substr(0, 200));
     return false;
   }
   ++steps;
@@ -485,21 +502,21 @@ bool SimWorld::Impl::step_once() {
   const SimTK::Vector& u = matter->getU(state);
   for (int i = 0; i < q.size(); ++i)
     if (!std::isfinite(q[i])) {
-      fail(WorldStatus::kNonFinite, "non-finite coordinate q[" + std::to_string(i) + "] at t=" +
-                                        std::to_string(state.getTime()) + " s");
+      fail(WorldStatus::kNonFinite, "non-finite coordinate q[" + std::to_string(i) +
+                                        "] at t=" + std::to_string(state.getTime()) + " s");
       return false;
     }
   for (int i = 0; i < u.size(); ++i) {
     if (!std::isfinite(u[i])) {
-      fail(WorldStatus::kNonFinite, "non-finite speed u[" + std::to_string(i) + "] at t=" +
-                                        std::to_string(state.getTime()) + " s");
+      fail(WorldStatus::kNonFinite, "non-finite speed u[" + std::to_string(i) +
+                                        "] at t=" + std::to_string(state.getTime()) + " s");
       return false;
     }
     if (std::abs(u[i]) > options.max_speed) {
-      fail(WorldStatus::kExploded, "exploding state: |u[" + std::to_string(i) + "]| = " +
-                                       std::to_string(std::abs(u[i])) + " > " +
-                                       std::to_string(options.max_speed) + " at t=" +
-                                       std::to_string(state.getTime()) + " s");
+      fail(WorldStatus::kExploded, "exploding state: |u[" + std::to_string(i) +
+                                       "]| = " + std::to_string(std::abs(u[i])) + " > " +
+                                       std::to_string(options.max_speed) +
+                                       " at t=" + std::to_string(state.getTime()) + " s");
       return false;
     }
   }
@@ -541,7 +558,9 @@ Status SimWorld::create(const WorldOptions& options, std::unique_ptr<SimWorld>& 
   return Status::ok();
 }
 
-void SimWorld::reseed(std::uint64_t seed) { impl_->rng.reseed(seed); }
+void SimWorld::reseed(std::uint64_t seed) {
+  impl_->rng.reseed(seed);
+}
 
 Status SimWorld::reset(const ResetSpec& spec) {
   Impl& w = *impl_;
@@ -557,8 +576,10 @@ Status SimWorld::reset(const ResetSpec& spec) {
   for (Real& s : w.mass_scale) s = 1.0 + r.mass_range * w.rng.uniform(-1.0, 1.0);
   for (Real& s : w.strength) s = 1.0 + r.strength_range * w.rng.uniform(-1.0, 1.0);
   w.latency = w.rng.uniform() < r.latency_probability;
-  for (int k = 0; k < 3; ++k) w.accel_bias[k] = w.options.imu.accel_bias[k] + w.options.imu.accel_bias_std * w.rng.normal();
-  for (int k = 0; k < 3; ++k) w.gyro_bias[k] = w.options.imu.gyro_bias[k] + w.options.imu.gyro_bias_std * w.rng.normal();
+  for (int k = 0; k < 3; ++k)
+    w.accel_bias[k] = w.options.imu.accel_bias[k] + w.options.imu.accel_bias_std * w.rng.normal();
+  for (int k = 0; k < 3; ++k)
+    w.gyro_bias[k] = w.options.imu.gyro_bias[k] + w.options.imu.gyro_bias_std * w.rng.normal();
   try {
     w.build();
   } catch (const std::exception& e) {
@@ -592,7 +613,8 @@ Status SimWorld::reset(const ResetSpec& spec) {
   // Pose.
   SimTK::State& s = w.state;
   for (std::size_t i = 0; i < hal::kServoCount; ++i) {
-    const auto link = static_cast<std::size_t>(w.model.joints()[static_cast<std::size_t>(w.servo_joint[i])].child_link);
+    const auto link = static_cast<std::size_t>(
+        w.model.joints()[static_cast<std::size_t>(w.servo_joint[i])].child_link);
     w.bodies[link].setOneQ(s, 0, spec.joint_angles[i]);
   }
   const Eigen::Quaterniond qt = spec.torso_orientation.normalized();
@@ -626,7 +648,8 @@ Status SimWorld::reset(const ResetSpec& spec) {
   if (w.has_ball) {
     const Real z = std::isfinite(spec.ball_position.z()) ? spec.ball_position.z()
                                                          : w.grass_top() + w.options.ball.radius_m;
-    w.ball.setQToFitTransform(s, Transform(Vec3(spec.ball_position.x(), spec.ball_position.y(), z)));
+    w.ball.setQToFitTransform(s,
+                              Transform(Vec3(spec.ball_position.x(), spec.ball_position.y(), z)));
     w.ball.setUToFitLinearVelocity(s, to_vec3(spec.ball_velocity));
   }
   for (ContactPoint& p : w.points) p.touching = false;
@@ -645,14 +668,16 @@ void SimWorld::set_servo_command(std::size_t index, const hal::ServoCommand& com
   if (index < hal::kServoCount) impl_->written[index] = command;
 }
 
-void SimWorld::set_torque_enable(bool enabled) { impl_->torque_enable = enabled; }
+void SimWorld::set_torque_enable(bool enabled) {
+  impl_->torque_enable = enabled;
+}
 
 hal::ServoState SimWorld::servo_state(std::size_t index) const {
   hal::ServoState out;
   if (index >= hal::kServoCount) return out;
   const Impl& w = *impl_;
-  const SimTK::MobilizedBody& mb =
-      w.bodies[static_cast<std::size_t>(w.model.joints()[static_cast<std::size_t>(w.servo_joint[index])].child_link)];
+  const SimTK::MobilizedBody& mb = w.bodies[static_cast<std::size_t>(
+      w.model.joints()[static_cast<std::size_t>(w.servo_joint[index])].child_link)];
   const ServoModel& servo = w.servos[index];
   const hal::ServoCommand& cmd = w.written[index];
   constexpr double kSpeedUnit = 0.114 * 2.0 * M_PI / 60.0;  // present speed register unit
@@ -672,9 +697,13 @@ hal::ServoState SimWorld::servo_state(std::size_t index) const {
   return out;
 }
 
-const ImuReading& SimWorld::imu() const { return impl_->imu; }
+const ImuReading& SimWorld::imu() const {
+  return impl_->imu;
+}
 
-bool SimWorld::step() { return impl_->step_once(); }
+bool SimWorld::step() {
+  return impl_->step_once();
+}
 
 bool SimWorld::advance_period() {
   Impl& w = *impl_;
@@ -692,13 +721,27 @@ bool SimWorld::advance_period() {
   return w.status == WorldStatus::kRunning;
 }
 
-WorldStatus SimWorld::status() const { return impl_->status; }
-const std::string& SimWorld::failure_reason() const { return impl_->reason; }
-double SimWorld::time_s() const { return impl_->state.getTime(); }
-std::int64_t SimWorld::period_count() const { return impl_->periods; }
-const WorldOptions& SimWorld::options() const { return impl_->options; }
-const RobotModel& SimWorld::model() const { return impl_->model; }
-double SimWorld::battery_voltage() const { return impl_->options.battery_voltage_v; }
+WorldStatus SimWorld::status() const {
+  return impl_->status;
+}
+const std::string& SimWorld::failure_reason() const {
+  return impl_->reason;
+}
+double SimWorld::time_s() const {
+  return impl_->state.getTime();
+}
+std::int64_t SimWorld::period_count() const {
+  return impl_->periods;
+}
+const WorldOptions& SimWorld::options() const {
+  return impl_->options;
+}
+const RobotModel& SimWorld::model() const {
+  return impl_->model;
+}
+double SimWorld::battery_voltage() const {
+  return impl_->options.battery_voltage_v;
+}
 
 GroundTruth SimWorld::ground_truth() const {
   Impl& w = *impl_;
@@ -717,14 +760,19 @@ GroundTruth SimWorld::ground_truth() const {
     // calcSystemMassCenter includes the ball: take the robot alone.
     const Real mb = w.options.ball.mass_kg;
     Real mt = 0.0;
-    for (std::size_t l = 0; l < w.model.links().size(); ++l) mt += w.mass_scale[l] * w.model.links()[l].mass;
+    for (std::size_t l = 0; l < w.model.links().size(); ++l)
+      mt += w.mass_scale[l] * w.model.links()[l].mass;
     const Vec3 ball_p = w.ball.getBodyOriginLocation(w.state);
     g.center_of_mass = (g.center_of_mass * (mt + mb) - to_eigen(ball_p) * mb) / mt;
     g.ball_position = to_eigen(ball_p);
     g.ball_velocity = to_eigen(w.ball.getBodyOriginVelocity(w.state));
   }
-  if (w.left_foot >= 0) g.left_foot = to_isometry(w.bodies[static_cast<std::size_t>(w.left_foot)].getBodyTransform(w.state));
-  if (w.right_foot >= 0) g.right_foot = to_isometry(w.bodies[static_cast<std::size_t>(w.right_foot)].getBodyTransform(w.state));
+  if (w.left_foot >= 0)
+    g.left_foot =
+        to_isometry(w.bodies[static_cast<std::size_t>(w.left_foot)].getBodyTransform(w.state));
+  if (w.right_foot >= 0)
+    g.right_foot =
+        to_isometry(w.bodies[static_cast<std::size_t>(w.right_foot)].getBodyTransform(w.state));
   return g;
 }
 
@@ -766,7 +814,8 @@ std::vector<Eigen::Isometry3d> SimWorld::link_poses() const {
   std::vector<Eigen::Isometry3d> out;
   if (w.status == WorldStatus::kNonFinite) return out;
   w.system->realize(w.state, Stage::Position);
-  for (const SimTK::MobilizedBody& b : w.bodies) out.push_back(to_isometry(b.getBodyTransform(w.state)));
+  for (const SimTK::MobilizedBody& b : w.bodies)
+    out.push_back(to_isometry(b.getBodyTransform(w.state)));
   return out;
 }
 
@@ -794,10 +843,14 @@ void SimWorld::set_joint_speed(std::size_t joint, double speed) {
 
 const char* to_string(WorldStatus status) {
   switch (status) {
-    case WorldStatus::kRunning: return "running";
-    case WorldStatus::kNonFinite: return "non-finite state";
-    case WorldStatus::kExploded: return "exploded";
-    case WorldStatus::kIntegratorFailure: return "integrator failure";
+    case WorldStatus::kRunning:
+      return "running";
+    case WorldStatus::kNonFinite:
+      return "non-finite state";
+    case WorldStatus::kExploded:
+      return "exploded";
+    case WorldStatus::kIntegratorFailure:
+      return "integrator failure";
   }
   return "unknown";
 }

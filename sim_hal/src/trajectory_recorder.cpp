@@ -8,7 +8,9 @@
 namespace stride::sim {
 namespace {
 
-nlohmann::json vec(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+nlohmann::json vec(const Eigen::Vector3d& v) {
+  return {v.x(), v.y(), v.z()};
+}
 
 }  // namespace
 
@@ -17,10 +19,11 @@ void TrajectoryRecorder::record(hal::Tick tick, const SimWorld& world,
                                 const hal::CommandFrame& commands) {
   if (tick % every_ != 0) return;
   if (lines_ == 0) {
-    nlohmann::json header = {{"format", "stride-trajectory"},
-                             {"version", 1},
-                             {"period_s", static_cast<double>(world.options().control_period_ns) * 1e-9},
-                             {"joints", world.options().servo_joints}};
+    nlohmann::json header = {
+        {"format", "stride-trajectory"},
+        {"version", 1},
+        {"period_s", static_cast<double>(world.options().control_period_ns) * 1e-9},
+        {"joints", world.options().servo_joints}};
     text_ += header.dump() + "\n";
   }
   const GroundTruth g = world.ground_truth();
@@ -36,21 +39,22 @@ void TrajectoryRecorder::record(hal::Tick tick, const SimWorld& world,
   };
   const auto& a = sensors.cm730.accel_mps2;
   const auto& w = sensors.cm730.gyro_rad_s;
-  nlohmann::json line = {
-      {"tick", tick},
-      {"t", g.time_s},
-      {"torso",
-       {{"p", vec(g.torso.translation())},
-        {"q", {q.w(), q.x(), q.y(), q.z()}},
-        {"v", vec(g.torso_linear_velocity)},
-        {"w", vec(g.torso_angular_velocity)}}},
-      {"com", vec(g.center_of_mass)},
-      {"joints", joints},
-      {"goals", goals},
-      {"imu", {{"acc", {a[0], a[1], a[2]}}, {"gyro", {w[0], w[1], w[2]}}}},
-      {"contacts",
-       {{"left", contact(g.left_contact)}, {"right", contact(g.right_contact)}, {"other", g.other_contacts}}},
-      {"ball", {{"p", vec(g.ball_position)}, {"v", vec(g.ball_velocity)}}}};
+  nlohmann::json line = {{"tick", tick},
+                         {"t", g.time_s},
+                         {"torso",
+                          {{"p", vec(g.torso.translation())},
+                           {"q", {q.w(), q.x(), q.y(), q.z()}},
+                           {"v", vec(g.torso_linear_velocity)},
+                           {"w", vec(g.torso_angular_velocity)}}},
+                         {"com", vec(g.center_of_mass)},
+                         {"joints", joints},
+                         {"goals", goals},
+                         {"imu", {{"acc", {a[0], a[1], a[2]}}, {"gyro", {w[0], w[1], w[2]}}}},
+                         {"contacts",
+                          {{"left", contact(g.left_contact)},
+                           {"right", contact(g.right_contact)},
+                           {"other", g.other_contacts}}},
+                         {"ball", {{"p", vec(g.ball_position)}, {"v", vec(g.ball_velocity)}}}};
   text_ += line.dump() + "\n";
   ++lines_;
 }

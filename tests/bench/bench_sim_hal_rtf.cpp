@@ -6,11 +6,11 @@
 //      (--physics-step-us N is read from the environment STRIDE_BENCH_STEP_US, default 2000)
 #include <benchmark/benchmark.h>
 
+#include <unistd.h>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <memory>
-#include <unistd.h>
 
 #include "stride/sim_hal/sim_world.hpp"
 
@@ -36,7 +36,7 @@ std::unique_ptr<SimWorld> make_world(std::int64_t step_ns = physics_step_ns()) {
 /// Stepping in place, open loop: the hips roll the torso over one foot, the other leg lifts
 /// (hip, knee, ankle pitch), then the other side; 0.8 s per step.
 void command_stepping(SimWorld& world, double t) {
-  constexpr double kCycle = 1.2;  // s per left+right step
+  constexpr double kCycle = 1.2;   // s per left+right step
   constexpr double kSway = -0.09;  // hip/ankle roll amplitude [rad] (torso over the stance foot)
   constexpr double kLift = 0.25;   // hip/ankle pitch of the lifted leg [rad], knee twice that
   std::array<double, hal::kServoCount> pose = stride::sim::igus_stand_pose();
@@ -45,10 +45,14 @@ void command_stepping(SimWorld& world, double t) {
   const double sway = kSway * s;  // +: hips roll the torso over the left foot
   const double lift_r = std::max(0.0, s * s * s) * kLift;
   const double lift_l = std::max(0.0, -s * s * s) * kLift;
-  for (std::size_t i : {8U, 9U}) pose[i] += sway;     // hip rolls
-  for (std::size_t i : {16U, 17U}) pose[i] -= sway;   // ankle rolls
-  pose[10] -= lift_r; pose[12] += 2 * lift_r; pose[14] -= lift_r;  // right leg
-  pose[11] -= lift_l; pose[13] += 2 * lift_l; pose[15] -= lift_l;  // left leg
+  for (std::size_t i : {8U, 9U}) pose[i] += sway;    // hip rolls
+  for (std::size_t i : {16U, 17U}) pose[i] -= sway;  // ankle rolls
+  pose[10] -= lift_r;
+  pose[12] += 2 * lift_r;
+  pose[14] -= lift_r;  // right leg
+  pose[11] -= lift_l;
+  pose[13] += 2 * lift_l;
+  pose[15] -= lift_l;  // left leg
   for (std::size_t i = 0; i < hal::kServoCount; ++i) {
     hal::ServoCommand c;
     c.position_rad = pose[i];
@@ -76,7 +80,8 @@ void BM_Stand(benchmark::State& state) {
     world->advance_period();
     sim_seconds += 0.01;
   }
-  if (world->status() != stride::sim::WorldStatus::kRunning) state.SkipWithError(world->failure_reason().c_str());
+  if (world->status() != stride::sim::WorldStatus::kRunning)
+    state.SkipWithError(world->failure_reason().c_str());
   state.counters["rtf"] = benchmark::Counter(sim_seconds, benchmark::Counter::kIsRate);
 }
 
@@ -115,7 +120,8 @@ void BM_SteppingThreads(benchmark::State& state) {
     if (!world->advance_period()) (void)world->reset(stride::sim::ResetSpec::standing());
     sim_seconds += 0.01;
   }
-  state.counters["rtf"] = benchmark::Counter(sim_seconds, benchmark::Counter::kIsRate);
+  state.counters["rtf"] = benchmark::Counter(
+      sim_seconds, benchmark::Counter::kIsRate | benchmark::Counter::kAvgThreads);
   state.counters["rtf_total"] = benchmark::Counter(sim_seconds, benchmark::Counter::kIsRate);
 }
 
@@ -131,7 +137,8 @@ void BM_AccuracyAgainstFineStep(benchmark::State& state) {
       command_stepping(*fine, fine->time_s());
       coarse->advance_period();
       fine->advance_period();
-      const Eigen::Vector3d d = coarse->torso_pose().translation() - fine->torso_pose().translation();
+      const Eigen::Vector3d d =
+          coarse->torso_pose().translation() - fine->torso_pose().translation();
       dx = std::max(dx, std::abs(d.x()) * 1e3);
       dy = std::max(dy, std::abs(d.y()) * 1e3);
       dz = std::max(dz, std::abs(d.z()) * 1e3);
@@ -169,7 +176,12 @@ void BM_MemoryPerWorld(benchmark::State& state) {
 
 BENCHMARK(BM_Stand)->Unit(benchmark::kMicrosecond)->MinTime(2.0);
 BENCHMARK(BM_SteppingInPlace)->Unit(benchmark::kMicrosecond)->MinTime(2.0);
-BENCHMARK(BM_SteppingThreads)->Unit(benchmark::kMicrosecond)->MinTime(2.0)->Threads(1)->Threads(2)->UseRealTime();
+BENCHMARK(BM_SteppingThreads)
+    ->Unit(benchmark::kMicrosecond)
+    ->MinTime(2.0)
+    ->Threads(1)
+    ->Threads(2)
+    ->UseRealTime();
 BENCHMARK(BM_MemoryPerWorld)->Iterations(1);
 BENCHMARK(BM_AccuracyAgainstFineStep)->Iterations(1)->Unit(benchmark::kMillisecond);
 BENCHMARK_MAIN();

@@ -12,6 +12,7 @@
 #include "stride/host_tools/command.hpp"
 #include "stride/sim_hal/episode.hpp"
 #include "stride/sim_hal/pose_svg.hpp"
+#include "stride/sim_hal/script_episodes.hpp"
 #include "stride/sim_hal/sim_cli.hpp"
 #include "stride/sim_hal/trajectory_recorder.hpp"
 
@@ -63,18 +64,19 @@ int run_sim(int argc, char** argv) {
     std::printf("usage: stride sim stand|walk|kick [options]\n\n%s", args.help().c_str());
     return 0;
   }
-  if (args.positional().size() != 1)
-    return bad_input("expected one motion: stand, walk or kick");
+  if (args.positional().size() != 1) return bad_input("expected one motion: stand, walk or kick");
   const std::string motion = args.positional()[0];
   if (motion != "stand" && motion != "walk" && motion != "kick")
     return bad_input("unknown motion '" + motion + "' (expected stand, walk or kick)");
   double duration = 10, vx = 0, vy = 0, vth = 0;
-  for (auto [name, out] : {std::pair{"duration", &duration}, {"vx", &vx}, {"vy", &vy}, {"vth", &vth}})
+  for (auto [name, out] :
+       {std::pair{"duration", &duration}, {"vx", &vx}, {"vy", &vy}, {"vth", &vth}})
     if (Status s = args.get_double(name, *out); !s) return bad_input(s.message());
   if (!(duration > 0.0) || duration > 3600.0)
     return bad_input("--duration: must be in (0, 3600] s, got " + args.get("duration"));
   std::vector<double> snapshot_times;
-  if (Status s = parse_times(args.get("snapshot-times"), snapshot_times); !s) return bad_input(s.message());
+  if (Status s = parse_times(args.get("snapshot-times"), snapshot_times); !s)
+    return bad_input(s.message());
   sim::WorldOptions world_options;
   if (Status s = sim::read_world_options(args, world_options); !s) return bad_input(s.message());
   if (motion == "walk")
@@ -85,24 +87,43 @@ int run_sim(int argc, char** argv) {
   stride::fw::FirmwareOptions fw_options;
   if (args.has("params")) fw_options.params_file = args.get("params");
   std::unique_ptr<stride::fw::Firmware> firmware;
-  if (Status s = stride::fw::Firmware::create(fw_options, firmware); !s) return bad_input(s.message());
+  if (Status s = stride::fw::Firmware::create(fw_options, firmware); !s)
+    return bad_input(s.message());
   world_options.control_period_ns = firmware->period_ns();
 
-  std::unique_ptr<sim::SimWorld> world;
-  if (Status s = sim::SimWorld::create(world_options, world); !s) {
-    std::fprintf(stderr, "stride sim: %s\n", s.message().c_str());
-    return 1;
-  }
-  sim::SimRobot robot(std::move(world));
   sim::TrajectoryRecorder recorder;
   sim::EpisodeOptions episode;
   episode.duration_s = duration;
   episode.recorder = args.has("record") ? &recorder : nullptr;
   if (args.has("snapshot")) episode.snapshot_times_s = snapshot_times;
+  std::unique_ptr<sim::SimRobot> robot_ptr;
+  sim::EpisodeResult result;
+  if (motion == "kick") {
+    // The seed's kick episode (script_episodes.hpp): ball in front of the kicking foot, the
+    // kick requested at 1 s, played by the firmware's script engine once the stand is reached.
+    sim::KickEpisodeOptions kick;
+    kick.script = args.get("script");
+    if (firmware->params().list("script." + kick.script + ".frame").empty())
+      return bad_input("--script: no script '" + kick.script + "' in the firmware's scripts");
+    kick.duration_s = duration;
+    if (kick.script == "kick_left") kick.ball_position.y() = -kick.ball_position.y();
+    kick.firmware = fw_options;
+    kick.episode = episode;
+    if (Status s = sim::run_kick_episode(world_options, kick, result, &robot_ptr); !s) {
+      std::fprintf(stderr, "stride sim: %s\n", s.message().c_str());
+      return 1;
+    }
+  } else {
+  std::unique_ptr<sim::SimWorld> world;
+  if (Status s = sim::SimWorld::create(world_options, world); !s) {
+    std::fprintf(stderr, "stride sim: %s\n", s.message().c_str());
+    return 1;
+  }
+  robot_ptr = std::make_unique<sim::SimRobot>(std::move(world));
+  sim::SimRobot& robot = *robot_ptr;
 
   stride::fw::Controller& controller = firmware->controller();
   if (motion == "walk") controller.request(stride::fw::MotionRequest::walk(vx, vy, vth));
-  if (motion == "kick") controller.request(stride::fw::MotionRequest::play(args.get("script")));
   if (motion != "stand") {
     // The request is taken at the next step: a refusal means the engine or script is missing.
     stride::hal::SensorFrame probe;
@@ -111,7 +132,9 @@ int run_sim(int argc, char** argv) {
     if (controller.motion().refused_requests() > 0) {
       std::fprintf(stderr, "stride sim: %s\n",
                    motion == "walk" ? "walk engine not available"
-                                    : ("kick script '" + args.get("script") + "' not available (script engine or file missing)").c_str());
+                                    : ("kick script '" + args.get("script") +
+                                       "' not available (script engine or file missing)")
+                                          .c_str());
       return 1;
     }
   }
@@ -119,7 +142,9 @@ int run_sim(int argc, char** argv) {
                                                stride::hal::Tick tick) {
     return controller.step(sensors, tick);
   };
-  const sim::EpisodeResult result = sim::run_episode(robot, step, episode);
+  result = sim::run_episode(robot, step, episode);
+  }
+  sim::SimRobot& robot = *robot_ptr;
 
   if (args.has("record")) {
     if (Status s = recorder.save(args.get("record")); !s) {
@@ -128,9 +153,9 @@ int run_sim(int argc, char** argv) {
     }
   }
   if (args.has("snapshot")) {
-    const std::string svg = sim::render_pose_svg(robot.world().model(), result.snapshots,
-                                                 world_options.contact.grass_thickness_m,
-                                                 world_options.ball.present ? world_options.ball.radius_m : 0.0);
+    const std::string svg = sim::render_pose_svg(
+        robot.world().model(), result.snapshots, world_options.contact.grass_thickness_m,
+        world_options.ball.present ? world_options.ball.radius_m : 0.0);
     if (Status s = stride::fw::write_file_atomically(args.get("snapshot"), svg); !s) {
       std::fprintf(stderr, "stride sim: %s\n", s.message().c_str());
       return 1;
@@ -140,9 +165,11 @@ int run_sim(int argc, char** argv) {
     std::printf("%s\n", sim::to_json(result).dump().c_str());
   } else {
     std::printf("%s: %s after %.2f s sim (%.2f s wall, %.1fx real time)\n", motion.c_str(),
-                result.fell ? "FELL" : "standing", result.sim_time_s, result.wall_time_s, result.rtf);
+                result.fell ? "FELL" : "standing", result.sim_time_s, result.wall_time_s,
+                result.rtf);
     std::printf("distance %.3f m, max |a| %.2f m/s^2, max field-plane sway %.2f m/s^2, state %s\n",
-                result.distance_m, result.max_accel, result.max_fps, sim::hash_hex(result.state_hash).c_str());
+                result.distance_m, result.max_accel, result.max_fps,
+                sim::hash_hex(result.state_hash).c_str());
   }
   if (result.status != sim::WorldStatus::kRunning) {
     std::fprintf(stderr, "stride sim: episode ended: %s\n", result.failure_reason.c_str());

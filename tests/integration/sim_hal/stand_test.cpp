@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "stride/firmware/firmware.hpp"
 #include "stride/sim_hal/episode.hpp"
 #include "stride/sim_hal/sim_robot.hpp"
 #include "temp_dir.hpp"
@@ -15,10 +16,15 @@
 namespace stride::sim {
 namespace {
 
+/// The firmware (Controller, stand engine, safety layer) against the simulated robot.
 EpisodeResult stand(std::uint64_t seed, double seconds, bool randomise = false) {
+  std::unique_ptr<fw::Firmware> firmware;
+  const Status f = fw::Firmware::create({}, firmware);
+  EXPECT_TRUE(f) << f.message();
   WorldOptions options;
   options.seed = seed;
   options.imu = ImuOptions::noisy();
+  options.control_period_ns = firmware->period_ns();
   if (randomise) options.randomise = {0.2, 0.05, 0.1, 0.5};
   std::unique_ptr<SimWorld> world;
   const Status s = SimWorld::create(options, world);
@@ -26,7 +32,15 @@ EpisodeResult stand(std::uint64_t seed, double seconds, bool randomise = false) 
   SimRobot robot(std::move(world));
   EpisodeOptions episode;
   episode.duration_s = seconds;
-  return run_episode(robot, hold_pose_controller(igus_stand_pose()), episode);
+  fw::Controller& controller = firmware->controller();
+  const EpisodeResult result = run_episode(
+      robot, [&](const hal::SensorFrame& in, hal::Tick tick) { return controller.step(in, tick); },
+      episode);
+  // It held the stand pose (igus.md 3.4) to within a few encoder ticks plus the gravity sag.
+  for (std::size_t i = 0; i < hal::kServoCount; ++i)
+    EXPECT_NEAR(robot.world().servo_joint_angle(i), igus_stand_pose()[i], 0.06)
+        << "servo " << i + 1;
+  return result;
 }
 
 TEST(StandIntegration, StandsThirtySecondsInTenOfTenSeedsWithNoise) {
@@ -82,7 +96,8 @@ TEST(StrideSimCommand, StandJsonRecordAndSnapshot) {
   EXPECT_NEAR(j["sim_time_s"].get<double>(), 2.0, 1e-9);
   EXPECT_EQ(j["state_hash"].get<std::string>().size(), 16U);
   // Same seed again: same hash.
-  const nlohmann::json again = nlohmann::json::parse(run("sim stand --duration 2 --seed 3 --json", code));
+  const nlohmann::json again =
+      nlohmann::json::parse(run("sim stand --duration 2 --seed 3 --json", code));
   EXPECT_EQ(again["state_hash"], j["state_hash"]);
   // The trajectory: a header and one line per tick (0..200).
   std::ifstream in(record);
@@ -130,7 +145,9 @@ TEST(StrideSimCommand, WalkWithoutAWalkEngineIsAClearError) {
 
 TEST(StrideFwSim, FirmwareStandsInTheSimulationAndPacesWithRealtime) {
   int code = -1;
-  std::string out = popen_read(std::string(STRIDE_BIN_DIR) + "/stride-fw --hal sim --ticks 300 --seed 5 --json 2>/dev/null", code);
+  std::string out = popen_read(
+      std::string(STRIDE_BIN_DIR) + "/stride-fw --hal sim --ticks 300 --seed 5 --json 2>/dev/null",
+      code);
   ASSERT_EQ(code, 0) << out;
   nlohmann::json j = nlohmann::json::parse(out);
   EXPECT_EQ(j["hal"], "sim");
@@ -139,13 +156,17 @@ TEST(StrideFwSim, FirmwareStandsInTheSimulationAndPacesWithRealtime) {
   EXPECT_GT(j["sim"]["upright"].get<double>(), 0.95);
   EXPECT_NEAR(j["sim"]["sim_time_s"].get<double>(), 2.99, 1e-9);
   // Same seed, same final state.
-  const nlohmann::json again = nlohmann::json::parse(
-      popen_read(std::string(STRIDE_BIN_DIR) + "/stride-fw --hal sim --ticks 300 --seed 5 --json 2>/dev/null", code));
+  const nlohmann::json again = nlohmann::json::parse(popen_read(
+      std::string(STRIDE_BIN_DIR) + "/stride-fw --hal sim --ticks 300 --seed 5 --json 2>/dev/null",
+      code));
   EXPECT_EQ(again["sim"]["state_hash"], j["sim"]["state_hash"]);
   // Paced by the real clock: 50 ticks take about 0.5 s.
   const auto start = std::chrono::steady_clock::now();
-  out = popen_read(std::string(STRIDE_BIN_DIR) + "/stride-fw --hal sim --realtime --no-rt --ticks 50 --json 2>/dev/null", code);
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  out = popen_read(std::string(STRIDE_BIN_DIR) +
+                       "/stride-fw --hal sim --realtime --no-rt --ticks 50 --json 2>/dev/null",
+                   code);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   ASSERT_EQ(code, 0) << out;
   EXPECT_GT(seconds, 0.45);
   j = nlohmann::json::parse(out);

@@ -52,7 +52,8 @@ TEST(RobotModel, ZeroPoseCentreOfMassMatchesTheFigure) {
   std::vector<Eigen::Isometry3d> pose(model.links().size(), Eigen::Isometry3d::Identity());
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
   for (const JointSpec& j : model.joints())
-    pose[static_cast<std::size_t>(j.child_link)] = pose[static_cast<std::size_t>(j.parent_link)] * j.origin;
+    pose[static_cast<std::size_t>(j.child_link)] =
+        pose[static_cast<std::size_t>(j.parent_link)] * j.origin;
   for (std::size_t l = 0; l < model.links().size(); ++l)
     sum += model.links()[l].mass * (pose[l] * model.links()[l].com);
   const Eigen::Vector3d com = sum / model.total_mass();

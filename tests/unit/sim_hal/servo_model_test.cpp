@@ -31,7 +31,8 @@ ServoParams mx106() {
 
 TEST(ServoModel, MotorCurveFollowsTheEmanualFigures) {
   EXPECT_NEAR(motor_curve(fw::ServoModel::kMx106, 14.8).stall_torque_nm, 10.0, 1e-12);
-  EXPECT_NEAR(motor_curve(fw::ServoModel::kMx106, 12.0).no_load_speed_rad_s, 45 * 2 * M_PI / 60, 1e-12);
+  EXPECT_NEAR(motor_curve(fw::ServoModel::kMx106, 12.0).no_load_speed_rad_s, 45 * 2 * M_PI / 60,
+              1e-12);
   EXPECT_NEAR(motor_curve(fw::ServoModel::kMx64, 14.8).stall_torque_nm, 7.3, 1e-12);
   EXPECT_NEAR(motor_curve(fw::ServoModel::kMx64, 13.4).stall_torque_nm, 6.65, 1e-9);  // midway
   EXPECT_EQ(motor_curve(fw::ServoModel::kMx64, 12).gear_ratio, 200.0);
@@ -42,7 +43,8 @@ TEST(ServoModel, EncoderQuantisesTo4096TicksPerRevolution) {
   EXPECT_DOUBLE_EQ(quantise_encoder(0.0), 0.0);
   EXPECT_NEAR(quantise_encoder(0.001), kEncoderRadPerTick, 1e-15);
   EXPECT_NEAR(quantise_encoder(0.0007), 0.0, 1e-15);
-  EXPECT_NEAR(quantise_encoder(1.0) / kEncoderRadPerTick, std::round(1.0 * 4096 / (2 * M_PI)), 1e-9);
+  EXPECT_NEAR(quantise_encoder(1.0) / kEncoderRadPerTick, std::round(1.0 * 4096 / (2 * M_PI)),
+              1e-9);
 }
 
 TEST(ServoModel, LargeStepSaturatesOnTheTorqueSpeedLine) {
@@ -61,7 +63,8 @@ TEST(ServoModel, LargeStepSaturatesOnTheTorqueSpeedLine) {
                           (p.stall_torque_nm / p.no_load_speed_rad_s + p.viscous_friction);
   EXPECT_NEAR(joint.w, terminal, 0.01 * terminal);
   EXPECT_LT(joint.w, p.no_load_speed_rad_s);
-  EXPECT_LE(std::abs(joint.servo.motor_torque()), p.stall_torque_nm * (1 - joint.w / p.no_load_speed_rad_s) + 1e-9);
+  EXPECT_LE(std::abs(joint.servo.motor_torque()),
+            p.stall_torque_nm * (1 - joint.w / p.no_load_speed_rad_s) + 1e-9);
 }
 
 TEST(ServoModel, TorqueLimitCapsTheMotorTorque) {
@@ -104,7 +107,7 @@ TEST(ServoModel, MovingSpeedLimitsTheSetpointRate) {
   ServoModel servo;
   servo.configure(mx106());
   servo.reset(0.0);
-  servo.set_input({1.0, 0.5, 32.0, 1.0, true});  // 0.5 rad/s
+  servo.set_input({1.0, 0.5, 32.0, 1.0, true});                // 0.5 rad/s
   for (int k = 0; k < 1000; ++k) servo.step(0.0, 0.0, 0.001);  // 1 s
   EXPECT_NEAR(servo.setpoint(), 0.5, 1e-9);
   servo.set_input({1.0, 100.0, 32.0, 1.0, true});  // above the register's maximum

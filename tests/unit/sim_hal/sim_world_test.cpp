@@ -50,16 +50,18 @@ TEST(SimWorld, RobotStandsOnItsStudsAndTheImuReadsGravity) {
   hold(*world, igus_stand_pose());
   for (int k = 0; k < 300; ++k) ASSERT_TRUE(world->advance_period());  // 3 s
   const GroundTruth g = world->ground_truth();
-  EXPECT_EQ(g.left_contact.points_in_contact, 4);   // the four studs, not the sole
+  EXPECT_EQ(g.left_contact.points_in_contact, 4);  // the four studs, not the sole
   EXPECT_EQ(g.right_contact.points_in_contact, 4);
   EXPECT_EQ(g.other_contacts, 0);
   const double weight = world->model().total_mass() * 9.81;
-  EXPECT_NEAR(g.left_contact.force.z() + g.right_contact.force.z(), weight, 0.05 * weight);  // a small residual sway remains
+  EXPECT_NEAR(g.left_contact.force.z() + g.right_contact.force.z(), weight,
+              0.05 * weight);               // a small residual sway remains
   EXPECT_GT(g.torso.linear()(2, 2), 0.95);  // upright
   // Standing CoM height above the flat sole: 0.424 m with straight legs (igus.md 1.2); the
   // Stand pose bends the knees slightly. The soles are level and clear of the grass top
   // (the studs carry the robot), the studs sunk a few millimetres into the grass.
-  const double sole = 0.5 * (g.left_foot.translation().z() + g.right_foot.translation().z()) - 0.0383;
+  const double sole =
+      0.5 * (g.left_foot.translation().z() + g.right_foot.translation().z()) - 0.0383;
   EXPECT_NEAR(g.center_of_mass.z() - sole, 0.42, 0.01);
   EXPECT_GT(sole, 0.02);
   EXPECT_LT(sole, 0.02 + 0.018);
@@ -88,9 +90,9 @@ TEST(SimWorld, ServoStepResponseFollowsItsModel) {
     max_speed = std::max(max_speed, std::abs(s.speed_rad_s));
     if (t_half < 0 && s.position_rad > 0.3) t_half = k * 0.01;
   }
-  EXPECT_LE(max_speed, no_load + 0.02);           // never faster than the motor's no-load speed
-  EXPECT_GE(t_half, 0.3 / no_load - 0.01);        // so half the move takes at least this long
-  EXPECT_LT(t_half, 0.3);                         // but it does move
+  EXPECT_LE(max_speed, no_load + 0.02);     // never faster than the motor's no-load speed
+  EXPECT_GE(t_half, 0.3 / no_load - 0.01);  // so half the move takes at least this long
+  EXPECT_LT(t_half, 0.3);                   // but it does move
   EXPECT_NEAR(world->servo_state(kHeadYaw).position_rad, 0.6, 0.01);  // settled (stiff P 254)
   // Moving speed 1 rad/s: a ramp back to 0.
   hal::ServoCommand c;
@@ -125,7 +127,8 @@ TEST(SimWorld, TorqueSaturationAndJointLimitsHold) {
     max_pitch = std::max(max_pitch, world->servo_joint_angle(kHeadPitch));
     max_load = std::max(max_load, std::abs(world->servo_state(4).load));
   }
-  const JointSpec& joint = world->model().joints()[static_cast<std::size_t>(world->model().joint_index("head_pitch"))];
+  const JointSpec& joint =
+      world->model().joints()[static_cast<std::size_t>(world->model().joint_index("head_pitch"))];
   EXPECT_LT(max_pitch, joint.upper + 0.03);
   EXPECT_GT(max_pitch, joint.upper - 0.01);
   EXPECT_LE(max_load, 0.2 + 1e-9);
@@ -169,7 +172,8 @@ TEST(SimWorld, SameSeedGivesBitIdenticalStatesAndOtherSeedsDiffer) {
       accel_sum += sensors.cm730.accel_mps2[0];
       hal::CommandFrame frame;
       for (std::size_t i = 0; i < hal::kServoCount; ++i) {
-        frame.servos[i].position_rad = igus_stand_pose()[i] + 0.05 * std::sin(0.1 * static_cast<double>(k));
+        frame.servos[i].position_rad =
+            igus_stand_pose()[i] + 0.05 * std::sin(0.1 * static_cast<double>(k));
         frame.servos[i].p_gain = 76;
         frame.servos[i].torque_enable = true;
       }

@@ -9,7 +9,9 @@
 //   kScript  -> kStand    when the script has finished
 //   any      -> kFallen   when the safety layer reports a fall (not during a get-up)
 //   kFallen  -> kGetUp    after motion.fallen_settle_time, with get_up_front (lying on the
-//                         front: torso x axis down, accel x < 0) or get_up_back (accel x > 0)
+//                         front: torso x axis down, accel x < 0) or get_up_back (accel x > 0);
+//                         lying on a side (|accel y| > |accel x|) it waits twice that time, then
+//                         plays the script of the side the torso leans to
 //   kGetUp   -> kStand    when the get-up script has finished and the robot is upright,
 //                         otherwise back to kFallen and try again
 // Without a walk or script engine the corresponding requests are refused (counted).

@@ -31,10 +31,10 @@ struct CollisionBox {
 
 struct LinkSpec {
   std::string name;
-  double mass = 0.0;                                     ///< [kg]
-  Eigen::Vector3d com = Eigen::Vector3d::Zero();         ///< centre of mass, link frame [m]
-  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();     ///< about the CoM, link axes [kg m^2]
-  int parent_joint = -1;                                 ///< index into joints, -1 for the root
+  double mass = 0.0;                                  ///< [kg]
+  Eigen::Vector3d com = Eigen::Vector3d::Zero();      ///< centre of mass, link frame [m]
+  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();  ///< about the CoM, link axes [kg m^2]
+  int parent_joint = -1;                              ///< index into joints, -1 for the root
   std::vector<CollisionSphere> spheres;
   std::vector<CollisionBox> boxes;
 };

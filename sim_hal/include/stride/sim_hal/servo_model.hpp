@@ -39,18 +39,18 @@ struct MotorCurve {
 MotorCurve motor_curve(fw::ServoModel model, double voltage_v);
 
 struct ServoParams {
-  double stall_torque_nm = 10.0;      ///< at the battery voltage (after strength scaling)
-  double no_load_speed_rad_s = 5.76;  ///< at the battery voltage
+  double stall_torque_nm = 10.0;        ///< at the battery voltage (after strength scaling)
+  double no_load_speed_rad_s = 5.76;    ///< at the battery voltage
   double kp_per_register = 4.0 / 2.54;  ///< N m/rad per P register unit (seed: 4 g, P = 2.54 g)
-  double viscous_friction = 1.0;      ///< b [N m s/rad] (seed: damping 1)
-  double coulomb_friction = 0.5;      ///< c [N m] (seed: friction 0.5)
-  double reflected_inertia = 0.003;   ///< J_rotor N^2 [kg m^2]: bounds the stiction torque
+  double viscous_friction = 1.0;        ///< b [N m s/rad] (seed: damping 1)
+  double coulomb_friction = 0.5;        ///< c [N m] (seed: friction 0.5)
+  double reflected_inertia = 0.003;     ///< J_rotor N^2 [kg m^2]: bounds the stiction torque
   bool limited = false;
-  double lower = 0.0, upper = 0.0;    ///< end stops [rad]
-  double stop_stiffness = 500.0;      ///< [N m/rad] beyond the end stop
-  double stop_damping = 2.0;          ///< [N m s/rad] beyond the end stop
+  double lower = 0.0, upper = 0.0;  ///< end stops [rad]
+  double stop_stiffness = 500.0;    ///< [N m/rad] beyond the end stop
+  double stop_damping = 2.0;        ///< [N m s/rad] beyond the end stop
   double ambient_temperature_c = 30.0;
-  double thermal_rise_c = 45.0;       ///< steady rise at stall torque [deg C]
+  double thermal_rise_c = 45.0;  ///< steady rise at stall torque [deg C]
   double thermal_time_constant_s = 120.0;
 };
 

@@ -41,12 +41,12 @@ const std::array<std::string, hal::kServoCount>& igus_servo_joints();
 const std::array<double, hal::kServoCount>& igus_stand_pose();
 
 struct ContactOptions {
-  double grass_thickness_m = 0.02;      ///< soft layer on top of the solid ground (seed: 2 cm)
-  double grass_stiffness_n_m = 1500.0;  ///< per contact point [N/m]
-  double grass_damping_n_s_m = 40.0;    ///< per contact point [N s/m]
-  double ground_stiffness_n_m = 2.0e4;  ///< solid ground under the grass, per point [N/m]
-  double ground_damping_n_s_m = 100.0;  ///< [N s/m]
-  double friction = 1.0;                ///< Coulomb coefficient (feet and links on the field)
+  double grass_thickness_m = 0.02;           ///< soft layer on top of the solid ground (seed: 2 cm)
+  double grass_stiffness_n_m = 1500.0;       ///< per contact point [N/m]
+  double grass_damping_n_s_m = 40.0;         ///< per contact point [N s/m]
+  double ground_stiffness_n_m = 2.0e4;       ///< solid ground under the grass, per point [N/m]
+  double ground_damping_n_s_m = 100.0;       ///< [N s/m]
+  double friction = 1.0;                     ///< Coulomb coefficient (feet and links on the field)
   double tangential_stiffness_n_m = 5000.0;  ///< stick spring per point [N/m]
   double tangential_damping_n_s_m = 20.0;    ///< [N s/m]
   double ball_robot_stiffness_n_m = 5000.0;  ///< ball against robot links [N/m]
@@ -57,13 +57,13 @@ struct BallOptions {
   bool present = true;
   double radius_m = 0.095;  ///< TeenSize ball (igus.md 5)
   double mass_kg = 0.26;
-  double inertia_kg_m2 = 0.00156;  ///< thin-shell value of the seed's model
+  double inertia_kg_m2 = 0.00156;   ///< thin-shell value of the seed's model
   double rolling_damping = 0.0016;  ///< angular velocity decay [N m s/rad]
 };
 
 struct ImuOptions {
-  double accel_noise_std = 0.0;  ///< white noise per sample [m/s^2]
-  double gyro_noise_std = 0.0;   ///< [rad/s]
+  double accel_noise_std = 0.0;                          ///< white noise per sample [m/s^2]
+  double gyro_noise_std = 0.0;                           ///< [rad/s]
   Eigen::Vector3d accel_bias = Eigen::Vector3d::Zero();  ///< fixed bias [m/s^2]
   Eigen::Vector3d gyro_bias = Eigen::Vector3d::Zero();   ///< fixed bias [rad/s]
   double accel_bias_std = 0.0;  ///< per-reset random bias drawn on top [m/s^2]
@@ -82,9 +82,9 @@ struct ServoOptions {
 
 /// Seeded randomisation applied at every reset (relative ranges are uniform +-range).
 struct Randomisation {
-  double friction_range = 0.0;  ///< friction coefficient scale
-  double mass_range = 0.0;      ///< per-link mass and inertia scale
-  double strength_range = 0.0;  ///< per-servo stall torque scale
+  double friction_range = 0.0;       ///< friction coefficient scale
+  double mass_range = 0.0;           ///< per-link mass and inertia scale
+  double strength_range = 0.0;       ///< per-servo stall torque scale
   double latency_probability = 0.0;  ///< chance of one control tick of command latency
 };
 
@@ -94,7 +94,7 @@ struct WorldOptions {
   /// Servo models in servo order (default: the shipped servo table's models).
   std::array<fw::ServoModel, hal::kServoCount> servo_models{};
   bool servo_models_from_table = true;
-  std::int64_t physics_step_ns = 2'000'000;    ///< fixed integration step
+  std::int64_t physics_step_ns = 2'000'000;     ///< fixed integration step
   std::int64_t control_period_ns = 10'000'000;  ///< one advance_period(); multiple of the step
   double battery_voltage_v = 14.8;
   double gravity_mps2 = 9.81;
@@ -117,7 +117,8 @@ struct ResetSpec {
   /// Tilt the torso (after torso_orientation) so that the mean sole normal points straight up:
   /// the Stand pose carries a forward body tilt, so this is how the robot stands on both feet.
   bool level_feet = true;
-  Eigen::Vector3d ball_position{0.3, 0.0, std::numeric_limits<double>::quiet_NaN()};  ///< NaN z: on the grass
+  Eigen::Vector3d ball_position{0.3, 0.0,
+                                std::numeric_limits<double>::quiet_NaN()};  ///< NaN z: on the grass
   Eigen::Vector3d ball_velocity = Eigen::Vector3d::Zero();
   /// The robot standing in the Stand pose of igus.md 3.4.
   static ResetSpec standing();

@@ -24,7 +24,8 @@ namespace stride::sim {
 
 class TrajectoryRecorder {
  public:
-  explicit TrajectoryRecorder(int every_n_ticks = 1) : every_(every_n_ticks < 1 ? 1 : every_n_ticks) {}
+  explicit TrajectoryRecorder(int every_n_ticks = 1)
+      : every_(every_n_ticks < 1 ? 1 : every_n_ticks) {}
   /// Appends tick `tick` (skipped unless tick % every_n_ticks == 0).
   void record(hal::Tick tick, const SimWorld& world, const hal::SensorFrame& sensors,
               const hal::CommandFrame& commands);
