@@ -378,7 +378,10 @@ TEST_F(ConsoleEndToEnd, StatusShowsTheBusOfAVirtualRobot) {
   const auto bus = dir_.path() / "bus";
   Child vbus({kBin + "/stride", "vbus", "--link", bus.string()}, dir_.path() / "vbus.out",
              dir_.path() / "vbus.err");
-  for (int i = 0; i < 2000 && !std::filesystem::exists(bus); ++i) std::this_thread::sleep_for(5ms);
+  // Wait until vbus says it serves (the link alone may exist before the line is set up).
+  for (int i = 0; i < 2000 && vbus.err().find("serving on") == std::string::npos; ++i) {
+    std::this_thread::sleep_for(5ms);
+  }
   ASSERT_TRUE(std::filesystem::exists(bus)) << vbus.err();
   PseudoTerminal pty;
   start_fw(pty.slave_path(), &pty, {"--hal", "serial", "--port", bus.string()});
