@@ -6,6 +6,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "stride/firmware/console/console_server.hpp"
+#include "stride/firmware/console/loop_status.hpp"
 #include "stride/firmware/control_loop.hpp"
 #include "stride/firmware/firmware.hpp"
 #include "stride/firmware/hal_registry.hpp"
@@ -39,6 +41,7 @@ int main(int argc, char** argv) {
   args.option("hal", "HAL backend: " + backends, true, "test")
       .option("params", "parameter file (JSON) applied at start-up")
       .option("servo-table", "servo table file", true, fw::ServoTable::default_path().string())
+      .option("console", "serve the parameter console on DEV (serial device or pty) or stdio")
       .option("ticks", "stop after N ticks (default: run until SIGINT)")
       .option("no-rt", "do not ask for SCHED_FIFO and mlockall", false)
       .option("json", "print the final report as one JSON object on stdout", false)
@@ -94,7 +97,19 @@ int main(int argc, char** argv) {
                rate_hz, ticks >= 0 ? ("ticks=" + std::to_string(ticks)).c_str() : "(Ctrl-C stops)");
 
   fw::ControlLoop loop(*robot, firmware->controller(), firmware->params());
+  std::unique_ptr<fw::console::ConsoleServer> console;
+  if (args.has("console")) {
+    fw::console::ConsoleContext context;
+    context.params = &firmware->params();
+    context.controller = &firmware->controller();
+    context.servos = &firmware->servos();
+    if (options.params_file) context.default_file = *options.params_file;
+    context.loop_status = fw::console::loop_status_lines(loop, paced.get(), *robot);
+    console = fw::console::make_console(args.get("console"), std::move(context));
+    console->start();
+  }
   loop.run(ticks, &g_stop);
+  if (console) console->stop();
 
   const auto& c = loop.counters();
   const auto status = firmware->controller().status();

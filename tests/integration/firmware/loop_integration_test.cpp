@@ -59,9 +59,8 @@ std::string run(const std::string& command, int& exit_code, bool stdout_only = f
 
 TEST(StrideFw, RunsTheTestHalAndReportsJson) {
   int code = -1;
-  const std::string out =
-      run(std::string(STRIDE_BIN_DIR) + "/stride-fw --hal test --ticks 50 --no-rt --json", code,
-          true);
+  const std::string out = run(
+      std::string(STRIDE_BIN_DIR) + "/stride-fw --hal test --ticks 50 --no-rt --json", code, true);
   ASSERT_EQ(code, 0) << out;
   const auto report = nlohmann::json::parse(out);
   EXPECT_EQ(report["cycles"], 50);
@@ -74,8 +73,10 @@ TEST(StrideFw, BrokenParameterFileIsRefusedWithTheFieldNamed) {
   test::TempDir dir;
   const auto params = dir.write("p.json", R"({"stand": {"gain": 500}})");
   int code = -1;
-  const std::string out = run(std::string(STRIDE_BIN_DIR) + "/stride-fw --hal test --ticks 5 "
-                                                            "--params " + params.string(),
+  const std::string out = run(std::string(STRIDE_BIN_DIR) +
+                                  "/stride-fw --hal test --ticks 5 "
+                                  "--params " +
+                                  params.string(),
                               code);
   EXPECT_EQ(code, 2);
   EXPECT_NE(out.find("stand.gain"), std::string::npos) << out;
