@@ -63,7 +63,7 @@ ParamHandle ParameterStore::add(ParamSpec spec) {
   }
   const auto handle = static_cast<ParamHandle>(specs_.size());
   index_.emplace(n, handle);
-  live_.push_back(spec.default_value);
+  live_.emplace_back(spec.default_value);
   std::lock_guard lock(staging_mutex_);
   staged_values_.push_back(spec.default_value);
   staged_dirty_.push_back(0);
@@ -93,7 +93,7 @@ std::optional<ParamHandle> ParameterStore::find(std::string_view name) const {
 Status ParameterStore::get(std::string_view name, double& out) const {
   const auto handle = find(name);
   if (!handle) return Status::error("unknown parameter '" + std::string(name) + "'");
-  out = live_[*handle];
+  out = value(*handle);
   return {};
 }
 
@@ -144,7 +144,7 @@ bool ParameterStore::apply_staged() noexcept {
   if (!lock.owns_lock() || !staged_pending_) return false;
   for (std::size_t i = 0; i < live_.size(); ++i) {
     if (staged_dirty_[i] != 0) {
-      live_[i] = staged_values_[i];
+      live_[i].store(staged_values_[i], std::memory_order_relaxed);
       staged_dirty_[i] = 0;
     }
   }
@@ -162,7 +162,7 @@ Status ParameterStore::set_now(const std::vector<ParamWrite>& batch) {
   for (const auto& [name, value] : batch) {
     if (Status s = check(name, value); !s) return s;
   }
-  for (const auto& [name, value] : batch) live_[*find(name)] = value;
+  for (const auto& [name, v] : batch) live_[*find(name)].store(v, std::memory_order_relaxed);
   return {};
 }
 
@@ -226,7 +226,7 @@ Status ParameterStore::parse_json(const nlohmann::json& doc, std::vector<ParamWr
       return Status::error(where + name + ": expects a number (" +
                            std::string(to_string(spec.type)) + "), got " + node->dump());
     }
-    if (spec.read_only && value == live_[*handle]) continue;  // saved files may echo them
+    if (spec.read_only && value == this->value(*handle)) continue;  // saved files may echo them
     if (Status s = validate(*handle, value); !s) return Status::error(where + s.message());
     batch.emplace_back(name, value);
   }
@@ -264,11 +264,11 @@ nlohmann::json ParameterStore::to_json(std::string_view prefix) const {
   for (ParamHandle h : list(prefix)) {
     const ParamSpec& s = specs_[h];
     if (s.type == ParamType::kBool) {
-      doc[s.name] = live_[h] != 0.0;
+      doc[s.name] = value(h) != 0.0;
     } else if (s.type == ParamType::kInt) {
-      doc[s.name] = static_cast<long long>(live_[h]);
+      doc[s.name] = static_cast<long long>(value(h));
     } else {
-      doc[s.name] = live_[h];
+      doc[s.name] = value(h);
     }
   }
   return doc;
@@ -280,7 +280,7 @@ nlohmann::json ParameterStore::describe_json(std::string_view prefix) const {
     const ParamSpec& s = specs_[h];
     doc.push_back({{"name", s.name},
                    {"type", to_string(s.type)},
-                   {"value", live_[h]},
+                   {"value", value(h)},
                    {"default", s.default_value},
                    {"min", s.min},
                    {"max", s.max},
