@@ -2,7 +2,7 @@
 // after start-up, with and without faults (the in-process virtual bus allocates nothing either).
 #include <gtest/gtest.h>
 
-#include "counting_new.hpp"
+#include "counting_allocator.hpp"
 #include "stride/firmware/dynamixel_config.hpp"
 #include "stride/hal/dynamixel/dynamixel_robot.hpp"
 #include "stride/hal/dynamixel/virtual_bus.hpp"
@@ -33,7 +33,7 @@ TEST(DynamixelRobotAllocation, TicksAllocateNothing) {
   SensorFrame frame;
   CommandFrame command;
   for (auto& s : command.servos) s.torque_enable = true;
-  test::begin_counting_new();
+  stride::test::start_counting_allocations();
   for (Tick t = 0; t < 300; ++t) {
     for (auto& s : command.servos) s.position_rad = 0.001 * static_cast<double>(t);
     command.servos[3].d_gain = static_cast<double>(t % 3);
@@ -44,7 +44,7 @@ TEST(DynamixelRobotAllocation, TicksAllocateNothing) {
     if (t == 150) robot->set_torque_enable(false);
     (void)robot->diagnostics();
   }
-  EXPECT_EQ(test::end_counting_new(), 0U);
+  EXPECT_EQ(stride::test::stop_counting_allocations(), 0U);
   EXPECT_EQ(frame.servos[6].health, DeviceHealth::kMissing);  // the faults did happen
 }
 

@@ -1,6 +1,7 @@
 // A global operator new replacement that counts allocations while counting is switched on.
 // Defined in its own translation unit so the compiler cannot inline (and mis-pair) the
-// replacement operators into test code. Linked into stride_unit_firmware only.
+// replacement operators into test code. Part of stride_test_support, so every test binary
+// allocates through it (counting is off unless a test switches it on).
 #pragma once
 
 #include <cstddef>
