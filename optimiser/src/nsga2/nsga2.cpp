@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <numeric>
-#include <string_view>
 
 #include "stride/optimiser/nsga2/operators.hpp"
 #include "stride/optimiser/nsga2/sorting.hpp"
@@ -94,21 +93,33 @@ void Nsga2::make_initial_batch(const std::optional<Genome>& start) {
 
 void Nsga2::resolve_batch() {
   alias_of_.assign(batch_.size(), -1);
-  batch_keys_.resize(batch_.size());
-  std::unordered_map<std::string_view, int> first_with_key;
-  first_with_key.reserve(batch_.size());
+  alias_count_ = 0;
+  // Members not in the cache, sorted by (hash, index): identical genomes end up adjacent, and
+  // the first of them (lowest index) is the one handed out. A sorted member vector instead of a
+  // hash map: no allocation per generation.
+  pending_.clear();
   for (std::size_t i = 0; i < batch_.size(); ++i) {
     Individual& ind = batch_[i];
-    batch_keys_[i] = genome_key(ind.genome);
     if (ind.evaluated) continue;
-    if (const auto hit = cache_.find(batch_keys_[i]); hit != cache_.end()) {
+    if (const auto hit = cache_.find(ind.genome); hit != cache_.end()) {
       ind.result = hit->second;
       ind.evaluated = true;
       ind.from_cache = true;
       continue;
     }
-    const auto [it, inserted] = first_with_key.emplace(batch_keys_[i], static_cast<int>(i));
-    if (!inserted) alias_of_[i] = it->second;
+    pending_.emplace_back(GenomeBitsHash{}(ind.genome), i);
+  }
+  std::sort(pending_.begin(), pending_.end());
+  for (std::size_t k = 1; k < pending_.size(); ++k) {
+    const std::size_t i = pending_[k].second;
+    // Walk back over the members with the same hash to the first identical genome.
+    for (std::size_t m = k; m-- > 0 && pending_[m].first == pending_[k].first;) {
+      const std::size_t first = pending_[m].second;
+      if (alias_of_[first] < 0 && GenomeSameBits{}(batch_[first].genome, batch_[i].genome)) {
+        alias_of_[i] = static_cast<int>(first);
+      }
+    }
+    if (alias_of_[i] >= 0) ++alias_count_;
   }
 }
 
@@ -146,9 +157,9 @@ Status Nsga2::tell(std::uint64_t id, EvaluationOutcome outcome) {
   const Result& result = batch_[index].result;
   ++counters_.evaluations;
   if (result.failed) ++counters_.failures;
-  cache_.insert_or_assign(batch_keys_[index], result);
+  cache_.insert_or_assign(batch_[index].genome, result);
   batch_[index].evaluated = true;
-  for (std::size_t j = 0; j < batch_.size(); ++j) {
+  for (std::size_t j = 0; alias_count_ > 0 && j < batch_.size(); ++j) {
     if (alias_of_[j] == static_cast<int>(index)) {
       batch_[j].result = result;
       batch_[j].evaluated = true;
@@ -180,7 +191,6 @@ Status Nsga2::advance() {
   }
   batch_.clear();
   alias_of_.clear();
-  batch_keys_.clear();
   ++completed_;
   if (!finished()) make_children();
   return {};

@@ -9,8 +9,24 @@ namespace {
 
 constexpr double kSbxEps = 1.0e-14;
 
+/// x^e. The distribution indices are usually whole numbers, and then x^(eta + 1) is taken by
+/// repeated squaring (within a few ulp of std::pow and several times faster: pow was a fifth
+/// of NSGA-II's own time per generation); any other exponent goes to std::pow.
+double power(double x, double e) {
+  if (e != std::floor(e) || std::fabs(e) > 256.0) return std::pow(x, e);
+  auto n = static_cast<unsigned>(std::fabs(e));
+  double result = 1.0;
+  double base = x;
+  while (n != 0) {
+    if ((n & 1u) != 0) result *= base;
+    base *= base;
+    n >>= 1u;
+  }
+  return e < 0.0 ? 1.0 / result : result;
+}
+
 double spread_factor(double beta, double eta_c, double u) {
-  const double alpha = 2.0 - std::pow(beta, -(eta_c + 1.0));
+  const double alpha = 2.0 - power(beta, -(eta_c + 1.0));
   if (u <= 1.0 / alpha) return std::pow(u * alpha, 1.0 / (eta_c + 1.0));
   return std::pow(1.0 / (2.0 - u * alpha), 1.0 / (eta_c + 1.0));
 }
@@ -55,14 +71,14 @@ double polynomial_mutation_value(double y, double yl, double yu, double eta_m, d
   const double range = yu - yl;
   const double d1 = (y - yl) / range;
   const double d2 = (yu - y) / range;
-  const double power = 1.0 / (eta_m + 1.0);
+  const double exponent = 1.0 / (eta_m + 1.0);
   double dq = 0.0;
   if (u <= 0.5) {
-    const double val = 2.0 * u + (1.0 - 2.0 * u) * std::pow(1.0 - d1, eta_m + 1.0);
-    dq = std::pow(val, power) - 1.0;
+    const double val = 2.0 * u + (1.0 - 2.0 * u) * power(1.0 - d1, eta_m + 1.0);
+    dq = std::pow(val, exponent) - 1.0;
   } else {
-    const double val = 2.0 * (1.0 - u) + 2.0 * (u - 0.5) * std::pow(1.0 - d2, eta_m + 1.0);
-    dq = 1.0 - std::pow(val, power);
+    const double val = 2.0 * (1.0 - u) + 2.0 * (u - 0.5) * power(1.0 - d2, eta_m + 1.0);
+    dq = 1.0 - std::pow(val, exponent);
   }
   return std::clamp(y + dq * range, yl, yu);
 }

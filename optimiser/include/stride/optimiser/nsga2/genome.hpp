@@ -2,6 +2,7 @@
 // number of bits decoded linearly onto [min, max], and the numbers of objectives and constraints.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -43,8 +44,17 @@ struct Genome {
 /// Decodes the binary genes of `genome` onto their limits, one value per binary gene.
 std::vector<double> decode_binaries(const ProblemShape& shape, const Genome& genome);
 
-/// The exact bits of a genome as a byte string (the evaluation cache's key).
+/// The exact bits of a genome as a byte string (a set key for reports).
 std::string genome_key(const Genome& genome);
+
+/// Hash of a genome's exact bits (the doubles' bit patterns and the bits), for hashed containers.
+struct GenomeBitsHash {
+  std::size_t operator()(const Genome& genome) const noexcept;
+};
+/// True when two genomes have the same bits: unlike ==, 0.0 and -0.0 differ (as in genome_key).
+struct GenomeSameBits {
+  bool operator()(const Genome& a, const Genome& b) const noexcept;
+};
 
 /// "0101..." text of the bits (used in logs and checkpoints).
 std::string bits_to_text(const std::vector<std::uint8_t>& bits);

@@ -109,8 +109,10 @@ class Nsga2 {
   std::vector<Individual> population_;
   std::vector<Individual> batch_;
   std::vector<int> alias_of_;  ///< per batch member: index of the identical member told for it
-  std::vector<std::string> batch_keys_;  ///< per batch member: genome_key()
-  std::unordered_map<std::string, Result> cache_;
+  int alias_count_ = 0;        ///< batch members with an alias (0: tell() skips the search)
+  std::vector<std::pair<std::size_t, std::size_t>> pending_;  ///< resolve_batch(): (hash, index)
+  /// Every result told so far, by exact genome bits.
+  std::unordered_map<Genome, Result, GenomeBitsHash, GenomeSameBits> cache_;
 };
 
 /// Exact text of a double ("%a"), and its parser (false if malformed).
