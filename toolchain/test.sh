@@ -14,7 +14,7 @@ toolchain/install-deps.sh --cross
 
 echo "== unit tests (asan preset)"
 cmake --preset asan >/dev/null
-cmake --build --preset asan -j "$jobs"
+cmake --build --preset asan -j "$jobs" --target stride_unit_tests
 ctest --preset asan -j "$jobs"
 
 echo "== fuzzing the Dynamixel parsers and virtual buses (libFuzzer, 15 s per target)"
