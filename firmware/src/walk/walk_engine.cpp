@@ -150,6 +150,9 @@ void WalkEngine::begin_step() noexcept {
     velocity_ = {};
     return;
   }
+  // The first step swings the foot on the side the walk is commanded to (the left foot when
+  // there is no sideways command), so walking right mirrors walking left.
+  if (step_count_ == 1 && target.y < 0.0) swing_ = Foot::kLeft;
   swing_ = walk::other(swing_);
   const bool left_swings = swing_ == Foot::kLeft;
   const Pose2& support_foot = left_swings ? right_source_ : left_source_;
