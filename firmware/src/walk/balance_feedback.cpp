@@ -17,30 +17,30 @@ double deadband(double value, double band) {
 BalanceFeedback::BalanceFeedback(ParameterStore& store, double period_s)
     : store_(store), period_s_(period_s) {
   ankle_pitch_gain_ =
-      store.add_real("walk.balance.ankle_pitch_gain", 0.3703, 0.0, 1.0, "s",
+      store.add_real("walk.balance.ankle_pitch_gain", 0.4706, 0.0, 1.0, "s",
                      "support ankle pitch added per rad/s of torso pitch rate (0: off)");
   ankle_roll_gain_ =
-      store.add_real("walk.balance.ankle_roll_gain", 0.9847, 0.0, 1.0, "s",
+      store.add_real("walk.balance.ankle_roll_gain", 0.8999, 0.0, 1.0, "s",
                      "support ankle roll added per rad/s of torso roll rate (0: off)");
   hip_pitch_gain_ =
-      store.add_real("walk.balance.hip_pitch_gain", 0.0401, 0.0, 1.0, "s",
+      store.add_real("walk.balance.hip_pitch_gain", 0.0374, 0.0, 1.0, "s",
                      "support hip pitch added per rad/s of torso pitch rate (0: off)");
-  hip_roll_gain_ = store.add_real("walk.balance.hip_roll_gain", 0.5315, 0.0, 1.0, "s",
+  hip_roll_gain_ = store.add_real("walk.balance.hip_roll_gain", 0.4495, 0.0, 1.0, "s",
                                   "support hip roll added per rad/s of torso roll rate (0: off)");
-  filter_time_ = store.add_real("walk.balance.filter_time", 0.016, 0.0, 1.0, "s",
+  filter_time_ = store.add_real("walk.balance.filter_time", 0.0145, 0.0, 1.0, "s",
                                 "low-pass time constant of the gyro feedback");
-  deadband_ = store.add_real("walk.balance.deadband", 0.0183, 0.0, 2.0, "rad/s",
+  deadband_ = store.add_real("walk.balance.deadband", 0.0199, 0.0, 2.0, "rad/s",
                              "gyro rates below this are ignored");
-  max_shift_ = store.add_real("walk.balance.max_shift", 0.3165, 0.0, 1.0, "rad",
+  max_shift_ = store.add_real("walk.balance.max_shift", 0.2116, 0.0, 1.0, "rad",
                               "largest joint shift the feedback may add");
   pitch_angle_gain_ =
-      store.add_real("walk.balance.pitch_angle_gain", 4.1481, 0.0, 20.0, "1/s",
+      store.add_real("walk.balance.pitch_angle_gain", 4.8817, 0.0, 20.0, "1/s",
                      "torso pitch error (rad) added to the fed-back pitch rate (0: off)");
   roll_angle_gain_ =
-      store.add_real("walk.balance.roll_angle_gain", 0.1018, 0.0, 20.0, "1/s",
+      store.add_real("walk.balance.roll_angle_gain", 0.1072, 0.0, 20.0, "1/s",
                      "torso roll error (rad) added to the fed-back roll rate (0: off)");
   tilt_filter_time_ =
-      store.add_real("walk.balance.tilt_filter_time", 0.6533, 0.05, 10.0, "s",
+      store.add_real("walk.balance.tilt_filter_time", 0.5734, 0.05, 10.0, "s",
                      "complementary filter time constant of the torso tilt estimate");
   tilt_reference_time_ =
       store.add_real("walk.balance.tilt_reference_time", 0.0, 0.0, 20.0, "s",
