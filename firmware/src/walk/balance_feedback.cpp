@@ -17,27 +17,58 @@ double deadband(double value, double band) {
 BalanceFeedback::BalanceFeedback(ParameterStore& store, double period_s)
     : store_(store), period_s_(period_s) {
   ankle_pitch_gain_ =
-      store.add_real("walk.balance.ankle_pitch_gain", 0.461, 0.0, 1.0, "s",
+      store.add_real("walk.balance.ankle_pitch_gain", 0.4706, 0.0, 1.0, "s",
                      "support ankle pitch added per rad/s of torso pitch rate (0: off)");
   ankle_roll_gain_ =
-      store.add_real("walk.balance.ankle_roll_gain", 0.53, 0.0, 1.0, "s",
+      store.add_real("walk.balance.ankle_roll_gain", 0.8999, 0.0, 1.0, "s",
                      "support ankle roll added per rad/s of torso roll rate (0: off)");
   hip_pitch_gain_ =
-      store.add_real("walk.balance.hip_pitch_gain", 0.49, 0.0, 1.0, "s",
+      store.add_real("walk.balance.hip_pitch_gain", 0.0374, 0.0, 1.0, "s",
                      "support hip pitch added per rad/s of torso pitch rate (0: off)");
-  hip_roll_gain_ = store.add_real("walk.balance.hip_roll_gain", 0.925, 0.0, 1.0, "s",
+  hip_roll_gain_ = store.add_real("walk.balance.hip_roll_gain", 0.4495, 0.0, 1.0, "s",
                                   "support hip roll added per rad/s of torso roll rate (0: off)");
-  filter_time_ = store.add_real("walk.balance.filter_time", 0.015, 0.0, 1.0, "s",
+  filter_time_ = store.add_real("walk.balance.filter_time", 0.0145, 0.0, 1.0, "s",
                                 "low-pass time constant of the gyro feedback");
-  deadband_ = store.add_real("walk.balance.deadband", 0.0, 0.0, 2.0, "rad/s",
+  deadband_ = store.add_real("walk.balance.deadband", 0.0199, 0.0, 2.0, "rad/s",
                              "gyro rates below this are ignored");
-  max_shift_ = store.add_real("walk.balance.max_shift", 0.516, 0.0, 1.0, "rad",
+  max_shift_ = store.add_real("walk.balance.max_shift", 0.2116, 0.0, 1.0, "rad",
                               "largest joint shift the feedback may add");
+  pitch_angle_gain_ =
+      store.add_real("walk.balance.pitch_angle_gain", 4.8817, 0.0, 20.0, "1/s",
+                     "torso pitch error (rad) added to the fed-back pitch rate (0: off)");
+  roll_angle_gain_ =
+      store.add_real("walk.balance.roll_angle_gain", 0.1072, 0.0, 20.0, "1/s",
+                     "torso roll error (rad) added to the fed-back roll rate (0: off)");
+  tilt_filter_time_ =
+      store.add_real("walk.balance.tilt_filter_time", 0.5734, 0.05, 10.0, "s",
+                     "complementary filter time constant of the torso tilt estimate");
+  tilt_reference_time_ =
+      store.add_real("walk.balance.tilt_reference_time", 0.0, 0.0, 20.0, "s",
+                     "time constant of the slow mean tilt the tilt term holds the torso to "
+                     "(0: the tilt at the walk's start)");
+  double_support_weight_ =
+      store.add_real("walk.balance.double_support_weight", 0.3254, 0.0, 1.0, "1",
+                     "share of the feedback the swing leg takes while both feet are down");
+  start_sway_steps_ =
+      store.add_real("walk.balance.start_sway_steps", 0.0, 0.0, 10.0, "steps",
+                     "steps over which the ZMP excursion ramps to full after the start (0: off)");
 }
 
 void BalanceFeedback::reset() noexcept {
   gyro_x_ = 0.0;
   gyro_y_ = 0.0;
+  tilt_valid_ = false;
+  roll_ = pitch_ = roll_reference_ = pitch_reference_ = 0.0;
+}
+
+double BalanceFeedback::double_support_weight() const noexcept {
+  return store_.value(double_support_weight_);
+}
+
+double BalanceFeedback::start_sway_scale(int step_count) const noexcept {
+  const double steps = store_.value(start_sway_steps_);
+  if (steps <= 0.0) return 1.0;
+  return std::clamp(static_cast<double>(step_count) / steps, 0.0, 1.0);
 }
 
 BalanceShift BalanceFeedback::update(const hal::Cm730State& imu) noexcept {
@@ -46,10 +77,34 @@ BalanceShift BalanceFeedback::update(const hal::Cm730State& imu) noexcept {
   const double alpha = period_s_ / (period_s_ + store_.value(filter_time_));
   gyro_x_ += alpha * (gx - gyro_x_);
   gyro_y_ += alpha * (gy - gyro_y_);
+  // Tilt from the accelerometer (specific force: upright reads +z), fused with the gyro.
+  const double ax = imu.accel_mps2[0], ay = imu.accel_mps2[1], az = imu.accel_mps2[2];
+  if (std::isfinite(ax) && std::isfinite(ay) && std::isfinite(az) && az > 1.0) {
+    const double roll_acc = std::atan2(ay, az);
+    const double pitch_acc = std::atan2(-ax, std::hypot(ay, az));
+    if (!tilt_valid_) {
+      roll_ = roll_reference_ = roll_acc;
+      pitch_ = pitch_reference_ = pitch_acc;
+      tilt_valid_ = true;
+    } else {
+      const double beta = period_s_ / (period_s_ + store_.value(tilt_filter_time_));
+      roll_ += gx * period_s_;
+      pitch_ += gy * period_s_;
+      roll_ += beta * (roll_acc - roll_);
+      pitch_ += beta * (pitch_acc - pitch_);
+    }
+  }
+  if (const double reference_time = store_.value(tilt_reference_time_); reference_time > 0.0) {
+    const double gamma = period_s_ / (period_s_ + reference_time);
+    roll_reference_ += gamma * (roll_ - roll_reference_);
+    pitch_reference_ += gamma * (pitch_ - pitch_reference_);
+  }
   const double band = store_.value(deadband_);
   const double limit = store_.value(max_shift_);
-  const double rx = deadband(gyro_x_, band);
-  const double ry = deadband(gyro_y_, band);
+  const double rx =
+      deadband(gyro_x_, band) + store_.value(roll_angle_gain_) * (roll_ - roll_reference_);
+  const double ry =
+      deadband(gyro_y_, band) + store_.value(pitch_angle_gain_) * (pitch_ - pitch_reference_);
   auto shift = [&](ParamHandle gain, double rate) {
     return std::clamp(store_.value(gain) * rate, -limit, limit);
   };

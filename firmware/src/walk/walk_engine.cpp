@@ -150,6 +150,9 @@ void WalkEngine::begin_step() noexcept {
     velocity_ = {};
     return;
   }
+  // The first step swings the foot on the side the walk is commanded to (the left foot when
+  // there is no sideways command), so walking right mirrors walking left.
+  if (step_count_ == 1 && target.y < 0.0) swing_ = Foot::kLeft;
   swing_ = walk::other(swing_);
   const bool left_swings = swing_ == Foot::kLeft;
   const Pose2& support_foot = left_swings ? right_source_ : left_source_;
@@ -165,6 +168,14 @@ void WalkEngine::begin_step() noexcept {
   }
   torso_destination_ = walk::torso_between(left_destination_, right_destination_, params_);
   support_ = walk::support_point(walk::other(swing_), support_foot, params_);
+  // Right after the start the ZMP excursion may ramp in (walk.balance.start_sway_steps).
+  const double sway = balance_.start_sway_scale(step_count_);
+  if (sway < 1.0) {
+    const double mid_x = 0.5 * (torso_source_.x + torso_destination_.x);
+    const double mid_y = 0.5 * (torso_source_.y + torso_destination_.y);
+    support_.x = mid_x + sway * (support_.x - mid_x);
+    support_.y = mid_y + sway * (support_.y - mid_y);
+  }
   const auto& p = params_;
   lipm_x_.solve(torso_source_.x, torso_destination_.x, support_.x, p.step_time, p.zmp_time,
                 p.single_support_start, p.single_support_end);
@@ -241,6 +252,7 @@ void WalkEngine::compute_targets(double time_in_step, bool standing) noexcept {
   double right_lift = 0.0;
   double left_roll = 0.0;
   double right_roll = 0.0;
+  double swing_feedback = 1.0;  // share of the balance shift the swing leg takes
   if (standing) {
     torso = walk::torso_between(left, right, p);
   } else {
@@ -253,6 +265,7 @@ void WalkEngine::compute_targets(double time_in_step, bool standing) noexcept {
                             ? p.step_height * profile.vertical * walk::lift_factor(velocity_, p)
                             : 0.0;
     const double compensation = p.hip_roll_compensation * profile.compensation;
+    swing_feedback = balance_.double_support_weight() * (1.0 - profile.compensation);
     if (swing_ == Foot::kLeft) {
       left = walk::interpolate(left_source_, left_destination_, profile.horizontal);
       right = right_source_;
@@ -265,11 +278,12 @@ void WalkEngine::compute_targets(double time_in_step, bool standing) noexcept {
       left_roll = compensation;
     }
   }
-  // The support leg takes the balance feedback (both legs while standing).
-  const bool left_supports = standing || swing_ == Foot::kRight;
-  const bool right_supports = standing || swing_ == Foot::kLeft;
-  solve_leg(left_leg_, left, left_lift, torso, left_roll, left_supports, left_leg_index_);
-  solve_leg(right_leg_, right, right_lift, torso, right_roll, right_supports, right_leg_index_);
+  // The support leg takes the balance feedback (both legs while standing; the swing leg a share
+  // while both feet are down, walk.balance.double_support_weight).
+  const double left_feedback = standing || swing_ == Foot::kRight ? 1.0 : swing_feedback;
+  const double right_feedback = standing || swing_ == Foot::kLeft ? 1.0 : swing_feedback;
+  solve_leg(left_leg_, left, left_lift, torso, left_roll, left_feedback, left_leg_index_);
+  solve_leg(right_leg_, right, right_lift, torso, right_roll, right_feedback, right_leg_index_);
   write_arms(phase, torso, left, right);
   snapshot_.phase = phase;
   snapshot_.torso = torso;
@@ -280,7 +294,7 @@ void WalkEngine::compute_targets(double time_in_step, bool standing) noexcept {
 }
 
 void WalkEngine::solve_leg(const walk::LegKinematics& leg, const Pose2& foot, double lift,
-                           const Pose2& torso, double hip_roll_offset, bool support,
+                           const Pose2& torso, double hip_roll_offset, double feedback,
                            const std::array<std::size_t, 6>& servo_index) noexcept {
   const Eigen::Matrix3d trunk_rotation = yaw_pitch(torso.theta, params_.body_tilt);
   const Eigen::Vector3d torso_position(torso.x, torso.y, params_.body_height);
@@ -295,12 +309,10 @@ void WalkEngine::solve_leg(const walk::LegKinematics& leg, const Pose2& foot, do
   tick_clamped_ = tick_clamped_ || ik.clamped;
   walk::LegJoints q = ik.joints;
   q.hip_roll += hip_roll_offset;
-  if (support) {
-    q.hip_roll += balance_shift_.hip_roll;
-    q.hip_pitch += balance_shift_.hip_pitch;
-    q.ankle_pitch += balance_shift_.ankle_pitch;
-    q.ankle_roll += balance_shift_.ankle_roll;
-  }
+  q.hip_roll += feedback * balance_shift_.hip_roll;
+  q.hip_pitch += feedback * balance_shift_.hip_pitch;
+  q.ankle_pitch += feedback * balance_shift_.ankle_pitch;
+  q.ankle_roll += feedback * balance_shift_.ankle_roll;
   targets_[servo_index[0]] = q.hip_yaw;
   targets_[servo_index[1]] = q.hip_roll;
   targets_[servo_index[2]] = q.hip_pitch;

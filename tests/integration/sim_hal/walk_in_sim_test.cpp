@@ -64,13 +64,15 @@ void print(const char* what, std::uint64_t seed, const sim::EpisodeResult& r) {
 }
 
 // Issue 5 asks for 10 of 10 seeds forward and 20 s backward, sideways and turning without a
-// fall. Not reached yet (see the closing note of issue 5 and firmware/src/walk/README.md): with
-// the Ind_O parameters the simulated robot reaches 2.5 m in about half the seeds and falls after
-// about 7 s backward or turning. These tests hold the level reached so far, so that a change
-// that makes the walk worse fails; raise the floors as the walk improves.
-constexpr int kForwardSeedsFloor = 4;  // of 10; measured 5 to 7 while the engine was tuned
+// fall. With the balance defaults of firmware/src/walk/README.md (gyro rate and torso tilt
+// feedback) the simulated robot reaches 2.5 m in all 10 seeds (held-out seeds 11..30: 20 of 20)
+// and stays up for 20 s backward, sideways and turning on the spot (seed 1), moving sideways
+// the commanded way (final torso y 0.136 m left, -0.080 m right; the torso rocks about
+// +-0.12 m laterally, see firmware/src/walk/README.md). The walk is still sensitive to small
+// changes (the parameters were found by a search), so a change that makes it worse fails here.
+constexpr int kForwardSeedsFloor = 10;  // of 10
 
-TEST(WalkInSim, ForwardTwoAndAHalfMetresInMostSeedsAndFasterThanTheSeed) {
+TEST(WalkInSim, ForwardTwoAndAHalfMetresInAllSeedsAndFasterThanTheSeed) {
   int reached = 0;
   for (std::uint64_t seed = 1; seed <= 10; ++seed) {
     const sim::EpisodeResult r = walk_in_sim(seed, {1.0, 0.0, 0.0}, 60.0);
@@ -97,17 +99,17 @@ TEST(WalkInSim, SidewaysBothWaysTwentySecondsWithoutFalling) {
   }
 }
 
-// Backward and turning on the spot still fall (measured at about 7 s with seed 1); the test
-// holds that level: the world stays healthy and the walk keeps the robot up for at least 5 s,
-// well past the two lift-free starting steps.
-TEST(WalkInSim, BackwardAndTurningKeepTheRobotUpForFiveSeconds) {
-  for (const WalkCommand command : {WalkCommand{-1.0, 0.0, 0.0}, WalkCommand{0.0, 0.0, 1.0}}) {
-    const sim::EpisodeResult r = walk_in_sim(1, command, 20.0);
-    print(command.vx < 0 ? "backward" : "turning", 1, r);
+// Backward and turning on the spot (both ways): 20 s without a fall, the world healthy.
+TEST(WalkInSim, BackwardAndTurningTwentySecondsWithoutFalling) {
+  for (const WalkCommand command :
+       {WalkCommand{-1.0, 0.0, 0.0}, WalkCommand{0.0, 0.0, 1.0}, WalkCommand{0.0, 0.0, -1.0}}) {
+    double yaw = 0.0;
+    const sim::EpisodeResult r = walk_in_sim(1, command, 20.0, {}, &yaw);
+    print(command.vx < 0 ? "backward" : (command.vtheta > 0 ? "turn left" : "turn right"), 1, r);
     EXPECT_EQ(r.status, sim::WorldStatus::kRunning) << r.failure_reason;
-    if (r.fell) {
-      EXPECT_GT(r.fall_time_s, 5.0);
-    }
+    EXPECT_FALSE(r.fell) << "vx " << command.vx << " vtheta " << command.vtheta;
+    EXPECT_GE(r.sim_time_s, 20.0 - 0.011);
+    std::printf("  final yaw %.3f rad\n", yaw);
   }
 }
 

@@ -193,7 +193,10 @@ TEST(WalkEngine, BalanceFeedbackShiftsTheSupportLegAndZeroGainsAreOpenLoop) {
                   .set_now({{"walk.balance.ankle_pitch_gain", 0.2},
                             {"walk.balance.ankle_roll_gain", 0.1},
                             {"walk.balance.hip_pitch_gain", 0.0},
-                            {"walk.balance.hip_roll_gain", 0.1}})
+                            {"walk.balance.hip_roll_gain", 0.1},
+                            {"walk.balance.deadband", 0.0},
+                            {"walk.balance.pitch_angle_gain", 0.0},
+                            {"walk.balance.roll_angle_gain", 0.0}})
                   .is_ok());
   still.run(150);  // first step: the left leg swings, the right supports
   shaken.run(150);

@@ -11,6 +11,18 @@
 // g is the torso gyro (rad/s, torso frame). Signs: a torso pitching forward (g_y > 0) gets
 // more toe-down ankle and more backward hip pitch on the support leg, both of which rotate the
 // torso back; likewise for roll. Gains k_j are in seconds (rad of joint per rad/s of rate).
+//
+// Tilt term (walk.balance.{pitch,roll}_angle_gain, 1/s; 0 = rate feedback only): a
+// complementary filter estimates torso pitch and roll from gyro and accelerometer
+// (time constant walk.balance.tilt_filter_time); its slow mean (walk.balance.tilt_reference_time)
+// is the reference (0: the tilt measured when the walk starts), so the term reacts to a tilt
+// away from the recent (or the starting) posture. The fed-back rate becomes
+//   r = deadband(g_f) + angle_gain * (tilt - tilt_reference)                          [rad/s]
+// Hand-over (walk.balance.double_support_weight, 0..1; 0 = support leg only): the share of the
+// shift the swing leg also takes while both feet are down, ramped out over the first and in over
+// the last tenth of the single-support phase, so the feedback does not jump between legs at the
+// step change. Start sway (walk.balance.start_sway_steps, 0 = off): the lateral and sagittal ZMP
+// excursion of step n after the start is scaled by min(1, n / start_sway_steps).
 #pragma once
 
 #include "stride/firmware/parameter_store.hpp"
@@ -30,13 +42,21 @@ class BalanceFeedback {
   void reset() noexcept;
   /// Filters this tick's gyro and returns the joint shifts for the support leg. Real-time.
   BalanceShift update(const hal::Cm730State& imu) noexcept;
+  /// Share of the shift the swing leg takes in double support (0..1).
+  double double_support_weight() const noexcept;
+  /// ZMP excursion scale of step `step_count` after the start (0..1].
+  double start_sway_scale(int step_count) const noexcept;
 
  private:
   const ParameterStore& store_;
   double period_s_;
   ParamHandle ankle_pitch_gain_, ankle_roll_gain_, hip_pitch_gain_, hip_roll_gain_;
   ParamHandle filter_time_, deadband_, max_shift_;
+  ParamHandle pitch_angle_gain_, roll_angle_gain_, tilt_filter_time_, tilt_reference_time_;
+  ParamHandle double_support_weight_, start_sway_steps_;
   double gyro_x_ = 0.0, gyro_y_ = 0.0;
+  bool tilt_valid_ = false;
+  double roll_ = 0.0, pitch_ = 0.0, roll_reference_ = 0.0, pitch_reference_ = 0.0;
 };
 
 }  // namespace stride::fw::walk

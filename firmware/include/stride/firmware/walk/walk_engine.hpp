@@ -92,7 +92,7 @@ class WalkEngine final : public WalkControl {
   void begin_step() noexcept;
   void compute_targets(double time_in_step, bool standing) noexcept;
   void solve_leg(const walk::LegKinematics& leg, const walk::Pose2& foot, double lift,
-                 const walk::Pose2& torso, double hip_roll_offset, bool support,
+                 const walk::Pose2& torso, double hip_roll_offset, double feedback,
                  const std::array<std::size_t, 6>& servo_index) noexcept;
   void write_arms(double phase, const walk::Pose2& torso, const walk::Pose2& left_foot,
                   const walk::Pose2& right_foot) noexcept;
