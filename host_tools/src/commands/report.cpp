@@ -1,8 +1,11 @@
 // `stride report DIR`: rebuilds the plots and front/ files of a robot optimisation run and
-// prints the fastest, most stable and knee-point members beside Ind_O.
+// prints the best member for each objective (walk: fastest, most stable; kick: least sway,
+// longest kick) and the knee point beside Ind_O.
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <string>
 
 #include <nlohmann/json.hpp>
 
@@ -19,10 +22,12 @@ int bad_input(const std::string& message) {
   return 2;
 }
 
-void print_member(const char* label, const nlohmann::json& m, const nlohmann::json& ind_o) {
+void print_member(const std::string& label, const nlohmann::json& m, const nlohmann::json& ind_o,
+                  bool kick) {
   if (m.is_null()) return;
   const auto f = m["objectives"].get<std::vector<double>>();
-  std::printf("%-12s f1 %10.4g  f2 %10.4g", label, f[0], f[1]);
+  std::printf("%-13s f1 %10.4g  f2 %10.4g", label.c_str(), f[0], f[1]);
+  if (kick && f[1] > 0) std::printf("  (ball %.2f m)", 1.0 / f[1]);
   if (ind_o.is_object()) {
     const auto o = ind_o["objectives"].get<std::vector<double>>();
     if (o[0] > 0 && o[1] > 0 && o[0] < 1e29)
@@ -44,7 +49,8 @@ int run_report(int argc, char** argv) {
     std::printf(
         "usage: stride report DIR [--json]\nRebuilds DIR/pareto_by_generation.svg, "
         "DIR/hypervolume.svg and DIR/front/,\n"
-        "then prints the fastest, most stable and knee-point members beside Ind_O.\n\n%s",
+        "then prints the best member for each objective (walk: fastest, most stable;\n"
+        "kick: least sway, longest kick) and the knee point beside Ind_O.\n\n%s",
         args.help().c_str());
     return 0;
   }
@@ -82,11 +88,15 @@ int run_report(int argc, char** argv) {
               summary["front_size"].get<std::size_t>(),
               config.problem == "walk" ? "f1 time to goal [s], f2 max |a| [m/s^2]"
                                        : "f1 max sway [m/s^2], f2 1/ball distance [1/m]");
+  const bool kick = config.problem == "kick";
   const nlohmann::json& o = summary["ind_o"];
-  if (o.is_object()) print_member("Ind_O", o, nullptr);
-  for (auto [label, key] :
-       {std::pair{"fastest", "fastest"}, {"most stable", "most_stable"}, {"knee", "knee"}})
-    if (summary.contains(key)) print_member(label, summary[key], o);
+  if (o.is_object()) print_member("Ind_O", o, nullptr, kick);
+  const stride::opt::RunPickNames names = stride::opt::run_pick_names(config.problem);
+  for (const std::string key : {names.best_obj1, names.best_obj2, "knee"}) {
+    std::string label = key;
+    std::replace(label.begin(), label.end(), '_', ' ');
+    if (summary.contains(key)) print_member(label, summary[key], o, kick);
+  }
   std::printf("plots: %s, %s\n", (dir / "pareto_by_generation.svg").c_str(),
               (dir / "hypervolume.svg").c_str());
   return 0;

@@ -295,6 +295,12 @@ Status write_plots(const fs::path& dir) {
   return fw::write_file_atomically(dir / "hypervolume.svg", hv_chart.str());
 }
 
+RunPickNames run_pick_names(const std::string& task) {
+  if (task == "kick") return {"least_sway", "longest_kick"};
+  if (task == "walk") return {"fastest", "most_stable"};
+  return {"best_obj1", "best_obj2"};
+}
+
 Status summarise_run(const fs::path& dir, json& out) {
   json run;
   if (Status s = read_json_file(dir / "run.json", run); !s) return s;
@@ -320,13 +326,14 @@ Status summarise_run(const fs::path& dir, json& out) {
     std::snprintf(name, sizeof name, "front/%03zu.json", i);
     return json{{"objectives", objs[i]}, {"file", name}};
   };
-  std::size_t fastest = 0, stable = 0;
+  std::size_t best1 = 0, best2 = 0;
   for (std::size_t i = 0; i < objs.size(); ++i) {
-    if (objs[i][0] < objs[fastest][0]) fastest = i;
-    if (objs[i][1] < objs[stable][1]) stable = i;
+    if (objs[i][0] < objs[best1][0]) best1 = i;
+    if (objs[i][1] < objs[best2][1]) best2 = i;
   }
-  out["fastest"] = pick(fastest);
-  out["most_stable"] = pick(stable);
+  const RunPickNames names = run_pick_names(task);
+  out[names.best_obj1] = pick(best1);
+  out[names.best_obj2] = pick(best2);
   out["knee"] = pick(knee_index(objs));
   return {};
 }

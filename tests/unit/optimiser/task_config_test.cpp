@@ -6,6 +6,7 @@
 #include "stride/optimiser/run/run_report.hpp"
 #include "stride/optimiser/tasks/robot_task.hpp"
 #include "stride/optimiser/tasks/task_config.hpp"
+#include "temp_dir.hpp"
 
 namespace stride::opt {
 namespace {
@@ -132,6 +133,32 @@ TEST(RunReport, NonDominatedAndKnee) {
   EXPECT_EQ(front[0], (std::vector<double>{1, 3}));
   EXPECT_EQ(front[2], (std::vector<double>{3, 1}));
   EXPECT_EQ(knee_index(front), 1u);  // (2, 2) is closest to the ideal point
+}
+
+// A kick run's summary names its picks after the kick's objectives (Obj1 sway, Obj2 1/distance);
+// a walk run's after the walk's.
+TEST(RunReport, SummaryNamesThePicksAfterTheTask) {
+  for (const std::string task : {"kick", "walk"}) {
+    test::TempDir tmp;
+    tmp.write("run.json", R"({"problem":")" + task + R"(","start":{"reals":[0.5]}})");
+    tmp.write("evaluations.jsonl",
+              R"({"generation":1,"reals":[0.5],"objectives":[4.0,1.25],"violation":0})"
+              "\n"
+              R"({"generation":1,"reals":[0.7],"objectives":[3.0,0.5],"violation":0})"
+              "\n");
+    tmp.write("pareto.csv", "f1,f2,g1\n3.5,0.25,0.6\n2.5,0.5,0.8\n3.0,0.3,0.7\n");
+    nlohmann::json summary;
+    ASSERT_TRUE(summarise_run(tmp.path(), summary).is_ok());
+    EXPECT_EQ(summary["task"], task);
+    EXPECT_EQ(summary["ind_o"]["objectives"], (std::vector<double>{4.0, 1.25}));
+    const RunPickNames names = run_pick_names(task);
+    EXPECT_EQ(std::string(names.best_obj1), task == "kick" ? "least_sway" : "fastest");
+    EXPECT_EQ(std::string(names.best_obj2), task == "kick" ? "longest_kick" : "most_stable");
+    EXPECT_EQ(summary[names.best_obj1]["file"], "front/001.json");  // Obj1 2.5
+    EXPECT_EQ(summary[names.best_obj2]["file"], "front/000.json");  // Obj2 0.25: 4 m
+    EXPECT_EQ(summary["knee"]["file"], "front/002.json");
+    EXPECT_FALSE(summary.contains(task == "kick" ? "fastest" : "least_sway"));
+  }
 }
 
 TEST(Progress, LineShowsGenerationRateEtaBestAndHypervolume) {

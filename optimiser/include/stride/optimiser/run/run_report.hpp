@@ -4,8 +4,9 @@
 //   pareto_by_generation.svg  the non-dominated feasible evaluations so far, after selected
 //                             generations (like the seed's figures), Ind_O marked
 //   hypervolume.svg           hypervolume against evaluations
-// and a summary: the fastest (best Obj1), the most stable (best Obj2) and the knee-point
-// (closest to the ideal point after normalising the front) members beside Ind_O.
+// and a summary: the best-Obj1 and best-Obj2 members (walk: the fastest and the most stable;
+// kick: the least sway and the longest kick) and the knee point (closest to the ideal point
+// after normalising the front) beside Ind_O.
 #pragma once
 
 #include <filesystem>
@@ -31,7 +32,17 @@ Status read_pareto_csv(const std::filesystem::path& path, int objectives,
 Status write_front_files(const std::filesystem::path& dir, const RobotTask& task);
 /// Writes both SVG plots from evaluations.jsonl and generations.jsonl.
 Status write_plots(const std::filesystem::path& dir);
-/// Summary JSON: task, Ind_O, fastest, most_stable, knee (objectives and front file names).
+/// Summary keys of the best-Obj1 and best-Obj2 front members for a task: "fastest" and
+/// "most_stable" for the walk, "least_sway" and "longest_kick" for the kick (Obj2 = 1/distance),
+/// "best_obj1" and "best_obj2" otherwise.
+struct RunPickNames {
+  const char* best_obj1;
+  const char* best_obj2;
+};
+RunPickNames run_pick_names(const std::string& task);
+
+/// Summary JSON: task, evaluations, front_size, ind_o, the two run_pick_names() members and
+/// "knee" (each with objectives and front file name).
 Status summarise_run(const std::filesystem::path& dir, nlohmann::json& out);
 
 /// The non-dominated points of `points` (minimisation, 2 objectives), sorted by Obj1.
