@@ -224,7 +224,8 @@ Status Nsga2::restore(const json& cp, const ProblemShape& shape,
       return Status::error("checkpoint: batch ids are not consecutive");
     }
   }
-  for (const auto& [genome, result] : known) engine->cache_.insert_or_assign(genome, result);
+  for (const auto& [genome, result] : known)
+    engine->cache_.insert_or_assign(HashedGenome{GenomeBitsHash{}(genome), genome}, result);
   engine->resolve_batch();
   out = std::move(engine);
   return {};

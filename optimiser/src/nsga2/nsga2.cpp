@@ -2,6 +2,7 @@
 #include "stride/optimiser/nsga2/nsga2.hpp"
 
 #include <algorithm>
+#include <iterator>
 #include <numeric>
 
 #include "stride/optimiser/nsga2/operators.hpp"
@@ -101,13 +102,15 @@ void Nsga2::resolve_batch() {
   for (std::size_t i = 0; i < batch_.size(); ++i) {
     Individual& ind = batch_[i];
     if (ind.evaluated) continue;
-    if (const auto hit = cache_.find(ind.genome); hit != cache_.end()) {
+    ind.genome_hash = GenomeBitsHash{}(ind.genome);
+    if (const auto hit = cache_.find(HashedGenomeRef{ind.genome_hash, &ind.genome});
+        hit != cache_.end()) {
       ind.result = hit->second;
       ind.evaluated = true;
       ind.from_cache = true;
       continue;
     }
-    pending_.emplace_back(GenomeBitsHash{}(ind.genome), i);
+    pending_.emplace_back(ind.genome_hash, i);
   }
   std::sort(pending_.begin(), pending_.end());
   for (std::size_t k = 1; k < pending_.size(); ++k) {
@@ -125,6 +128,7 @@ void Nsga2::resolve_batch() {
 
 std::vector<Candidate> Nsga2::ask() const {
   std::vector<Candidate> out;
+  out.reserve(batch_.size());
   for (std::size_t i = 0; i < batch_.size(); ++i) {
     if (batch_[i].evaluated || alias_of_[i] >= 0) continue;
     out.push_back(Candidate{batch_[i].id, batch_[i].genome});
@@ -157,7 +161,7 @@ Status Nsga2::tell(std::uint64_t id, EvaluationOutcome outcome) {
   const Result& result = batch_[index].result;
   ++counters_.evaluations;
   if (result.failed) ++counters_.failures;
-  cache_.insert_or_assign(batch_[index].genome, result);
+  cache_.insert_or_assign(HashedGenome{batch_[index].genome_hash, batch_[index].genome}, result);
   batch_[index].evaluated = true;
   for (std::size_t j = 0; alias_count_ > 0 && j < batch_.size(); ++j) {
     if (alias_of_[j] == static_cast<int>(index)) {
@@ -197,14 +201,19 @@ Status Nsga2::advance() {
 }
 
 void Nsga2::survive() {
-  std::vector<Individual> merged = std::move(population_);
-  merged.insert(merged.end(), std::make_move_iterator(batch_.begin()),
-                std::make_move_iterator(batch_.end()));
+  // merged_, population_ and spare_ keep their capacity from generation to generation, and the
+  // members that do not survive lend their genome storage to the next children (spare_).
+  std::vector<Individual>& merged = merged_;
+  merged.clear();
+  merged.reserve(population_.size() + batch_.size());
+  std::move(population_.begin(), population_.end(), std::back_inserter(merged));
+  std::move(batch_.begin(), batch_.end(), std::back_inserter(merged));
   std::vector<std::vector<int>> fronts;
   rank_and_crowd(merged, &fronts);
   const auto n = static_cast<std::size_t>(settings_.pop_size);
   population_.clear();
   population_.reserve(n);
+  survived_.assign(merged.size(), 0);
   for (std::vector<int>& front : fronts) {
     if (population_.size() + front.size() > n) {
       // The last front that fits only partly: the least crowded members first.
@@ -214,9 +223,15 @@ void Nsga2::survive() {
       });
       front.resize(n - population_.size());
     }
-    for (const int i : front) population_.push_back(std::move(merged[static_cast<std::size_t>(i)]));
+    for (const int i : front) {
+      population_.push_back(std::move(merged[static_cast<std::size_t>(i)]));
+      survived_[static_cast<std::size_t>(i)] = 1;
+    }
     if (population_.size() == n) break;
   }
+  spare_.clear();
+  for (std::size_t i = 0; i < merged.size(); ++i)
+    if (survived_[i] == 0) spare_.push_back(std::move(merged[i]));
 }
 
 const Individual& Nsga2::tournament(const Individual& a, const Individual& b) {
@@ -235,7 +250,23 @@ void Nsga2::make_children() {
   for (auto* order : {&order_a, &order_b}) {
     for (std::size_t i = n - 1; i > 0; --i) std::swap((*order)[i], (*order)[rng_.below(i + 1)]);
   }
-  batch_.assign(n, Individual{});
+  // Children reuse the genome storage of last generation's losers (spare_) where there is some.
+  batch_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    Individual& child = batch_[i];
+    if (i < spare_.size()) {
+      child.genome = std::move(spare_[i].genome);
+    } else {
+      child.genome = Genome{};
+    }
+    child.genome_hash = 0;
+    child.result = Result{};
+    child.evaluated = false;
+    child.from_cache = false;
+    child.rank = 0;
+    child.crowding = 0.0;
+  }
+  spare_.clear();
   auto cross = [&](const Individual& p1, const Individual& p2, Individual& c1, Individual& c2) {
     sbx_crossover(p1.genome.reals, p2.genome.reals, shape_.reals, settings_.real_cross_prob,
                   settings_.eta_c, rng_, c1.genome.reals, c2.genome.reals);

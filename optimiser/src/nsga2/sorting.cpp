@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <limits>
 #include <numeric>
+#include <utility>
 
 namespace stride::opt {
 namespace {
@@ -11,6 +12,24 @@ namespace {
 /// Indices sorted lexicographically by all objectives (ties by index).
 std::vector<int> lexicographic_order(const Points& points) {
   std::vector<int> order(points.size());
+  if (!points.empty() && points.front().size() == 2) {
+    // The common two-objective case: sort contiguous (f1, f2, index) keys. The order is total
+    // (ties by index), so it is the same order as the general comparator below gives.
+    struct Key {
+      double f1, f2;
+      int index;
+    };
+    std::vector<Key> keys(points.size());
+    for (std::size_t i = 0; i < points.size(); ++i)
+      keys[i] = {points[i][0], points[i][1], static_cast<int>(i)};
+    std::sort(keys.begin(), keys.end(), [](const Key& a, const Key& b) {
+      if (a.f1 != b.f1) return a.f1 < b.f1;
+      if (a.f2 != b.f2) return a.f2 < b.f2;
+      return a.index < b.index;
+    });
+    for (std::size_t i = 0; i < keys.size(); ++i) order[i] = keys[i].index;
+    return order;
+  }
   std::iota(order.begin(), order.end(), 0);
   std::sort(order.begin(), order.end(), [&](int a, int b) {
     const auto& pa = points[static_cast<std::size_t>(a)];
@@ -203,23 +222,21 @@ void crowding_distances(const Points& points, const std::vector<int>& front,
     return;
   }
   const std::size_t objectives = points[static_cast<std::size_t>(front.front())].size();
-  std::vector<int> order = front;
+  // Per objective, the members sorted by (value, index): a total order, on contiguous keys.
+  std::vector<std::pair<double, int>> sorted(front.size());
   for (std::size_t m = 0; m < objectives; ++m) {
-    std::sort(order.begin(), order.end(), [&](int a, int b) {
-      const double fa = points[static_cast<std::size_t>(a)][m];
-      const double fb = points[static_cast<std::size_t>(b)][m];
-      return fa < fb || (fa == fb && a < b);
-    });
-    const double lo = points[static_cast<std::size_t>(order.front())][m];
-    const double hi = points[static_cast<std::size_t>(order.back())][m];
-    distance[static_cast<std::size_t>(order.front())] = kInf;
-    distance[static_cast<std::size_t>(order.back())] = kInf;
+    for (std::size_t k = 0; k < front.size(); ++k)
+      sorted[k] = {points[static_cast<std::size_t>(front[k])][m], front[k]};
+    std::sort(sorted.begin(), sorted.end());
+    const double lo = sorted.front().first;
+    const double hi = sorted.back().first;
+    distance[static_cast<std::size_t>(sorted.front().second)] = kInf;
+    distance[static_cast<std::size_t>(sorted.back().second)] = kInf;
     const double range = hi - lo;
     if (!(range > 0.0)) continue;
-    for (std::size_t k = 1; k + 1 < order.size(); ++k) {
-      const double gap = points[static_cast<std::size_t>(order[k + 1])][m] -
-                         points[static_cast<std::size_t>(order[k - 1])][m];
-      distance[static_cast<std::size_t>(order[k])] += gap / range;
+    for (std::size_t k = 1; k + 1 < sorted.size(); ++k) {
+      const double gap = sorted[k + 1].first - sorted[k - 1].first;
+      distance[static_cast<std::size_t>(sorted[k].second)] += gap / range;
     }
   }
 }

@@ -56,6 +56,33 @@ struct GenomeSameBits {
   bool operator()(const Genome& a, const Genome& b) const noexcept;
 };
 
+/// A genome with its GenomeBitsHash, computed once: the key of the evaluation cache.
+struct HashedGenome {
+  std::size_t hash = 0;
+  Genome genome;
+};
+/// A borrowed genome with its hash: looks the cache up without copying the genome.
+struct HashedGenomeRef {
+  std::size_t hash = 0;
+  const Genome* genome = nullptr;
+};
+/// Transparent hash and equality over HashedGenome and HashedGenomeRef (the stored hash is used,
+/// never recomputed).
+struct HashedGenomeHash {
+  using is_transparent = void;
+  std::size_t operator()(const HashedGenome& g) const noexcept { return g.hash; }
+  std::size_t operator()(const HashedGenomeRef& g) const noexcept { return g.hash; }
+};
+struct HashedGenomeSameBits {
+  using is_transparent = void;
+  static const Genome& of(const HashedGenome& g) { return g.genome; }
+  static const Genome& of(const HashedGenomeRef& g) { return *g.genome; }
+  template <class A, class B>
+  bool operator()(const A& a, const B& b) const noexcept {
+    return a.hash == b.hash && GenomeSameBits{}(of(a), of(b));
+  }
+};
+
 /// "0101..." text of the bits (used in logs and checkpoints).
 std::string bits_to_text(const std::vector<std::uint8_t>& bits);
 /// Parses bits_to_text's output; false if a character is not 0 or 1.

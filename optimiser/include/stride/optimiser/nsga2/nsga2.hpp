@@ -39,6 +39,7 @@ namespace stride::opt {
 struct Individual {
   std::uint64_t id = 0;  ///< serial number, unique within a run
   Genome genome;
+  std::size_t genome_hash = 0;  ///< GenomeBitsHash of genome (set when the batch is resolved)
   Result result;
   bool evaluated = false;
   bool from_cache = false;  ///< result reused from an earlier identical genome
@@ -108,11 +109,14 @@ class Nsga2 {
   Nsga2Counters counters_;
   std::vector<Individual> population_;
   std::vector<Individual> batch_;
-  std::vector<int> alias_of_;  ///< per batch member: index of the identical member told for it
-  int alias_count_ = 0;        ///< batch members with an alias (0: tell() skips the search)
+  std::vector<Individual> merged_;  ///< survive(): population + batch (capacity kept)
+  std::vector<Individual> spare_;   ///< survive()'s losers, whose genomes make_children() reuses
+  std::vector<char> survived_;      ///< survive(): per merged_ member
+  std::vector<int> alias_of_;       ///< per batch member: index of the identical member told for it
+  int alias_count_ = 0;             ///< batch members with an alias (0: tell() skips the search)
   std::vector<std::pair<std::size_t, std::size_t>> pending_;  ///< resolve_batch(): (hash, index)
   /// Every result told so far, by exact genome bits.
-  std::unordered_map<Genome, Result, GenomeBitsHash, GenomeSameBits> cache_;
+  std::unordered_map<HashedGenome, Result, HashedGenomeHash, HashedGenomeSameBits> cache_;
 };
 
 /// Exact text of a double ("%a"), and its parser (false if malformed).
