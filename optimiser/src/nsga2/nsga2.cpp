@@ -253,18 +253,8 @@ void Nsga2::make_children() {
   // Children reuse the genome storage of last generation's losers (spare_) where there is some.
   batch_.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
-    Individual& child = batch_[i];
-    if (i < spare_.size()) {
-      child.genome = std::move(spare_[i].genome);
-    } else {
-      child.genome = Genome{};
-    }
-    child.genome_hash = 0;
-    child.result = Result{};
-    child.evaluated = false;
-    child.from_cache = false;
-    child.rank = 0;
-    child.crowding = 0.0;
+    batch_[i] = Individual{};
+    if (i < spare_.size()) batch_[i].genome = std::move(spare_[i].genome);
   }
   spare_.clear();
   auto cross = [&](const Individual& p1, const Individual& p2, Individual& c1, Individual& c2) {
