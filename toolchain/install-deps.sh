@@ -1,5 +1,8 @@
 #!/usr/bin/env bash
-# Installs every Debian package Stride needs to build, test and run on the host (Debian 12).
+# Installs every Debian package Stride needs to build, test and run on the host (Debian 12),
+# then builds Debian's Simbody source optimised, with NDEBUG, for the simulator
+# (toolchain/build-simbody.sh; skipped with STRIDE_SIMBODY=debian, and if it fails the build
+# falls back to Debian's slower libsimbody with a warning).
 # Idempotent: packages already present are skipped; safe to run again. Needs root (or sudo).
 #
 #   toolchain/install-deps.sh            host build, tests, benchmarks, MPI
@@ -13,7 +16,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libopenmpi-dev openmpi-bin
   clang libclang-rt-14-dev clang-format
-  python3
+  python3 curl xz-utils
 )
 cross=0
 if [[ "${1:-}" == "--cross" ]]; then
@@ -40,11 +43,16 @@ done
 
 if ((${#missing[@]} == 0)) && [[ -z "${added_arch:-}" ]]; then
   echo "install-deps: all ${#packages[@]} packages present"
-  exit 0
+else
+  echo "install-deps: installing ${missing[*]}"
+  export DEBIAN_FRONTEND=noninteractive
+  "${sudo_cmd[@]}" apt-get update -qq
+  "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
 
-echo "install-deps: installing ${missing[*]}"
-export DEBIAN_FRONTEND=noninteractive
-"${sudo_cmd[@]}" apt-get update -qq
-"${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
+if [[ "${STRIDE_SIMBODY:-release}" != "debian" ]] &&
+  ! bash "$(dirname "$0")/build-simbody.sh"; then
+  echo "install-deps: warning: building the optimised Simbody failed; the simulator will use" \
+    "Debian's libsimbody, about 2.2x slower" >&2
+fi
 echo "install-deps: done"
