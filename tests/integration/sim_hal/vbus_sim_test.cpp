@@ -42,7 +42,13 @@ TEST(VirtualBusSim, FirmwareOverTheWireStandsTheSimulatedRobot) {
   EXPECT_EQ(firmware["cycles"], ticks);
   EXPECT_EQ(firmware["motion_state"], "stand");
   EXPECT_FALSE(firmware["fallen"].get<bool>());
-  EXPECT_LE(firmware["bus"]["timeouts"].get<int>(), ticks / 100) << slurp(dir.path() / "fw.err");
+  // At most 1 % of the cycles lost, per device: one late cycle (the test shares 2 cores with
+  // the other integration tests) times out all 21 devices at once.
+  ASSERT_EQ(firmware["bus"]["devices"].size(), 21U);
+  for (const auto& device : firmware["bus"]["devices"]) {
+    EXPECT_LE(device["timeouts"].get<int>(), ticks / 100) << device["name"] << "\n"
+                                                          << slurp(dir.path() / "fw.err");
+  }
   EXPECT_EQ(bus["bad_packets"], 0);
   // The world advanced exactly one period per BULK_READ and is still healthy and upright.
   ASSERT_TRUE(bus.contains("sim")) << bus.dump();
