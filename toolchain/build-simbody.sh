@@ -17,7 +17,15 @@ set -euo pipefail
 version="3.7+dfsg"
 debian_revision="3"
 prefix="${STRIDE_SIMBODY_PREFIX:-/opt/stride/simbody-3.7}"
-archive="${STRIDE_DEBIAN_ARCHIVE:-http://deb.debian.org/debian}"
+# The archive is the Debian mirror apt is configured with (its stable suite's repository), so
+# the build fetches from wherever this machine's packages come from; STRIDE_DEBIAN_ARCHIVE
+# overrides it.
+archive="${STRIDE_DEBIAN_ARCHIVE:-$(apt-get indextargets --format '$(REPO_URI) $(RELEASE)' 2>/dev/null |
+  awk '$2 !~ /-/ { sub(/\/$/, "", $1); print $1; exit }')}"
+if [[ -z "$archive" ]]; then
+  echo "build-simbody: no Debian archive found in apt's sources; set STRIDE_DEBIAN_ARCHIVE" >&2
+  exit 1
+fi
 orig="simbody_${version}.orig.tar.xz"
 orig_sha256="c2e2a3e7def05ba4fda4b216d04d41bdc6477c0cfcec20bfce98c1005532dfb6"
 debian="simbody_${version}-${debian_revision}.debian.tar.xz"
