@@ -42,9 +42,26 @@ struct Firmware::Engines {
 
 Firmware::~Firmware() = default;
 
+Status FirmwareFiles::load(const FirmwareOptions& options, FirmwareFiles& out) {
+  FirmwareFiles files;
+  if (Status s = ServoTable::load(options.servo_table, files.servos); !s) return s;
+  const std::filesystem::path scripts_dir =
+      options.scripts_dir.empty() ? data_dir() / "scripts" : options.scripts_dir;
+  if (Status s = load_script_folder(scripts_dir, files.servos, files.scripts); !s) return s;
+  out = std::move(files);
+  return {};
+}
+
 Status Firmware::create(const FirmwareOptions& options, std::unique_ptr<Firmware>& out) {
+  FirmwareFiles files;
+  if (Status s = FirmwareFiles::load(options, files); !s) return s;
+  return create(options, files, out);
+}
+
+Status Firmware::create(const FirmwareOptions& options, const FirmwareFiles& files,
+                        std::unique_ptr<Firmware>& out) {
   std::unique_ptr<Firmware> fw(new Firmware());
-  if (Status s = ServoTable::load(options.servo_table, fw->servos_); !s) return s;
+  fw->servos_ = files.servos;
 
   ParamSpec rate{"loop.rate_hz",
                  ParamType::kInt,
@@ -84,9 +101,9 @@ Status Firmware::create(const FirmwareOptions& options, std::unique_ptr<Firmware
   // Scripts are loaded before the controller: the motion manager resolves the get-up scripts.
   fw->engines_->script_engine =
       std::make_unique<ScriptEngine>(fw->period_ns_, fw->params_, fw->servos_);
-  const std::filesystem::path scripts_dir =
-      options.scripts_dir.empty() ? data_dir() / "scripts" : options.scripts_dir;
-  if (Status s = fw->engines_->script_engine->load_folder(scripts_dir); !s) return s;
+  for (const Script& script : files.scripts) {
+    if (Status s = fw->engines_->script_engine->add_script(script); !s) return s;
+  }
   fw->engines_->script = fw->engines_->script_engine.get();
 
   fw->controller_ =

@@ -200,7 +200,11 @@ Status SimWorld::Impl::configure() {
     return Status::error("contact: thickness, damping and friction must be >= 0, stiffness > 0");
   h = static_cast<Real>(o.physics_step_ns) * 1e-9;
   steps_per_period = static_cast<int>(o.control_period_ns / o.physics_step_ns);
-  if (Status s = RobotModel::load_file(o.urdf, model); !s) return s;
+  if (o.model) {
+    model = *o.model;
+  } else if (Status s = RobotModel::load_file(o.urdf, model); !s) {
+    return s;
+  }
   joint_servo.assign(model.joints().size(), -1);
   joint_tau.assign(model.joints().size(), 0.0);
   const fw::ServoTable* table = o.servo_models_from_table ? &fw::ServoTable::defaults() : nullptr;
@@ -547,11 +551,7 @@ Status SimWorld::create(const WorldOptions& options, std::unique_ptr<SimWorld>& 
   impl->options = options;
   impl->rng.reseed(options.seed);
   if (Status s = impl->configure(); !s) return s;
-  try {
-    impl->build();
-  } catch (const std::exception& e) {
-    return Status::error(std::string("building the Simbody system failed: ") + e.what());
-  }
+  // reset() builds the Simbody system (with the masses it draws) and reports a failure.
   std::unique_ptr<SimWorld> world(new SimWorld(std::move(impl)));
   if (Status s = world->reset(ResetSpec::standing()); !s) return s;
   out = std::move(world);

@@ -37,6 +37,10 @@ RobotTask::RobotTask(TaskConfig config) : config_(std::move(config)) {
   for (const auto& g : config_.genes) shape_.reals.push_back({g.min, g.max});
   shape_.objectives = 2;
   shape_.constraints = config_.task == "kick" ? 2 : 1;
+  auto files = std::make_shared<fw::FirmwareFiles>();
+  if (fw::FirmwareFiles::load({}, *files)) firmware_files_ = std::move(files);
+  auto model = std::make_shared<sim::RobotModel>();
+  if (sim::RobotModel::load_file(sim::WorldOptions{}.urdf, *model)) robot_model_ = std::move(model);
 }
 
 Genome RobotTask::start_genome() const {
@@ -68,8 +72,12 @@ Status RobotTask::run_trial(const Genome& genome, int trial, EpisodeScore& out) 
   using Clock = std::chrono::steady_clock;
   const auto setup_start = Clock::now();
   sim::WorldOptions world_options = world_for_trial(config_, trial);
+  world_options.model = robot_model_;
   std::unique_ptr<fw::Firmware> firmware;
-  if (Status s = fw::Firmware::create({}, firmware); !s) return s;
+  if (Status s = firmware_files_ ? fw::Firmware::create({}, *firmware_files_, firmware)
+                                 : fw::Firmware::create({}, firmware);
+      !s)
+    return s;
   world_options.control_period_ns = firmware->period_ns();
   sim::ResetSpec spec = sim::ResetSpec::standing();
   spec.ball_position = {0.25, -0.06, std::nan("")};  // in front of the right (kicking) foot

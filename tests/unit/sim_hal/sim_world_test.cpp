@@ -240,3 +240,33 @@ TEST(SimWorld, RejectsBadOptions) {
 
 }  // namespace
 }  // namespace stride::sim
+
+namespace stride::sim {
+namespace {
+
+TEST(SimWorld, APreloadedModelBuildsTheSameWorldWithoutReadingTheUrdf) {
+  auto model = std::make_shared<RobotModel>();
+  ASSERT_TRUE(RobotModel::load_file(RobotModel::igus_path(), *model));
+  auto run = [](const WorldOptions& options) {
+    std::unique_ptr<SimWorld> world;
+    const Status s = SimWorld::create(options, world);
+    EXPECT_TRUE(s) << s.message();
+    if (!world) return std::uint64_t{0};
+    for (int k = 0; k < 20; ++k) EXPECT_TRUE(world->advance_period());
+    return world->state_hash();
+  };
+  WorldOptions from_file;
+  WorldOptions preloaded;
+  preloaded.model = model;
+  preloaded.urdf = "/nonexistent/robot.urdf";  // never read: the model is given
+  EXPECT_EQ(run(from_file), run(preloaded));
+  // Without a model the path is read, and a missing file is an error naming it.
+  preloaded.model = nullptr;
+  std::unique_ptr<SimWorld> world;
+  const Status missing = SimWorld::create(preloaded, world);
+  ASSERT_FALSE(missing);
+  EXPECT_NE(missing.message().find("/nonexistent/robot.urdf"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace stride::sim

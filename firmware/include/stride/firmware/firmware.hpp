@@ -11,9 +11,11 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
+#include <vector>
 
 #include "stride/firmware/controller.hpp"
 #include "stride/firmware/parameter_store.hpp"
+#include "stride/firmware/script/script.hpp"
 #include "stride/firmware/servo_table.hpp"
 #include "stride/hal/status.hpp"
 
@@ -25,10 +27,24 @@ struct FirmwareOptions {
   std::optional<std::filesystem::path> params_file;  ///< applied after the defaults
 };
 
+/// The data files a firmware is built from, read and validated: the servo table and the
+/// keyframe scripts. A host tool that builds many firmwares from the same files (the optimiser
+/// builds one per evaluation) loads them once; the firmware built from them is the same.
+struct FirmwareFiles {
+  ServoTable servos;
+  std::vector<Script> scripts;
+
+  /// Reads options.servo_table and the scripts folder; an error names the file and field.
+  static Status load(const FirmwareOptions& options, FirmwareFiles& out);
+};
+
 class Firmware {
  public:
   /// Builds everything; an error names the file and field that was wrong.
   static Status create(const FirmwareOptions& options, std::unique_ptr<Firmware>& out);
+  /// The same from files already loaded (options.servo_table and scripts_dir are not read).
+  static Status create(const FirmwareOptions& options, const FirmwareFiles& files,
+                       std::unique_ptr<Firmware>& out);
   ~Firmware();
 
   ParameterStore& params() noexcept { return params_; }

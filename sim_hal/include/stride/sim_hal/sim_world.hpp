@@ -90,6 +90,9 @@ struct Randomisation {
 
 struct WorldOptions {
   std::filesystem::path urdf = RobotModel::igus_path();
+  /// The robot model already parsed (from `urdf`): set by callers that build many worlds of
+  /// one model, such as the optimiser, to skip reading the file again; null reads `urdf`.
+  std::shared_ptr<const RobotModel> model;
   std::array<std::string, hal::kServoCount> servo_joints = igus_servo_joints();
   /// Servo models in servo order (default: the shipped servo table's models).
   std::array<fw::ServoModel, hal::kServoCount> servo_models{};

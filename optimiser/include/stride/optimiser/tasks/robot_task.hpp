@@ -16,14 +16,18 @@
 //       c0 = fell ? -10 : 0; c1 = -(|integral of gyro z| - limit) when over the limit.
 // Trials are aggregated per value by mean or worst (max objective, min constraint).
 // Every world and firmware is private to the call, so evaluate() is thread-safe and the
-// outcome depends on the genome alone.
+// outcome depends on the genome alone. The files they are built from (servo table, keyframe
+// scripts, URDF) are read once, when the task is made, and shared read-only.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "stride/firmware/firmware.hpp"
 #include "stride/optimiser/nsga2/problem.hpp"
 #include "stride/optimiser/tasks/task_config.hpp"
+#include "stride/sim_hal/robot_model.hpp"
 
 namespace stride::opt {
 
@@ -62,6 +66,10 @@ class RobotTask final : public Problem {
  private:
   TaskConfig config_;
   ProblemShape shape_;
+  // Loaded by the constructor; null if loading failed, and then every run_trial loads the
+  // files itself and reports the error.
+  std::shared_ptr<const fw::FirmwareFiles> firmware_files_;
+  std::shared_ptr<const sim::RobotModel> robot_model_;
 };
 
 }  // namespace stride::opt
