@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <stdexcept>
 
 #include "stride/sim_hal/world_rng.hpp"
 
@@ -480,17 +481,27 @@ bool SimWorld::Impl::step_once() {
     compute_forces();
     system->realize(state, Stage::Acceleration);
     torso_accel = bodies[0].getBodyOriginAcceleration(state);
+    // Semi-explicit Euler: u' = u + h udot, q' = q + h N(q) u'. The loops run over the state's
+    // contiguous storage (Simbody's element access is a virtual call per element, and `h *
+    // udot` a temporary vector); the arithmetic is the same, element by element.
     const SimTK::Vector& udot = matter->getUDot(state);
-    u_next = matter->getU(state);
-    u_next += h * udot;
+    const SimTK::Vector& u = matter->getU(state);
+    if (!udot.hasContiguousData() || !u.hasContiguousData() || !u_next.hasContiguousData() ||
+        !qdot.hasContiguousData() || !matter->getQ(state).hasContiguousData())
+      throw std::logic_error("state vectors are not contiguous");
+    const Real* udot_data = udot.getContiguousScalarData();
+    const Real* u_data = u.getContiguousScalarData();
+    Real* u_next_data = u_next.updContiguousScalarData();
+    for (int i = 0; i < u_next.size(); ++i) u_next_data[i] = u_data[i] + h * udot_data[i];
     matter->multiplyByN(state, false, u_next, qdot);
-    SimTK::Vector& q_all = matter->updQ(state);
-    q_all += h * qdot;
+    Real* q = matter->updQ(state).updContiguousScalarData();
+    const Real* qdot_data = qdot.getContiguousScalarData();
+    for (int i = 0; i < qdot.size(); ++i) q[i] += h * qdot_data[i];
     for (int first : quaternion_q) {  // keep the free bodies' quaternions unit length
       Real norm = 0.0;
-      for (int k = 0; k < 4; ++k) norm += q_all[first + k] * q_all[first + k];
+      for (int k = 0; k < 4; ++k) norm += q[first + k] * q[first + k];
       norm = std::sqrt(norm);
-      for (int k = 0; k < 4; ++k) q_all[first + k] /= norm;
+      for (int k = 0; k < 4; ++k) q[first + k] /= norm;
     }
     matter->updU(state) = u_next;
     state.updTime() = static_cast<Real>(steps + 1) * h;  // no round-off drift
@@ -502,15 +513,17 @@ bool SimWorld::Impl::step_once() {
     return false;
   }
   ++steps;
-  const SimTK::Vector& q = matter->getQ(state);
-  const SimTK::Vector& u = matter->getU(state);
-  for (int i = 0; i < q.size(); ++i)
+  const SimTK::Vector& q_all = matter->getQ(state);
+  const SimTK::Vector& u_all = matter->getU(state);
+  const Real* q = q_all.getContiguousScalarData();
+  const Real* u = u_all.getContiguousScalarData();
+  for (int i = 0; i < q_all.size(); ++i)
     if (!std::isfinite(q[i])) {
       fail(WorldStatus::kNonFinite, "non-finite coordinate q[" + std::to_string(i) +
                                         "] at t=" + std::to_string(state.getTime()) + " s");
       return false;
     }
-  for (int i = 0; i < u.size(); ++i) {
+  for (int i = 0; i < u_all.size(); ++i) {
     if (!std::isfinite(u[i])) {
       fail(WorldStatus::kNonFinite, "non-finite speed u[" + std::to_string(i) +
                                         "] at t=" + std::to_string(state.getTime()) + " s");
