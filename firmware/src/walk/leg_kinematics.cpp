@@ -48,6 +48,13 @@ double soft_lower(double r, double limit, double band) {
   return limit + band * std::exp(-(knee - r) / band);
 }
 
+/// std::remainder(angle, 2 pi), skipping the division where the angle is already in
+/// [-pi, pi]: there the remainder is the angle itself, exactly.
+double wrap_angle(double angle) {
+  if (std::abs(angle) <= std::numbers::pi) return angle;
+  return std::remainder(angle, 2.0 * std::numbers::pi);
+}
+
 bool finite(const Pose3& p) {
   return p.rotation.allFinite() && p.position.allFinite();
 }
@@ -102,7 +109,9 @@ LegIkResult LegKinematics::inverse(const Pose3& target) const noexcept {
       distance = 0.0;
     }
     const double ankle_roll = std::atan2(v.y(), v.z());
-    const Vector3d w = rot_x(ankle_roll) * v;  // w.y() == 0
+    const Matrix3d roll = rot_x(ankle_roll);
+    const Matrix3d unroll = roll.transpose();  // rot_x(-ankle_roll), without another sin/cos
+    const Vector3d w = roll * v;               // w.y() == 0
     double reach = soft_upper(distance, reach_max_, kSoftBand);
     reach = soft_lower(reach, reach_min_, kSoftBand);
     clamped = distance > reach_max_ - kSoftBand || distance < reach_min_ + kSoftBand;
@@ -115,14 +124,14 @@ LegIkResult LegKinematics::inverse(const Pose3& target) const noexcept {
     const double uz = -l1 * std::cos(knee) - LegGeometry::kShankZ;
     const double ankle_pitch = sagittal_angle(ux, uz) - sagittal_angle(-w.x(), -w.z());
     // Rz(yaw) Rx(roll) Ry(pitch) = R_foot Rx(-ankle_roll) Ry(-knee - ankle_pitch).
-    const Matrix3d m = r_foot * rot_x(-ankle_roll) * rot_y(-knee - ankle_pitch);
+    const Matrix3d m = r_foot * unroll * rot_y(-knee - ankle_pitch);
     q.hip_yaw = std::atan2(-m(0, 1), m(1, 1));
     q.hip_roll = std::atan2(m(2, 1), std::hypot(m(0, 1), m(1, 1)));
     q.hip_pitch = std::atan2(-m(2, 0), m(2, 2));
     q.knee = knee;
-    q.ankle_pitch = std::remainder(ankle_pitch, 2.0 * std::numbers::pi);
+    q.ankle_pitch = wrap_angle(ankle_pitch);
     q.ankle_roll = ankle_roll;
-    return std::remainder(q.hip_yaw - yaw, 2.0 * std::numbers::pi);  // residual
+    return wrap_angle(q.hip_yaw - yaw);  // residual
   };
   // Secant iteration on the residual (fixed-point steps where the secant is ill-conditioned).
   LegJoints q;
