@@ -63,7 +63,7 @@ done <"$work/debian/patches/series"
 # no -ffast-math and no -march, so the arithmetic, and every result, stays the same).
 # Libraries only. They find each other through their RUNPATH, so a program never mixes them
 # with Debian's copies.
-echo "build-simbody: building the libraries into $prefix (about 4-5 minutes on 2 cores)"
+echo "build-simbody: building the libraries into $prefix (about 4-7 minutes on 2 cores)"
 cmake -S "$src" -B "$work/build" -G Ninja -DCMAKE_BUILD_TYPE=None \
   -DCMAKE_CXX_FLAGS="-O3 -DNDEBUG -fno-semantic-interposition" -DCMAKE_C_FLAGS="-O3 -DNDEBUG" \
   -DBUILD_TESTING=OFF -DBUILD_EXAMPLES=OFF -DBUILD_VISUALIZER=OFF -DINSTALL_DOCS=OFF \
