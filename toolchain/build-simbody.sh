@@ -4,7 +4,9 @@
 #
 # Why: Debian's binary libsimbody is built without NDEBUG, so Simbody's index checks and
 # state-cache dynamic_casts run on every small-matrix access. This build of the same source
-# gives bit-identical trajectories about 2.2x faster (tests/bench/README.md).
+# gives bit-identical trajectories about 2.2x faster (tests/bench/README.md). Stride's own
+# patches in toolchain/simbody-patches/ are applied after Debian's; each keeps every result
+# bit for bit and says why it exists in its header.
 # CMake picks this prefix up when it exists and otherwise falls back to Debian's library.
 #
 #   toolchain/build-simbody.sh            build into $STRIDE_SIMBODY_PREFIX
@@ -31,7 +33,14 @@ orig_sha256="c2e2a3e7def05ba4fda4b216d04d41bdc6477c0cfcec20bfce98c1005532dfb6"
 debian="simbody_${version}-${debian_revision}.debian.tar.xz"
 debian_sha256="eab5eaa72bfc015a82b0a2d1c55e38a59b66920ce8f94fc9cc842198b852314b"
 stamp="$prefix/share/stride-simbody-build"
-stamp_text="simbody ${version}-${debian_revision} -O3 NDEBUG"
+patches_dir="$(cd "$(dirname "$0")" && pwd)/simbody-patches"
+shopt -s nullglob
+stride_patches=("$patches_dir"/*.patch)
+shopt -u nullglob
+# The stamp names the patch set by a digest of its text, so adding or changing a patch
+# rebuilds an existing prefix. It ends in "NDEBUG", which cmake/StrideSimbody.cmake looks for.
+patches_digest=$(cat "${stride_patches[@]}" </dev/null | sha256sum | cut -c1-12)
+stamp_text="simbody ${version}-${debian_revision} +stride-${patches_digest} -O3 NDEBUG"
 
 if [[ -f "$stamp" && "$(cat "$stamp")" == "$stamp_text" ]]; then
   echo "build-simbody: $prefix already holds $stamp_text"
@@ -57,6 +66,10 @@ while read -r patch; do
   [[ -z "$patch" || "$patch" == \#* ]] && continue
   patch -d "$src" -p1 -s <"$work/debian/patches/$patch"
 done <"$work/debian/patches/series"
+for patch in "${stride_patches[@]}"; do
+  echo "build-simbody: applying $(basename "$patch")"
+  patch -d "$src" -p1 -s <"$patch"
+done
 
 # -O3 and -fno-semantic-interposition let GCC inline Simbody's small-matrix templates and its
 # calls within a library (upstream's Release is -O2: 1.6x faster than Debian's here, this 2.2x;
