@@ -7,10 +7,14 @@
 #include <benchmark/benchmark.h>
 
 #include <unistd.h>
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <memory>
+#include <thread>
+#include <vector>
 
 #include "stride/sim_hal/sim_world.hpp"
 
@@ -149,6 +153,47 @@ void BM_AccuracyAgainstFineStep(benchmark::State& state) {
   state.counters["dz_max_mm"] = dz;
 }
 
+/// Steps a world through `periods` control periods of the stepping motion.
+void step_periods(SimWorld& world, int periods) {
+  for (int k = 0; k < periods; ++k) {
+    command_stepping(world, world.time_s());
+    if (!world.advance_period()) (void)world.reset(stride::sim::ResetSpec::standing());
+  }
+}
+
+/// Two threads against one, measured in alternation: each round times one world stepping
+/// `kPeriods` control periods alone, then two worlds doing the same on two threads, and
+/// takes the ratio of their throughputs. Rounds a fraction of a second apart see the same host
+/// speed, so the median ratio over the rounds cancels the drift that separate runs of
+/// BM_SteppingThreads/threads:1 and :2 (seconds apart) pick up on a shared VM.
+void BM_TwoThreadsAgainstOne(benchmark::State& state) {
+  constexpr int kRounds = 21, kPeriods = 200;  // 2 s simulated per world and phase
+  using Clock = std::chrono::steady_clock;
+  std::vector<double> ratios;
+  for (auto _ : state) {
+    auto a = make_world();
+    auto b = make_world();
+    step_periods(*a, 20);  // warm up
+    step_periods(*b, 20);
+    for (int round = 0; round < kRounds; ++round) {
+      const auto t0 = Clock::now();
+      step_periods(*a, kPeriods);
+      const auto t1 = Clock::now();
+      std::thread other([&] { step_periods(*b, kPeriods); });
+      step_periods(*a, kPeriods);
+      other.join();
+      const auto t2 = Clock::now();
+      const double one = std::chrono::duration<double>(t1 - t0).count();
+      const double two = std::chrono::duration<double>(t2 - t1).count();
+      ratios.push_back(2.0 * one / two);  // (2 worlds / two) / (1 world / one)
+    }
+  }
+  std::sort(ratios.begin(), ratios.end());
+  state.counters["ratio_median"] = ratios[ratios.size() / 2];
+  state.counters["ratio_q1"] = ratios[ratios.size() / 4];
+  state.counters["ratio_q3"] = ratios[3 * ratios.size() / 4];
+}
+
 long resident_bytes() {
   std::ifstream statm("/proc/self/statm");
   long pages = 0, resident = 0;
@@ -182,6 +227,7 @@ BENCHMARK(BM_SteppingThreads)
     ->Threads(1)
     ->Threads(2)
     ->UseRealTime();
+BENCHMARK(BM_TwoThreadsAgainstOne)->Iterations(1)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_MemoryPerWorld)->Iterations(1);
 BENCHMARK(BM_AccuracyAgainstFineStep)->Iterations(1)->Unit(benchmark::kMillisecond);
 BENCHMARK_MAIN();
