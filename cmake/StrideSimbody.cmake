@@ -5,7 +5,7 @@
 # Fallback: Debian's binary libsimbody-dev, which is built without NDEBUG.
 #
 # Simbody's headers change class layouts under NDEBUG, so code that includes them must be
-# compiled with NDEBUG exactly when the library was: sim_hal reads STRIDE_SIMBODY_NDEBUG.
+# compiled with NDEBUG exactly when the library was: stride_use_simbody_headers() below.
 # Simbody_DIR is set here on every configure (never trusted from an older cache), so removing
 # or adding the optimised build cannot leave a build mixing headers of one with the other.
 
@@ -39,3 +39,16 @@ if(STRIDE_SIMBODY_NDEBUG AND NOT Simbody_INCLUDE_DIR MATCHES "^${STRIDE_SIMBODY_
   message(FATAL_ERROR "Simbody headers (${Simbody_INCLUDE_DIR}) are not the optimised build's "
                       "in ${STRIDE_SIMBODY_PREFIX}; delete the build directory and configure again")
 endif()
+
+# Compiles `target`'s sources against Simbody's headers the one safe way: its include
+# directory as a system directory, and NDEBUG exactly when the library was built with it.
+function(stride_use_simbody_headers target)
+  target_include_directories(${target} SYSTEM PRIVATE ${Simbody_INCLUDE_DIR})
+  if(STRIDE_SIMBODY_NDEBUG)
+    # GCC 12 -O3 reports a false array-bounds warning inside Simbody's Mat/Vec headers (a
+    # Mat33 row viewed as a strided Vec3) once their NDEBUG paths are inlined.
+    target_compile_options(${target} PRIVATE -DNDEBUG -Wno-array-bounds)
+  else()
+    target_compile_options(${target} PRIVATE -UNDEBUG)
+  endif()
+endfunction()
