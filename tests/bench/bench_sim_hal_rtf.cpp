@@ -115,13 +115,20 @@ void BM_SteppingInPlace(benchmark::State& state) {
   state.counters["contact_changes_per_s"] = changes / std::max(sim_seconds, 1e-9);
 }
 
+/// Steps a world through `periods` control periods of the stepping motion.
+void step_periods(SimWorld& world, int periods) {
+  for (int k = 0; k < periods; ++k) {
+    command_stepping(world, world.time_s());
+    if (!world.advance_period()) (void)world.reset(stride::sim::ResetSpec::standing());
+  }
+}
+
 /// Throughput: every thread steps its own world (stepping in place).
 void BM_SteppingThreads(benchmark::State& state) {
   auto world = make_world();
   double sim_seconds = 0;
   for (auto _ : state) {
-    command_stepping(*world, world->time_s());
-    if (!world->advance_period()) (void)world->reset(stride::sim::ResetSpec::standing());
+    step_periods(*world, 1);
     sim_seconds += 0.01;
   }
   state.counters["rtf"] = benchmark::Counter(
@@ -151,14 +158,6 @@ void BM_AccuracyAgainstFineStep(benchmark::State& state) {
   state.counters["dx_max_mm"] = dx;
   state.counters["dy_max_mm"] = dy;
   state.counters["dz_max_mm"] = dz;
-}
-
-/// Steps a world through `periods` control periods of the stepping motion.
-void step_periods(SimWorld& world, int periods) {
-  for (int k = 0; k < periods; ++k) {
-    command_stepping(world, world.time_s());
-    if (!world.advance_period()) (void)world.reset(stride::sim::ResetSpec::standing());
-  }
 }
 
 /// Two threads against one, measured in alternation: each round times one world stepping
