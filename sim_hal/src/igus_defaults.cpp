@@ -47,6 +47,7 @@ ImuOptions ImuOptions::noisy() {
   o.gyro_noise_std = 0.005;  // rad/s per sample
   o.accel_bias_std = 0.1;    // m/s^2 per episode
   o.gyro_bias_std = 0.01;    // rad/s per episode
+  o.chain.noise = true;      // used when the chain is not ideal
   return o;
 }
 

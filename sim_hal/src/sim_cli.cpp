@@ -8,6 +8,10 @@ void declare_world_options(fw::CliArgs& args) {
   args.option("noise", "sensor noise and per-episode IMU bias: on|off", true, "on");
   args.option("physics-step-us", "fixed physics step [us], must divide the control period", true,
               "2000");
+  args.option("imu", "IMU model: ideal (true value plus white noise) or cm730 (chips and CM730)",
+              true, "ideal");
+  args.option("servo-law", "servo model: seed (Gazebo figures) or identified (MX, BAM M6)", true,
+              "seed");
 }
 
 Status read_world_options(const fw::CliArgs& args, WorldOptions& out) {
@@ -28,6 +32,22 @@ Status read_world_options(const fw::CliArgs& args, WorldOptions& out) {
   if (step_us <= 0 || step_us > 20000)
     return Status::error("--physics-step-us: must be in 1..20000, got " + std::to_string(step_us));
   out.physics_step_ns = step_us * 1000;
+  const std::string imu = args.get("imu", "ideal");
+  if (imu == "cm730") {
+    const bool noisy = out.imu.accel_noise_std > 0.0;
+    out.imu.chain = ImuChain{};
+    out.imu.chain.noise = noisy;
+  } else if (imu != "ideal") {
+    return Status::error("--imu: expected ideal or cm730, got '" + imu + "'");
+  }
+  const std::string law = args.get("servo-law", "seed");
+  if (law == "seed") {
+    out.servo.law = ServoLaw::kSeed;
+  } else if (law == "identified") {
+    out.servo.law = ServoLaw::kIdentified;
+  } else {
+    return Status::error("--servo-law: expected seed or identified, got '" + law + "'");
+  }
   return Status::ok();
 }
 

@@ -112,6 +112,10 @@ struct SimWorld::Impl {
   // Per servo.
   std::array<int, hal::kServoCount> servo_joint{};
   std::array<ServoModel, hal::kServoCount> servos{};
+  std::array<MxServo, hal::kServoCount> mx_servos{};  ///< ServoLaw::kIdentified
+  bool identified = false;
+  /// Identified law: last step's joint torque, for the external torque estimate.
+  std::array<Real, hal::kServoCount> last_torque{};
   std::array<fw::ServoModel, hal::kServoCount> servo_models{};
   std::array<hal::ServoCommand, hal::kServoCount> written{};
   std::array<hal::ServoCommand, hal::kServoCount> delayed{};
@@ -149,6 +153,8 @@ struct SimWorld::Impl {
   std::string reason;
   Vec3 torso_accel{0};  ///< acceleration of the torso origin at the last step [m/s^2]
   ImuReading imu;
+  ImuModel imu_model;  ///< used unless options.imu.chain is ideal
+  bool imu_chain = false;
 
   Status configure();
   void build();
@@ -158,6 +164,7 @@ struct SimWorld::Impl {
   void ball_robot_contact();
   bool step_once();
   void sample_imu();
+  void feed_imu();
   void fail(WorldStatus why, std::string text) {
     status = why;
     reason = std::move(text);
@@ -292,10 +299,14 @@ void SimWorld::Impl::build() {
     const Vec3 axis = to_vec3(joint.axis);
     const int servo = joint_servo[static_cast<std::size_t>(link.parent_joint)];
     if (servo >= 0) {
-      const MotorCurve curve =
-          motor_curve(servo_models[static_cast<std::size_t>(servo)], options.battery_voltage_v);
+      const fw::ServoModel servo_model = servo_models[static_cast<std::size_t>(servo)];
+      const MotorCurve curve = motor_curve(servo_model, options.battery_voltage_v);
       const Real reflected =
-          options.servo.rotor_inertia_kg_m2 * curve.gear_ratio * curve.gear_ratio;
+          options.servo.law == ServoLaw::kIdentified
+              ? mx_servo_params(servo_model, options.battery_voltage_v,
+                                options.servo.friction_model)
+                    .armature_kg_m2
+              : options.servo.rotor_inertia_kg_m2 * curve.gear_ratio * curve.gear_ratio;
       about_origin = add_rotor_inertia(about_origin, axis, reflected);
     }
     SimTK::Body::Rigid body(SimTK::MassProperties(mass, com, about_origin));
@@ -431,7 +442,15 @@ void SimWorld::Impl::compute_forces() {
     const Real q = q_all[joint_q[j]];
     const Real w = u_all[joint_u[j]];
     const int servo = joint_servo[j];
-    if (servo >= 0) {
+    if (servo >= 0 && identified) {
+      // External torque on the joint: quasi-static, what balanced the servo's torque over the
+      // last step. (A finite-difference estimate, J dw/h - tau, adds the step-to-step noise
+      // of w to the friction's stopping torque and drove a 1/(2h) limit cycle of the whole
+      // body: 0.5 m/s^2 of torso chatter standing still, at any step size.)
+      const auto i = static_cast<std::size_t>(servo);
+      joint_tau[j] = mx_servos[i].step(q, w, -last_torque[i], h);
+      last_torque[i] = joint_tau[j];
+    } else if (servo >= 0) {
       joint_tau[j] = servos[static_cast<std::size_t>(servo)].step(q, w, h);
     } else {
       const JointSpec& spec = model.joints()[j];
@@ -481,6 +500,7 @@ bool SimWorld::Impl::step_once() {
     compute_forces();
     system->realize(state, Stage::Acceleration);
     torso_accel = bodies[0].getBodyOriginAcceleration(state);
+    if (imu_chain) feed_imu();
     // Semi-explicit Euler: u' = u + h udot, q' = q + h N(q) u'. The loops run over the state's
     // contiguous storage (Simbody's element access is a virtual call per element, and `h *
     // udot` a temporary vector); the arithmetic is the same, element by element.
@@ -540,7 +560,20 @@ bool SimWorld::Impl::step_once() {
   return true;
 }
 
+/// True specific force and rate in the torso frame, this step, into the IMU chain.
+void SimWorld::Impl::feed_imu() {
+  const SimTK::Rotation& r = bodies[0].getBodyTransform(state).R();
+  const Vec3 accel_b = ~r * (torso_accel + Vec3(0, 0, options.gravity_mps2));
+  const Vec3 gyro_b = ~r * bodies[0].getBodyAngularVelocity(state);
+  imu_model.step(to_eigen(accel_b), to_eigen(gyro_b), h, rng);
+}
+
 void SimWorld::Impl::sample_imu() {
+  if (imu_chain) {
+    imu.accel = imu_model.accel();
+    imu.gyro = imu_model.gyro();
+    return;
+  }
   // Always six draws per sample, so the random stream does not depend on the options.
   Eigen::Vector3d accel_noise, gyro_noise;
   for (int k = 0; k < 3; ++k) accel_noise[k] = rng.normal();
@@ -614,6 +647,17 @@ Status SimWorld::reset(const ResetSpec& spec) {
     p.upper = joint.upper;
     w.servos[i].configure(p);
     w.servos[i].reset(spec.joint_angles[i]);
+    MxServoParams mx = mx_servo_params(w.servo_models[i], w.options.battery_voltage_v,
+                                       w.options.servo.friction_model);
+    mx.strength = w.strength[i];
+    mx.backlash_rad = w.options.servo.backlash_rad;
+    mx.driver_drop_v = w.options.servo.driver_drop_v;
+    mx.limited = joint.limited;
+    mx.lower = joint.lower;
+    mx.upper = joint.upper;
+    w.mx_servos[i].configure(mx);
+    w.mx_servos[i].reset(spec.joint_angles[i]);
+    w.last_torque[i] = 0.0;
     hal::ServoCommand hold;
     hold.position_rad = spec.joint_angles[i];
     hold.p_gain = 32.0;
@@ -621,7 +665,9 @@ Status SimWorld::reset(const ResetSpec& spec) {
     w.written[i] = hold;
     w.delayed[i] = hold;
     w.servos[i].set_input({hold.position_rad, 0.0, hold.p_gain, hold.torque_limit, true});
+    w.mx_servos[i].set_input({hold.position_rad, 0.0, hold.p_gain, hold.torque_limit, true});
   }
+  w.identified = w.options.servo.law == ServoLaw::kIdentified;
   w.torque_enable = true;
   // Pose.
   SimTK::State& s = w.state;
@@ -673,6 +719,14 @@ Status SimWorld::reset(const ResetSpec& spec) {
   w.status = WorldStatus::kRunning;
   w.reason.clear();
   w.torso_accel = Vec3(0);
+  w.imu_chain = !w.options.imu.chain.is_ideal();
+  if (w.imu_chain) {
+    w.system->realize(w.state, Stage::Velocity);
+    const SimTK::Rotation& torso_r = w.bodies[0].getBodyTransform(w.state).R();
+    w.imu_model.configure(w.options.imu.chain);
+    w.imu_model.reset(to_eigen(~torso_r * Vec3(0, 0, w.options.gravity_mps2)),
+                      Eigen::Vector3d::Zero(), w.accel_bias, w.gyro_bias);
+  }
   w.sample_imu();
   return Status::ok();
 }
@@ -692,13 +746,14 @@ hal::ServoState SimWorld::servo_state(std::size_t index) const {
   const SimTK::MobilizedBody& mb = w.bodies[static_cast<std::size_t>(
       w.model.joints()[static_cast<std::size_t>(w.servo_joint[index])].child_link)];
   const ServoModel& servo = w.servos[index];
+  const MxServo& mx = w.mx_servos[index];
   const hal::ServoCommand& cmd = w.written[index];
   constexpr double kSpeedUnit = 0.114 * 2.0 * M_PI / 60.0;  // present speed register unit
   out.position_rad = quantise_encoder(mb.getOneQ(w.state, 0));
   out.speed_rad_s = std::round(mb.getOneU(w.state, 0) / kSpeedUnit) * kSpeedUnit;
-  out.load = servo.load();
+  out.load = w.identified ? mx.load() : servo.load();
   out.voltage_v = w.options.battery_voltage_v;
-  out.temperature_c = std::round(servo.temperature_c());
+  out.temperature_c = std::round(w.identified ? mx.temperature_c() : servo.temperature_c());
   out.goal_position_rad = cmd.position_rad;
   out.p_gain = cmd.p_gain;
   out.i_gain = cmd.i_gain;
@@ -725,6 +780,8 @@ bool SimWorld::advance_period() {
     const hal::ServoCommand& c = w.latency ? w.delayed[i] : w.written[i];
     w.servos[i].set_input({c.position_rad, c.moving_speed_rad_s, c.p_gain, c.torque_limit,
                            c.torque_enable && w.torque_enable});
+    w.mx_servos[i].set_input({c.position_rad, c.moving_speed_rad_s, c.p_gain, c.torque_limit,
+                              c.torque_enable && w.torque_enable});
     w.delayed[i] = w.written[i];
   }
   for (int k = 0; k < w.steps_per_period; ++k)
@@ -768,6 +825,7 @@ GroundTruth SimWorld::ground_truth() const {
   g.torso = to_isometry(w.bodies[0].getBodyTransform(w.state));
   g.torso_linear_velocity = to_eigen(w.bodies[0].getBodyOriginVelocity(w.state));
   g.torso_angular_velocity = to_eigen(w.bodies[0].getBodyAngularVelocity(w.state));
+  g.torso_linear_acceleration = to_eigen(w.torso_accel);
   g.center_of_mass = to_eigen(w.matter->calcSystemMassCenterLocationInGround(w.state));
   if (w.has_ball) {
     // calcSystemMassCenter includes the ball: take the robot alone.
@@ -805,9 +863,13 @@ std::uint64_t SimWorld::state_hash() const {
   const SimTK::Vector& u = w.matter->getU(w.state);
   for (int i = 0; i < q.size(); ++i) hash = fnv1a(hash, &q[i], sizeof(Real));
   for (int i = 0; i < u.size(); ++i) hash = fnv1a(hash, &u[i], sizeof(Real));
-  for (const ServoModel& s : w.servos) {
-    const double sp = s.setpoint();
+  for (std::size_t i = 0; i < hal::kServoCount; ++i) {
+    const double sp = w.identified ? w.mx_servos[i].setpoint() : w.servos[i].setpoint();
     hash = fnv1a(hash, &sp, sizeof sp);
+    if (w.identified) {
+      const double gap = w.mx_servos[i].backlash_gap();
+      hash = fnv1a(hash, &gap, sizeof gap);
+    }
   }
   std::vector<const ContactPoint*> all;
   for (const ContactPoint& p : w.points) all.push_back(&p);

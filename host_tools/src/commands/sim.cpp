@@ -45,7 +45,10 @@ Status parse_times(const std::string& text, std::vector<double>& out) {
 
 }  // namespace
 
+int run_sim_servo(int argc, char** argv);  // sim_servo.cpp
+
 int run_sim(int argc, char** argv) {
+  if (argc >= 2 && std::string(argv[1]) == "servo") return run_sim_servo(argc - 1, argv + 1);
   stride::fw::CliArgs args;
   args.option("help", "show this help", false);
   args.option("params", "parameter file (JSON) loaded into the controller", true);
@@ -61,7 +64,10 @@ int run_sim(int argc, char** argv) {
   sim::declare_world_options(args);
   if (Status s = args.parse(argc, argv); !s) return bad_input(s.message());
   if (args.has("help")) {
-    std::printf("usage: stride sim stand|walk|kick [options]\n\n%s", args.help().c_str());
+    std::printf(
+        "usage: stride sim stand|walk|kick [options]\n"
+        "       stride sim servo --help   (one servo on a bench)\n\n%s",
+        args.help().c_str());
     return 0;
   }
   if (args.positional().size() != 1) return bad_input("expected one motion: stand, walk or kick");
@@ -114,35 +120,35 @@ int run_sim(int argc, char** argv) {
       return 1;
     }
   } else {
-  std::unique_ptr<sim::SimWorld> world;
-  if (Status s = sim::SimWorld::create(world_options, world); !s) {
-    std::fprintf(stderr, "stride sim: %s\n", s.message().c_str());
-    return 1;
-  }
-  robot_ptr = std::make_unique<sim::SimRobot>(std::move(world));
-  sim::SimRobot& robot = *robot_ptr;
-
-  stride::fw::Controller& controller = firmware->controller();
-  if (motion == "walk") controller.request(stride::fw::MotionRequest::walk(vx, vy, vth));
-  if (motion != "stand") {
-    // The request is taken at the next step: a refusal means the engine or script is missing.
-    stride::hal::SensorFrame probe;
-    robot.read(probe);
-    (void)controller.step(probe, 0);
-    if (controller.motion().refused_requests() > 0) {
-      std::fprintf(stderr, "stride sim: %s\n",
-                   motion == "walk" ? "walk engine not available"
-                                    : ("kick script '" + args.get("script") +
-                                       "' not available (script engine or file missing)")
-                                          .c_str());
+    std::unique_ptr<sim::SimWorld> world;
+    if (Status s = sim::SimWorld::create(world_options, world); !s) {
+      std::fprintf(stderr, "stride sim: %s\n", s.message().c_str());
       return 1;
     }
-  }
-  const sim::StepFunction step = [&controller](const stride::hal::SensorFrame& sensors,
-                                               stride::hal::Tick tick) {
-    return controller.step(sensors, tick);
-  };
-  result = sim::run_episode(robot, step, episode);
+    robot_ptr = std::make_unique<sim::SimRobot>(std::move(world));
+    sim::SimRobot& robot = *robot_ptr;
+
+    stride::fw::Controller& controller = firmware->controller();
+    if (motion == "walk") controller.request(stride::fw::MotionRequest::walk(vx, vy, vth));
+    if (motion != "stand") {
+      // The request is taken at the next step: a refusal means the engine or script is missing.
+      stride::hal::SensorFrame probe;
+      robot.read(probe);
+      (void)controller.step(probe, 0);
+      if (controller.motion().refused_requests() > 0) {
+        std::fprintf(stderr, "stride sim: %s\n",
+                     motion == "walk" ? "walk engine not available"
+                                      : ("kick script '" + args.get("script") +
+                                         "' not available (script engine or file missing)")
+                                            .c_str());
+        return 1;
+      }
+    }
+    const sim::StepFunction step = [&controller](const stride::hal::SensorFrame& sensors,
+                                                 stride::hal::Tick tick) {
+      return controller.step(sensors, tick);
+    };
+    result = sim::run_episode(robot, step, episode);
   }
   sim::SimRobot& robot = *robot_ptr;
 
@@ -178,4 +184,4 @@ int run_sim(int argc, char** argv) {
   return 0;
 }
 
-STRIDE_COMMAND(sim, "simulate the robot: stand, walk or kick", run_sim);
+STRIDE_COMMAND(sim, "simulate the robot: stand, walk or kick; one servo on a bench", run_sim);

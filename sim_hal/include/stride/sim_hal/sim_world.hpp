@@ -29,6 +29,8 @@
 #include "stride/hal/command_frame.hpp"
 #include "stride/hal/sensor_frame.hpp"
 #include "stride/hal/status.hpp"
+#include "stride/sim_hal/imu_model.hpp"
+#include "stride/sim_hal/mx_servo.hpp"
 #include "stride/sim_hal/robot_model.hpp"
 #include "stride/sim_hal/servo_model.hpp"
 
@@ -68,11 +70,24 @@ struct ImuOptions {
   Eigen::Vector3d gyro_bias = Eigen::Vector3d::Zero();   ///< fixed bias [rad/s]
   double accel_bias_std = 0.0;  ///< per-reset random bias drawn on top [m/s^2]
   double gyro_bias_std = 0.0;   ///< [rad/s]
+  /// The sensor chain (imu_model.hpp): ideal (true value at the period's end plus the white
+  /// noise above) or the chips and CM730 of the robot (their own noise; the stds above unused).
+  ImuChain chain = ImuChain::ideal();
   /// Typical values of the igus' CM730 IMU (used by `--noise on`).
   static ImuOptions noisy();
 };
 
+/// Which servo law drives the joints: the seed's (Gazebo figures, ServoModel) or the MX servo
+/// identified on a bench (MxServo: firmware duty law, DC motor with back-EMF, BAM's M6
+/// friction, backlash, the identified armature).
+enum class ServoLaw { kSeed, kIdentified };
+
 struct ServoOptions {
+  ServoLaw law = ServoLaw::kSeed;
+  // ServoLaw::kIdentified: the published MX parameters (mx_servo_params) with these options.
+  MxFrictionModel friction_model = MxFrictionModel::kM6;
+  double backlash_rad = 0.33 * 3.14159265358979323846 / 180.0;  ///< e-manual: 20 arcmin
+  double driver_drop_v = 0.27;          ///< fitted to BAM's no-load speed table (mx_servo.hpp)
   double kp_per_register = 4.0 / 2.54;  ///< N m/rad per P unit (see README: the seed's 4 g)
   double viscous_friction = 1.0;        ///< seed 1 [N m s/rad]
   double coulomb_friction = 0.5;        ///< seed 0.5 [N m]
@@ -147,6 +162,8 @@ struct GroundTruth {
   Eigen::Isometry3d torso = Eigen::Isometry3d::Identity();
   Eigen::Vector3d torso_linear_velocity = Eigen::Vector3d::Zero();   ///< of the link origin
   Eigen::Vector3d torso_angular_velocity = Eigen::Vector3d::Zero();  ///< world frame
+  /// Acceleration of the torso origin at the last physics step (world frame) [m/s^2].
+  Eigen::Vector3d torso_linear_acceleration = Eigen::Vector3d::Zero();
   Eigen::Vector3d center_of_mass = Eigen::Vector3d::Zero();
   Eigen::Isometry3d left_foot = Eigen::Isometry3d::Identity();
   Eigen::Isometry3d right_foot = Eigen::Isometry3d::Identity();

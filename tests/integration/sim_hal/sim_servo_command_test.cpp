@@ -1,0 +1,71 @@
+// `stride sim servo` (issue 20 point 2): the bench experiments through the command line, and
+// its bad-input contract (one line naming the option and what is allowed, exit 2).
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace {
+
+std::string run_stride(const std::string& args, int& code) {
+  const std::string cmd = std::string(STRIDE_BIN_DIR) + "/stride " + args;
+  FILE* pipe = popen(cmd.c_str(), "r");
+  std::string out;
+  char buffer[4096];
+  while (pipe && fgets(buffer, sizeof buffer, pipe)) out += buffer;
+  const int status = pipe ? pclose(pipe) : -1;
+  code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return out;
+}
+
+TEST(StrideSimServo, NoLoadBlockedAndPendulumAsJson) {
+  int code = -1;
+  auto j = nlohmann::json::parse(
+      run_stride("sim servo --model mx106 --experiment no-load --voltage 12 --json", code));
+  EXPECT_EQ(code, 0);
+  EXPECT_NEAR(j.at("speed_rad_s").get<double>(), 4.983, 0.05 * 4.983);  // servos.md, 12 V
+  j = nlohmann::json::parse(run_stride(
+      "sim servo --model mx106 --experiment blocked --voltage 15 --p-gain 10 --error-deg 12.57 "
+      "--json",
+      code));
+  EXPECT_EQ(code, 0);
+  EXPECT_NEAR(j.at("duty").get<double>(), 14.8 / 42.7, 0.05 * 14.8 / 42.7);  // servos.md row
+  EXPECT_GT(j.at("torque_nm").get<double>(), 0.0);
+  j = nlohmann::json::parse(run_stride(
+      "sim servo --model mx64 --experiment pendulum --trajectory sin-sin --arm-length 0.1 "
+      "--arm-mass 0.3 --duration 2 --json",
+      code));
+  EXPECT_EQ(code, 0);
+  const auto& trace = j.at("trace");
+  ASSERT_EQ(trace.size(), 201u);
+  for (const char* field : {"t", "goal", "position", "speed", "torque"})
+    EXPECT_TRUE(trace.back().contains(field)) << field;
+  // It follows the trajectory within a tenth of a radian once moving.
+  EXPECT_NEAR(trace[150].at("position").get<double>(), trace[150].at("goal").get<double>(), 0.1);
+}
+
+TEST(StrideSimServo, BadInputNamesTheOptionAndExitsTwo) {
+  int code = -1;
+  std::string err = run_stride("sim servo --model mx28 2>&1 >/dev/null", code);
+  EXPECT_EQ(code, 2);
+  EXPECT_EQ(err, "stride sim servo: --model: unknown 'mx28' (allowed: mx64, mx106)\n");
+  err = run_stride("sim servo --voltage 99 2>&1 >/dev/null", code);
+  EXPECT_EQ(code, 2);
+  EXPECT_EQ(err.rfind("stride sim servo: --voltage: ", 0), 0u) << err;
+  err = run_stride("sim servo --experiment pendulum --trajectory circle 2>&1 >/dev/null", code);
+  EXPECT_EQ(code, 2);
+  EXPECT_NE(err.find("--trajectory: unknown 'circle'"), std::string::npos) << err;
+  err = run_stride("sim servo --p-gain 300 2>&1 >/dev/null", code);
+  EXPECT_EQ(code, 2);
+  EXPECT_NE(err.find("--p-gain"), std::string::npos) << err;
+  err = run_stride("sim stand --servo-law gazebo 2>&1 >/dev/null", code);
+  EXPECT_EQ(code, 2);
+  EXPECT_NE(err.find("--servo-law: expected seed or identified"), std::string::npos) << err;
+  err = run_stride("sim stand --imu perfect 2>&1 >/dev/null", code);
+  EXPECT_EQ(code, 2);
+  EXPECT_NE(err.find("--imu: expected ideal or cm730"), std::string::npos) << err;
+}
+
+}  // namespace
