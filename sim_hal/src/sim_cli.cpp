@@ -1,6 +1,10 @@
 // Simulator command-line options (shared by stride sim and stride-fw --hal sim).
 #include "stride/sim_hal/sim_cli.hpp"
 
+#include <filesystem>
+#include <memory>
+#include <system_error>
+
 namespace stride::sim {
 
 void declare_world_options(fw::CliArgs& args) {
@@ -8,6 +12,7 @@ void declare_world_options(fw::CliArgs& args) {
   args.option("noise", "sensor noise and per-episode IMU bias: on|off", true, "on");
   args.option("physics-step-us", "fixed physics step [us], must divide the control period", true,
               "2000");
+  args.option("urdf", "robot description (URDF) to simulate instead of the igus model", true);
   args.option("imu", "IMU model: ideal (true value plus white noise) or cm730 (chips and CM730)",
               true, "ideal");
   args.option("servo-law", "servo model: seed (Gazebo figures) or identified (MX, BAM M6)", true,
@@ -32,6 +37,16 @@ Status read_world_options(const fw::CliArgs& args, WorldOptions& out) {
   if (step_us <= 0 || step_us > 20000)
     return Status::error("--physics-step-us: must be in 1..20000, got " + std::to_string(step_us));
   out.physics_step_ns = step_us * 1000;
+  if (args.has("urdf")) {
+    out.urdf = args.get("urdf");
+    std::error_code error;
+    if (!std::filesystem::is_regular_file(out.urdf, error))
+      return Status::error("--urdf: no such file '" + out.urdf.string() + "'");
+    auto model = std::make_shared<RobotModel>();
+    if (Status s = RobotModel::load_file(out.urdf, *model); !s)
+      return Status::error("--urdf: " + s.message());
+    out.model = std::move(model);
+  }
   const std::string imu = args.get("imu", "ideal");
   if (imu == "cm730") {
     const bool noisy = out.imu.accel_noise_std > 0.0;

@@ -1,11 +1,16 @@
 // `stride sim servo` (issue 20 point 2): the bench experiments through the command line, and
-// its bad-input contract (one line naming the option and what is allowed, exit 2).
+// its bad-input contract (one line naming the option and what is allowed, exit 2); the world
+// options `--urdf`, `--servo-law` and `--imu` of `stride sim`.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
 #include <cstdio>
+#include <fstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
+
+#include "temp_dir.hpp"
 
 namespace {
 
@@ -66,6 +71,40 @@ TEST(StrideSimServo, BadInputNamesTheOptionAndExitsTwo) {
   err = run_stride("sim stand --imu perfect 2>&1 >/dev/null", code);
   EXPECT_EQ(code, 2);
   EXPECT_NE(err.find("--imu: expected ideal or cm730"), std::string::npos) << err;
+}
+
+// Another robot description: the igus model with a trunk 10 % heavier is what gets simulated.
+TEST(StrideSimWorldOptions, UrdfSelectsTheRobotDescription) {
+  stride::test::TempDir dir;
+  std::ifstream in(std::string(STRIDE_SIM_MODEL_DIR) + "/igus_op.urdf");
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string urdf = text.str();
+  const std::string trunk_mass = "<mass value=\"1.8051\"/>";
+  const std::size_t at = urdf.find(trunk_mass);
+  ASSERT_NE(at, std::string::npos);
+  urdf.replace(at, trunk_mass.size(), "<mass value=\"1.98561\"/>");
+  const std::string heavy = (dir.path() / "heavy_trunk.urdf").string();
+  std::ofstream(heavy) << urdf;
+  const std::string broken = (dir.path() / "broken.urdf").string();
+  std::ofstream(broken) << "<robot name=\"x\"><link name=";
+
+  int code = -1;
+  auto stand = [&](const std::string& extra) {
+    const auto j = nlohmann::json::parse(
+        run_stride("sim stand --duration 1 --seed 2 --json " + extra + " 2>/dev/null", code));
+    EXPECT_EQ(code, 0) << extra;
+    return j.at("state_hash").get<std::string>();
+  };
+  const std::string stock = stand("");
+  EXPECT_EQ(stand("--urdf " + std::string(STRIDE_SIM_MODEL_DIR) + "/igus_op.urdf"), stock);
+  EXPECT_NE(stand("--urdf " + heavy), stock);
+  std::string err = run_stride("sim stand --urdf " + broken + " 2>&1 >/dev/null", code);
+  EXPECT_EQ(code, 2);
+  EXPECT_EQ(err.rfind("stride sim: --urdf: ", 0), 0u) << err;
+  err = run_stride("sim stand --urdf /nonexistent.urdf 2>&1 >/dev/null", code);
+  EXPECT_EQ(code, 2);
+  EXPECT_EQ(err, "stride sim: --urdf: no such file '/nonexistent.urdf'\n");
 }
 
 }  // namespace
