@@ -17,8 +17,8 @@ cmake --preset asan >/dev/null
 cmake --build --preset asan -j "$jobs" --target stride_unit_tests
 ctest --preset asan -j "$jobs"
 
-echo "== fuzzing the Dynamixel parsers and virtual buses (libFuzzer, 15 s per target)"
-toolchain/fuzz.sh 15
+echo "== fuzzing the Dynamixel parsers, codecs and virtual buses (libFuzzer, 12 s per target)"
+toolchain/fuzz.sh 12
 
 echo "== integration tests (release preset)"
 cmake --preset release >/dev/null

@@ -1,6 +1,11 @@
 // libFuzzer target: the protocol 1.0 streaming parser (host and device roles), fed the input in
-// chunks whose sizes come from the input itself. Every packet handed out must re-encode to a
-// packet that parses back to the same content.
+// chunks as a serial port delivers them. Every packet handed out must re-encode to a packet
+// that parses back to the same ID, instruction or error, and parameters.
+//
+// Input: [control][bytes...]. Chunk size = 1 + (control & 0x7F) % 37. Control bit 7 = lazy:
+// packets are taken out only when the parser's buffer takes no more bytes and at the end, as a
+// reader that falls behind would, so the buffer's compaction and full-buffer paths run too.
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
@@ -19,30 +24,47 @@ void check(const Packet& p, bool host) {
   PacketParser back(Protocol::kV1, host ? PacketParser::Role::kHost : PacketParser::Role::kDevice);
   (void)back.feed({again, n});
   Packet q;
-  if (!back.next(q) || q.param_count != p.param_count || q.id != p.id) std::abort();
+  if (!back.next(q) || q.param_count != p.param_count || q.id != p.id ||
+      q.instruction != p.instruction || q.error != p.error || q.is_status != host ||
+      !std::equal(p.params.begin(), p.params.begin() + p.param_count, q.params.begin())) {
+    std::abort();
+  }
 }
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size == 0) return 0;
-  const std::size_t chunk = 1 + data[0] % 37;
+  const std::size_t chunk = 1 + (data[0] & 0x7FU) % 37;
+  const bool lazy = (data[0] & 0x80U) != 0;
   for (const bool host : {true, false}) {
     PacketParser parser(Protocol::kV1,
                         host ? PacketParser::Role::kHost : PacketParser::Role::kDevice);
     Packet p;
+    std::uint64_t handed_out = 0;
     std::size_t offset = 1;
     while (offset < size) {
       const std::size_t n = chunk < size - offset ? chunk : size - offset;
       std::size_t taken = 0;
       while (taken < n) {
-        taken += parser.feed({data + offset + taken, n - taken});
-        while (parser.next(p)) check(p, host);
+        const std::size_t t = parser.feed({data + offset + taken, n - taken});
+        taken += t;
+        if (lazy && taken == n) break;
+        if (lazy && t > 0) continue;  // feed until the buffer takes nothing more, then drain
+        while (parser.next(p)) {
+          check(p, host);
+          ++handed_out;
+        }
       }
       offset += n;
     }
-    while (parser.skip_incomplete()) {
-      while (parser.next(p)) check(p, host);
+    for (;;) {
+      while (parser.next(p)) {
+        check(p, host);
+        ++handed_out;
+      }
+      if (!parser.skip_incomplete()) break;
     }
+    if (parser.buffered() != 0 || parser.stats().packets != handed_out) std::abort();
   }
   return 0;
 }

@@ -1,6 +1,9 @@
 // libFuzzer target: the protocol 2.0 streaming parser (CRC-16, byte stuffing), fed the input in
-// chunks whose sizes come from the input. Every packet handed out must re-encode (with
-// stuffing) to a packet that parses back to the same content.
+// chunks as a serial port delivers them. Every packet handed out must re-encode (with stuffing)
+// to a packet that parses back to the same content.
+//
+// Input: [control][bytes...]. Chunk size = 1 + (control & 0x7F) % 61. Control bit 7 = lazy:
+// packets are taken out only when the parser's buffer takes no more bytes and at the end.
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
@@ -22,6 +25,7 @@ void check(const Packet& p) {
   (void)back.feed({again, n});
   Packet q;
   if (!back.next(q) || q.param_count != p.param_count || q.id != p.id ||
+      q.instruction != p.instruction || q.error != p.error || q.is_status != p.is_status ||
       std::memcmp(q.params.data(), p.params.data(), p.param_count) != 0) {
     std::abort();
   }
@@ -30,21 +34,34 @@ void check(const Packet& p) {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size == 0) return 0;
-  const std::size_t chunk = 1 + data[0] % 61;
+  const std::size_t chunk = 1 + (data[0] & 0x7FU) % 61;
+  const bool lazy = (data[0] & 0x80U) != 0;
   PacketParser parser(Protocol::kV2, PacketParser::Role::kHost);
   Packet p;
+  std::uint64_t handed_out = 0;
   std::size_t offset = 1;
   while (offset < size) {
     const std::size_t n = chunk < size - offset ? chunk : size - offset;
     std::size_t taken = 0;
     while (taken < n) {
-      taken += parser.feed({data + offset + taken, n - taken});
-      while (parser.next(p)) check(p);
+      const std::size_t t = parser.feed({data + offset + taken, n - taken});
+      taken += t;
+      if (lazy && taken == n) break;
+      if (lazy && t > 0) continue;  // feed until the buffer takes nothing more, then drain
+      while (parser.next(p)) {
+        check(p);
+        ++handed_out;
+      }
     }
     offset += n;
   }
-  while (parser.skip_incomplete()) {
-    while (parser.next(p)) check(p);
+  for (;;) {
+    while (parser.next(p)) {
+      check(p);
+      ++handed_out;
+    }
+    if (!parser.skip_incomplete()) break;
   }
+  if (parser.buffered() != 0 || parser.stats().packets != handed_out) std::abort();
   return 0;
 }

@@ -26,57 +26,7 @@ void store_value(std::array<std::uint8_t, 256>& mem, std::uint16_t address, std:
     mem[address + i] = static_cast<std::uint8_t>(v >> (8 * i));
 }
 
-bool parse_probability(const std::string& text, double& out) {
-  char* end = nullptr;
-  const double v = std::strtod(text.c_str(), &end);
-  if (end == text.c_str() || *end != '\0' || !(v >= 0.0 && v <= 1.0)) return false;
-  out = v;
-  return true;
-}
-
-bool parse_uint(const std::string& text, std::uint64_t max, std::uint64_t& out) {
-  if (text.empty()) return false;
-  char* end = nullptr;
-  const unsigned long long v = std::strtoull(text.c_str(), &end, 10);
-  if (*end != '\0' || text[0] == '-' || v > max) return false;
-  out = v;
-  return true;
-}
-
 }  // namespace
-
-Status VirtualBusFaults::add(const std::string& spec) {
-  const auto colon = spec.find(':');
-  if (colon == std::string::npos) {
-    return Status::error("fault '" + spec +
-                         "': expected KIND:VALUE (drop:P, corrupt:P, silent:ID, "
-                         "overheat:ID, start:CYCLES)");
-  }
-  const std::string kind = spec.substr(0, colon);
-  const std::string value = spec.substr(colon + 1);
-  std::uint64_t n = 0;
-  if (kind == "drop" || kind == "corrupt") {
-    double p = 0.0;
-    if (!parse_probability(value, p)) {
-      return Status::error("fault '" + spec + "': probability must be in [0, 1]");
-    }
-    (kind == "drop" ? drop_probability : corrupt_probability) = p;
-  } else if (kind == "silent" || kind == "overheat") {
-    if (!parse_uint(value, 253, n)) return Status::error("fault '" + spec + "': bad device ID");
-    (kind == "silent" ? silent : overheat)[n] = true;
-  } else if (kind == "start") {
-    if (!parse_uint(value, 1'000'000'000ULL, n)) {
-      return Status::error("fault '" + spec + "': bad cycle count");
-    }
-    start_after_cycles = n;
-  } else if (kind == "seed") {
-    if (!parse_uint(value, ~0ULL, n)) return Status::error("fault '" + spec + "': bad seed");
-    seed = n;
-  } else {
-    return Status::error("fault '" + spec + "': unknown kind '" + kind + "'");
-  }
-  return {};
-}
 
 VirtualBus::VirtualBus(const Options& options, std::unique_ptr<VirtualBusPhysics> physics)
     : options_(options), physics_(std::move(physics)), rng_(options.faults.seed) {
@@ -261,25 +211,16 @@ bool VirtualBus::reply(Device& device, std::span<const std::uint8_t> params,
     return false;
   }
   std::array<std::uint8_t, 260> packet{};
-  const std::size_t n = v1::encode_status(packet, device.id, status_error(device), params);
+  const std::uint8_t error = status_error(device);
+  const std::size_t n = v1::encode_status(packet, device.id, error, params);
   device.command_error = 0;
   if (n == 0) return false;
-  std::uniform_real_distribution<double> uniform(0.0, 1.0);
-  if (faults_active() && options_.faults.drop_probability > 0.0 &&
-      uniform(rng_) < options_.faults.drop_probability) {
-    ++counters_.dropped;
+  if (faults_active() && !inject_reply_faults(options_.faults, rng_, {packet.data(), n}, counters_))
     return true;  // the device answered; the host never hears it (the chain goes on)
-  }
-  if (faults_active() && options_.faults.corrupt_probability > 0.0 &&
-      uniform(rng_) < options_.faults.corrupt_probability) {
-    std::uniform_int_distribution<std::size_t> pos(2, n - 1);
-    std::uniform_int_distribution<int> flip(1, 255);
-    packet[pos(rng_)] ^= static_cast<std::uint8_t>(flip(rng_));
-    ++counters_.corrupted;
-  }
   delay_us += 2 * static_cast<std::int64_t>(device.mem[mx1::kReturnDelayTime]);
   out.insert(out.end(), packet.begin(), packet.begin() + static_cast<std::ptrdiff_t>(n));
   ++counters_.replies;
+  if (error != 0) ++counters_.error_replies;
   return true;
 }
 

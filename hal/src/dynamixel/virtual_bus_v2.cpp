@@ -28,7 +28,7 @@ void put(std::array<std::uint8_t, 256>& mem, std::uint16_t address, std::uint8_t
 }  // namespace
 
 VirtualBusV2::VirtualBusV2(const Options& options, std::unique_ptr<VirtualBusPhysics> physics)
-    : options_(options), physics_(std::move(physics)) {
+    : options_(options), physics_(std::move(physics)), rng_(options.faults.seed) {
   for (std::size_t i = 0; i < kServoCount; ++i) {
     Servo s;
     s.index = i;
@@ -55,6 +55,20 @@ void VirtualBusV2::reset(Servo& servo, bool ram_only) {
       units::position_to_ticks(q, options_.calibration[servo.index]));
   servo.registered = false;
   push_command(servo);
+}
+
+void VirtualBusV2::factory_reset(Servo& servo, std::uint8_t option) {
+  const std::uint8_t baud = servo.mem[mx2::kBaudRate];
+  reset(servo, false);  // keeps the ID
+  if (option == 0xFF) {
+    const Register* id = servo.table->at(mx2::kId);
+    servo.mem[mx2::kId] = static_cast<std::uint8_t>(id != nullptr ? id->initial : 1);
+  }
+  if (option == 0x02) servo.mem[mx2::kBaudRate] = baud;
+}
+
+bool VirtualBusV2::faults_active() const {
+  return counters_.bulk_reads + counters_.sync_reads >= options_.faults.start_after_cycles;
 }
 
 VirtualBusV2::Servo* VirtualBusV2::find(std::uint8_t id) {
@@ -90,7 +104,7 @@ void VirtualBusV2::push_command(Servo& servo) {
 void VirtualBusV2::refresh(Servo& servo) {
   const ServoCalibration& cal = options_.calibration[servo.index];
   PhysicsServoState s = physics_->servo_state(servo.index);
-  if (options_.overheat[servo.mem[mx2::kId]]) s.temperature_c = 85.0;
+  if (options_.faults.overheat[servo.mem[mx2::kId]] && faults_active()) s.temperature_c = 85.0;
   put(servo.mem, mx2::kPresentPosition, 4, units::position_to_ticks(s.position_rad, cal));
   const double velocity = cal.direction * s.speed_rad_s / units::kV2VelocityUnitRadS;
   put(servo.mem, mx2::kPresentVelocity, 4,
@@ -103,7 +117,7 @@ void VirtualBusV2::refresh(Servo& servo) {
   servo.mem[122] = std::abs(s.speed_rad_s) > 1e-3 ? 1 : 0;
   const bool hot = servo.mem[mx2::kPresentTemperature] > servo.mem[mx2::kTemperatureLimit];
   servo.mem[mx2::kHardwareErrorStatus] = hot ? 0x04 : 0x00;  // bit 2: overheating
-  if (hot && (servo.mem[63] & 0x04) != 0 && servo.mem[mx2::kTorqueEnable] != 0) {
+  if (hot && (servo.mem[mx2::kShutdown] & 0x04) != 0 && servo.mem[mx2::kTorqueEnable] != 0) {
     servo.mem[mx2::kTorqueEnable] = 0;  // shutdown
     push_command(servo);
   }
@@ -124,31 +138,48 @@ std::uint8_t VirtualBusV2::write(Servo& servo, std::uint16_t address,
     const std::uint32_t v = get(next, r.address, r.size);
     if (v < r.min || v > r.max) return v2_error::kDataRange;
   }
-  if ((servo.mem[mx2::kHardwareErrorStatus] & servo.mem[63]) != 0) next[mx2::kTorqueEnable] = 0;
+  // Position control mode: Goal Position must lie within [Min, Max Position Limit].
+  if (address < mx2::kGoalPosition + 4 && end > mx2::kGoalPosition &&
+      next[mx2::kOperatingMode] == mx2::kPositionControlMode) {
+    const std::uint32_t goal = get(next, mx2::kGoalPosition, 4);
+    if (goal < get(next, mx2::kMinPositionLimit, 4) || goal > get(next, mx2::kMaxPositionLimit, 4))
+      return v2_error::kDataLimit;
+  }
+  if ((servo.mem[mx2::kHardwareErrorStatus] & servo.mem[mx2::kShutdown]) != 0)
+    next[mx2::kTorqueEnable] = 0;
   servo.mem = next;
   push_command(servo);
   return 0;
 }
 
-void VirtualBusV2::reply(Servo& servo, std::uint8_t error, std::span<const std::uint8_t> params,
+bool VirtualBusV2::reply(Servo& servo, std::uint8_t error, std::span<const std::uint8_t> params,
                          std::vector<std::uint8_t>& out, std::int64_t& delay_us) {
+  if (options_.faults.silent[servo.mem[mx2::kId]] && faults_active()) {
+    ++counters_.silenced;
+    return false;
+  }
   if (servo.mem[mx2::kHardwareErrorStatus] != 0) error |= v2_error::kAlert;
   std::array<std::uint8_t, kMaxPacketBytes> packet{};
   const std::size_t n = v2::encode_status(packet, servo.mem[mx2::kId], error, params);
-  if (n == 0) return;
+  if (n == 0) return false;
+  if (faults_active() && !inject_reply_faults(options_.faults, rng_, {packet.data(), n}, counters_))
+    return true;  // the servo answered; the host never hears it (the chain goes on)
   delay_us += 2 * static_cast<std::int64_t>(servo.mem[mx2::kReturnDelayTime]);
   out.insert(out.end(), packet.begin(), packet.begin() + static_cast<std::ptrdiff_t>(n));
+  ++counters_.replies;
+  if (error != 0) ++counters_.error_replies;
+  return true;
 }
 
-void VirtualBusV2::read_reply(Servo& servo, std::uint16_t address, std::uint16_t length,
+bool VirtualBusV2::read_reply(Servo& servo, std::uint16_t address, std::uint16_t length,
                               std::vector<std::uint8_t>& out, std::int64_t& delay_us) {
-  if (servo.mem[mx2::kStatusReturnLevel] < 1) return;
+  if (servo.mem[mx2::kStatusReturnLevel] < 1) return true;
   refresh(servo);
   if (address + length > servo.table->size || length == 0) {
-    reply(servo, v2_error::kAccess, {}, out, delay_us);
-    return;
+    return reply(servo, v2_error::kAccess, {}, out, delay_us);
   }
-  reply(servo, 0, std::span<const std::uint8_t>(servo.mem.data() + address, length), out, delay_us);
+  return reply(servo, 0, std::span<const std::uint8_t>(servo.mem.data() + address, length), out,
+               delay_us);
 }
 
 void VirtualBusV2::advance_time(bool cycle) {
@@ -176,9 +207,10 @@ void VirtualBusV2::receive(std::span<const std::uint8_t> bytes, std::vector<std:
     while (parser_.next(packet)) handle(packet, out, reply_delay_us);
     while (seen_bad_ < parser_.stats().bad_checksum) {
       ++seen_bad_;
+      ++counters_.bad_packets;
       Servo* s = find(parser_.last_bad_id());
       if (s != nullptr && s->mem[mx2::kStatusReturnLevel] >= 2) {
-        reply(*s, v2_error::kCrc, {}, out, reply_delay_us);
+        (void)reply(*s, v2_error::kCrc, {}, out, reply_delay_us);
       }
     }
   }
@@ -187,6 +219,7 @@ void VirtualBusV2::receive(std::span<const std::uint8_t> bytes, std::vector<std:
 void VirtualBusV2::handle(const Packet& packet, std::vector<std::uint8_t>& out,
                           std::int64_t& delay_us) {
   if (packet.is_status) return;
+  ++counters_.instructions;
   const auto p = packet.parameters();
   const bool broadcast = packet.id == kBroadcastId;
   const std::uint8_t code = packet.instruction;
@@ -196,7 +229,7 @@ void VirtualBusV2::handle(const Packet& packet, std::vector<std::uint8_t>& out,
     for (Servo& s : servos_) {
       if (!broadcast && s.mem[mx2::kId] != packet.id) continue;
       const std::array<std::uint8_t, 3> info{s.mem[0], s.mem[1], s.mem[6]};
-      reply(s, 0, info, out, delay_us);
+      (void)reply(s, 0, info, out, delay_us);
     }
     return;
   }
@@ -205,11 +238,15 @@ void VirtualBusV2::handle(const Packet& packet, std::vector<std::uint8_t>& out,
     const std::uint16_t address = read_u16(p.data());
     const std::uint16_t length = read_u16(p.data() + 2);
     if (code == instruction::kSyncRead) {
+      // Replies in list order, each servo after its predecessor's status packet.
       for (std::size_t k = 4; k < p.size(); ++k) {
-        if (Servo* s = find(p[k])) read_reply(*s, address, length, out, delay_us);
+        Servo* s = find(p[k]);
+        if (s != nullptr && !read_reply(*s, address, length, out, delay_us)) break;
       }
+      ++counters_.sync_reads;
       return;
     }
+    ++counters_.sync_writes;
     if (length == 0) return;
     for (std::size_t k = 4; k + 1 + length <= p.size(); k += 1U + length) {
       if (Servo* s = find(p[k])) (void)write(*s, address, p.subspan(k + 1, length));
@@ -219,22 +256,27 @@ void VirtualBusV2::handle(const Packet& packet, std::vector<std::uint8_t>& out,
   if (code == instruction::kBulkRead) {
     if (!broadcast) return;
     for (std::size_t k = 0; k + 5 <= p.size(); k += 5) {
-      if (Servo* s = find(p[k]))
-        read_reply(*s, read_u16(p.data() + k + 1), read_u16(p.data() + k + 3), out, delay_us);
+      Servo* s = find(p[k]);
+      if (s != nullptr &&
+          !read_reply(*s, read_u16(p.data() + k + 1), read_u16(p.data() + k + 3), out, delay_us))
+        break;
     }
+    ++counters_.bulk_reads;
     return;
   }
   for (Servo& s : servos_) {
     if (!broadcast && s.mem[mx2::kId] != packet.id) continue;
     std::uint8_t error = 0;
     bool is_read = false;
+    std::uint8_t reset_option = 0;  // FACTORY_RESET to do once the status packet is out
     switch (code) {
       case instruction::kRead:
         if (p.size() != 4) {
           error = v2_error::kDataLength;
           break;
         }
-        if (!broadcast) read_reply(s, read_u16(p.data()), read_u16(p.data() + 2), out, delay_us);
+        if (!broadcast)
+          (void)read_reply(s, read_u16(p.data()), read_u16(p.data() + 2), out, delay_us);
         is_read = true;
         break;
       case instruction::kWrite:
@@ -247,7 +289,7 @@ void VirtualBusV2::handle(const Packet& packet, std::vector<std::uint8_t>& out,
           s.registered = true;
           s.reg_address = read_u16(p.data());
           s.reg_data.assign(p.begin() + 2, p.end());
-          s.mem[69] = 1;
+          s.mem[mx2::kRegisteredInstruction] = 1;
         }
         break;
       case instruction::kAction:
@@ -256,21 +298,28 @@ void VirtualBusV2::handle(const Packet& packet, std::vector<std::uint8_t>& out,
         } else {
           error = write(s, s.reg_address, s.reg_data);
           s.registered = false;
-          s.mem[69] = 0;
+          s.mem[mx2::kRegisteredInstruction] = 0;
         }
         break;
       case instruction::kReboot:
         reset(s, true);
         break;
       case instruction::kReset:
-        if (p.size() == 1 && !(broadcast && p[0] == 0xFF)) reset(s, false);
+        if (p.size() != 1) {
+          error = v2_error::kDataLength;
+        } else if (p[0] != 0xFF && p[0] != 0x01 && p[0] != 0x02) {
+          error = v2_error::kDataRange;
+        } else if (!(broadcast && p[0] == 0xFF)) {  // e-manual: not executed on broadcast
+          reset_option = p[0];
+        }
         break;
       default:
         error = v2_error::kInstruction;
         break;
     }
     if (!broadcast && !is_read && s.mem[mx2::kStatusReturnLevel] >= 2)
-      reply(s, error, {}, out, delay_us);
+      (void)reply(s, error, {}, out, delay_us);
+    if (reset_option != 0) factory_reset(s, reset_option);
   }
 }
 

@@ -1,5 +1,6 @@
-// `stride vbus --link PATH`: the virtual robot bus (20 MX servos + CM730, protocol 1.0) on a
-// pseudo-terminal, with injectable faults, until SIGINT/SIGTERM.
+// `stride vbus --link PATH`: the virtual robot bus (20 MX servos + CM730, protocol 1.0; or 20
+// MX(2.0) servos, protocol 2.0) on a pseudo-terminal, with injectable faults, until
+// SIGINT/SIGTERM; `--json` prints the bus counters on exit.
 #include <sched.h>
 #include <sys/mman.h>
 
@@ -68,7 +69,8 @@ int run_vbus(int argc, char** argv) {
       .option(
           "fault",
           "inject a fault (repeatable, or comma-separated): drop:P, corrupt:P (per reply), "
-          "silent:ID, overheat:ID, start:CYCLES (faults act after that many BULK_READs), seed:N")
+          "silent:ID, overheat:ID, start:CYCLES (faults act after that many BULK_READs, or with "
+          "--protocol 2 SYNC_READs and BULK_READs), seed:N")
       .option("protocol",
               "1: CM730 + 20 MX servos (the robot's bus); 2: 20 MX(2.0) servos, no CM730", true,
               "1")
@@ -96,9 +98,9 @@ int run_vbus(int argc, char** argv) {
         "usage: stride vbus --link PATH [--fault KIND:VALUE]... [--lockstep] [--json]\n\n"
         "Serves an emulated CM730 (ID 200) and 20 MX-64/MX-106 servos (IDs 1-20, models from\n"
         "the servo table) with their protocol 1.0 control tables on a pseudo-terminal until\n"
-        "SIGINT/SIGTERM (--protocol 2: 20 MX(2.0) servos, no CM730; faults other than\n"
-        "overheat apply to protocol 1 only). Servo motion: first-order model, or with --sim\n"
-        "the Simbody simulation of the robot, advanced one period per BULK_READ.\n\n%s",
+        "SIGINT/SIGTERM (--protocol 2: 20 MX(2.0) servos, no CM730). Servo motion:\n"
+        "first-order model, or with --sim the Simbody simulation of the robot, advanced one\n"
+        "period per BULK_READ.\n\n%s",
         args.help().c_str());
     return 0;
   }
@@ -142,6 +144,7 @@ int run_vbus(int argc, char** argv) {
   }
   std::unique_ptr<dxl::BusResponder> responder;
   dxl::VirtualBus* bus_v1 = nullptr;
+  dxl::VirtualBusV2* bus_v2 = nullptr;
   if (protocol == 1) {
     auto bus = std::make_unique<dxl::VirtualBus>(options, std::move(motion));
     bus_v1 = bus.get();
@@ -151,9 +154,11 @@ int run_vbus(int argc, char** argv) {
     v2.calibration = options.calibration;
     v2.lockstep = options.lockstep;
     v2.period_ns = options.period_ns;
-    v2.overheat = options.faults.overheat;
-    responder =
+    v2.faults = options.faults;
+    auto bus =
         std::make_unique<dxl::VirtualBusV2>(v2, std::make_unique<dxl::FirstOrderPhysics>(physics));
+    bus_v2 = bus.get();
+    responder = std::move(bus);
   }
 
   std::unique_ptr<dxl::PtyBusServer> server;
@@ -180,19 +185,17 @@ int run_vbus(int argc, char** argv) {
                server->slave_path().c_str(), options.lockstep ? "lockstep" : "wall clock",
                use_sim ? ", Simbody simulation" : "");
   const Status served = server->serve(*responder, g_vbus_stop);
-  const dxl::VirtualBusCounters c =
-      bus_v1 != nullptr ? bus_v1->counters() : dxl::VirtualBusCounters{};
-  if (bus_v1 != nullptr)
-    std::fprintf(
-        stderr,
-        "stride vbus: %llu instructions, %llu bulk reads, %llu sync writes, %llu replies; "
-        "faults: %llu dropped, %llu corrupted, %llu silenced; %llu bad packets received\n",
-        static_cast<unsigned long long>(c.instructions),
-        static_cast<unsigned long long>(c.bulk_reads),
-        static_cast<unsigned long long>(c.sync_writes), static_cast<unsigned long long>(c.replies),
-        static_cast<unsigned long long>(c.dropped), static_cast<unsigned long long>(c.corrupted),
-        static_cast<unsigned long long>(c.silenced),
-        static_cast<unsigned long long>(c.bad_packets));
+  const dxl::VirtualBusCounters c = bus_v1 != nullptr ? bus_v1->counters() : bus_v2->counters();
+  using ull = unsigned long long;
+  std::fprintf(
+      stderr,
+      "stride vbus: %llu instructions, %llu bulk reads, %llu sync reads, %llu sync writes, "
+      "%llu replies (%llu with an error); faults: %llu dropped, %llu corrupted, %llu "
+      "silenced; %llu bad packets received\n",
+      static_cast<ull>(c.instructions), static_cast<ull>(c.bulk_reads),
+      static_cast<ull>(c.sync_reads), static_cast<ull>(c.sync_writes), static_cast<ull>(c.replies),
+      static_cast<ull>(c.error_replies), static_cast<ull>(c.dropped), static_cast<ull>(c.corrupted),
+      static_cast<ull>(c.silenced), static_cast<ull>(c.bad_packets));
   nlohmann::json sim_report;
   if (sim_physics != nullptr) {
     const sim::SimWorld& w = sim_physics->world();
@@ -208,7 +211,8 @@ int run_vbus(int argc, char** argv) {
   }
   if (args.has("json")) {
     nlohmann::json report = {{"instructions", c.instructions}, {"bulk_reads", c.bulk_reads},
-                             {"sync_writes", c.sync_writes},   {"replies", c.replies},
+                             {"sync_reads", c.sync_reads},     {"sync_writes", c.sync_writes},
+                             {"replies", c.replies},           {"error_replies", c.error_replies},
                              {"dropped", c.dropped},           {"corrupted", c.corrupted},
                              {"silenced", c.silenced},         {"bad_packets", c.bad_packets}};
     if (!sim_report.is_null()) report["sim"] = sim_report;

@@ -215,6 +215,36 @@ TEST(VirtualBusEndToEnd, DxlToolSpeaksProtocol2ToTheMx2Bus) {
   EXPECT_EQ(wcode, 1);  // read-only: the servo refuses with an access error
   EXPECT_NE(slurp(err).find("error 0x07"), std::string::npos);
   (void)unused;
+  // The 2.0 bus counts like the 1.0 bus: scan = 31 pings (20 answered) + 20 model reads;
+  // read and write = a model read each + the request; one reply carries the access error.
+  const auto counters = vbus.stop();
+  EXPECT_EQ(vbus.exit_code(), 0);
+  EXPECT_EQ(counters["instructions"], 31 + 20 + 2 + 2);
+  EXPECT_EQ(counters["replies"], 20 + 20 + 2 + 2);
+  EXPECT_EQ(counters.value("error_replies", -1), 1);
+  EXPECT_EQ(counters["bad_packets"], 0);
+  EXPECT_EQ(counters["dropped"], 0);
+}
+
+TEST(VirtualBusEndToEnd, Protocol2BusInjectsAndCountsFaults) {
+  stride::test::TempDir dir;
+  VirtualBusProcess vbus(dir, {"--protocol", "2", "--fault", "silent:3,drop:1"});
+  ASSERT_TRUE(std::filesystem::exists(vbus.link()));
+  const auto out = dir.path() / "dxl.out";
+  const auto err = dir.path() / "dxl.err";
+  // A scan of IDs 0..20: ID 3 never answers, every other servo's status packet is lost.
+  const int code =
+      wait_exit(spawn({kBin + "/stride", "dxl", "--port", vbus.link().string(), "--protocol", "2",
+                       "--max-id", "20", "--timeout-ms", "10", "--json", "scan"},
+                      out, err));
+  ASSERT_EQ(code, 0) << slurp(err);
+  EXPECT_EQ(nlohmann::json::parse(slurp(out))["devices"].size(), 0U);
+  const auto counters = vbus.stop();
+  EXPECT_EQ(vbus.exit_code(), 0);
+  EXPECT_EQ(counters["instructions"], 21);
+  EXPECT_EQ(counters["silenced"], 1);
+  EXPECT_EQ(counters["dropped"], 19);
+  EXPECT_EQ(counters["replies"], 0);
 }
 
 }  // namespace

@@ -134,6 +134,9 @@ TEST(VirtualBus, ErrorBits) {
   ASSERT_EQ(r.size(), 1U);
   EXPECT_EQ(r[0].error, error_bits::kChecksum);
   EXPECT_EQ(bench.bus->counters().bad_packets, 1U);
+  // Range, angle limit, two instruction errors, checksum: 5 of the 8 replies carry an error.
+  EXPECT_EQ(bench.bus->counters().replies, 8U);
+  EXPECT_EQ(bench.bus->counters().error_replies, 5U);
 }
 
 TEST(VirtualBus, OverheatingTriggersAlarmShutdown) {

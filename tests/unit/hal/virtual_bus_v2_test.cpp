@@ -1,43 +1,17 @@
 // The protocol 2.0 emulated MX(2.0) servos: PING, READ/WRITE with the 2.0 error field,
-// SYNC_READ/SYNC_WRITE/BULK_READ, REBOOT, CRC errors, lockstep motion, overheating alert.
+// SYNC_READ/SYNC_WRITE/BULK_READ, REBOOT, CRC errors, lockstep motion, overheating alert, the
+// bus counters and injected faults.
 #include <gtest/gtest.h>
 
 #include <array>
 
-#include "dxl_test_util.hpp"
-#include "stride/firmware/dynamixel_config.hpp"
-#include "stride/hal/dynamixel/codec_v2.hpp"
-#include "stride/hal/dynamixel/virtual_bus_v2.hpp"
+#include "bench_v2.hpp"
 
 namespace stride::hal::dxl {
 namespace {
 
+using test::BenchV2;
 using test::Bytes;
-
-struct BenchV2 {
-  BenchV2() {
-    VirtualBusV2::Options options;
-    options.calibration = fw::servo_calibrations(fw::ServoTable::defaults());
-    options.lockstep = true;
-    options.overheat[13] = true;
-    FirstOrderPhysics::Options physics;
-    for (std::size_t i = 0; i < kServoCount; ++i) physics.models[i] = options.calibration[i].model;
-    bus = std::make_unique<VirtualBusV2>(options, std::make_unique<FirstOrderPhysics>(physics));
-  }
-  template <typename F>
-  std::vector<Packet> call(F encode) {
-    Bytes b(1100);
-    b.resize(encode(std::span<std::uint8_t>(b)));
-    return send(b);
-  }
-  std::vector<Packet> send(const Bytes& b) {
-    std::vector<std::uint8_t> out;
-    std::int64_t delay = 0;
-    bus->receive(b, out, delay);
-    return test::parse_all(Protocol::kV2, PacketParser::Role::kHost, out);
-  }
-  std::unique_ptr<VirtualBusV2> bus;
-};
 
 TEST(VirtualBusV2, PingReportsModelAndBroadcastPingEveryServo) {
   BenchV2 b;
@@ -107,6 +81,73 @@ TEST(VirtualBusV2, OverheatingSetsTheAlertBitAndCrcErrorsAreAnswered) {
   ASSERT_EQ(r.size(), 1U);
   EXPECT_EQ(r[0].id, 4);
   EXPECT_EQ(r[0].error, v2_error::kCrc);
+}
+
+TEST(VirtualBusV2, CountsRequestsRepliesAndErrors) {
+  BenchV2 b;
+  (void)b.call([](auto s) { return v2::encode_ping(s, 1); });
+  const std::array<std::uint8_t, 1> one{1};
+  auto r = b.call([&](auto s) { return v2::encode_write(s, 2, mx2::kPresentTemperature, one); });
+  ASSERT_EQ(r.size(), 1U);
+  EXPECT_EQ(r[0].error, v2_error::kAccess);
+  const std::array<std::uint8_t, 3> ids{1, 2, 3};
+  EXPECT_EQ(
+      b.call([&](auto s) { return v2::encode_sync_read(s, mx2::kGoalPosition, 4, ids); }).size(),
+      3U);
+  const std::array<BulkReadEntry, 1> entries{BulkReadEntry{4, mx2::kGoalPosition, 4}};
+  (void)b.call([&](auto s) { return v2::encode_bulk_read(s, entries); });
+  const Bytes records{1, 0x00, 0x08, 0, 0};
+  (void)b.call([&](auto s) { return v2::encode_sync_write(s, mx2::kGoalPosition, 4, records); });
+  Bytes bad(64);
+  bad.resize(v2::encode_ping(bad, 4));
+  bad.back() ^= 0x11;
+  (void)b.send(bad);
+  const VirtualBusCounters& c = b.bus->counters();
+  EXPECT_EQ(c.instructions, 5U);
+  EXPECT_EQ(c.replies, 1U + 1U + 3U + 1U + 1U);
+  EXPECT_EQ(c.error_replies, 2U);  // access error, CRC error
+  EXPECT_EQ(c.bad_packets, 1U);
+  EXPECT_EQ(c.sync_reads, 1U);
+  EXPECT_EQ(c.bulk_reads, 1U);
+  EXPECT_EQ(c.sync_writes, 1U);
+  EXPECT_EQ(c.dropped + c.corrupted + c.silenced, 0U);
+}
+
+TEST(VirtualBusV2, InjectedFaultsActAfterTheStartCycleAndAreCounted) {
+  VirtualBusV2::Options options;
+  options.faults.silent[5] = true;
+  options.faults.start_after_cycles = 1;
+  BenchV2 b(options);
+  const std::array<std::uint8_t, 3> ids{4, 5, 6};
+  auto sync_read = [&] {
+    return b.call([&](auto s) { return v2::encode_sync_read(s, mx2::kGoalPosition, 4, ids); });
+  };
+  EXPECT_EQ(sync_read().size(), 3U);  // cycle 0: no faults yet
+  // From cycle 1 on, servo 5 never answers, and servo 6, waiting for it, stays silent too.
+  const auto r = sync_read();
+  ASSERT_EQ(r.size(), 1U);
+  EXPECT_EQ(r[0].id, 4);
+  EXPECT_TRUE(b.call([](auto s) { return v2::encode_ping(s, 5); }).empty());
+  EXPECT_EQ(b.bus->counters().silenced, 2U);
+  EXPECT_EQ(b.bus->counters().replies, 4U);
+
+  VirtualBusV2::Options lossy;
+  lossy.faults.drop_probability = 1.0;
+  BenchV2 dropped(lossy);
+  EXPECT_TRUE(dropped.call([](auto s) { return v2::encode_ping(s, kBroadcastId); }).empty());
+  EXPECT_EQ(dropped.bus->counters().dropped, 20U);
+  EXPECT_EQ(dropped.bus->counters().replies, 0U);
+
+  VirtualBusV2::Options noisy;
+  noisy.faults.corrupt_probability = 1.0;
+  BenchV2 corrupted(noisy);
+  Bytes ping(16);
+  ping.resize(v2::encode_ping(ping, 3));
+  const Bytes wire = corrupted.raw(ping);
+  EXPECT_FALSE(wire.empty());
+  EXPECT_TRUE(test::parse_all(Protocol::kV2, PacketParser::Role::kHost, wire).empty());
+  EXPECT_EQ(corrupted.bus->counters().corrupted, 1U);
+  EXPECT_EQ(corrupted.bus->counters().replies, 1U);
 }
 
 }  // namespace

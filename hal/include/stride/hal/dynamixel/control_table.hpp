@@ -92,10 +92,16 @@ inline constexpr std::uint16_t kModelMx106 = 320;
 namespace mx2 {
 inline constexpr std::uint16_t kModelNumber = 0;
 inline constexpr std::uint16_t kId = 7;
+inline constexpr std::uint16_t kBaudRate = 8;
 inline constexpr std::uint16_t kReturnDelayTime = 9;
+inline constexpr std::uint16_t kOperatingMode = 11;  ///< 3 = position control (the default)
 inline constexpr std::uint16_t kTemperatureLimit = 31;
+inline constexpr std::uint16_t kMaxPositionLimit = 48;
+inline constexpr std::uint16_t kMinPositionLimit = 52;
+inline constexpr std::uint16_t kShutdown = 63;
 inline constexpr std::uint16_t kTorqueEnable = 64;
 inline constexpr std::uint16_t kStatusReturnLevel = 68;
+inline constexpr std::uint16_t kRegisteredInstruction = 69;
 inline constexpr std::uint16_t kHardwareErrorStatus = 70;
 inline constexpr std::uint16_t kPositionDGain = 80;
 inline constexpr std::uint16_t kPositionIGain = 82;
@@ -109,6 +115,7 @@ inline constexpr std::uint16_t kPresentTemperature = 146;
 inline constexpr std::uint16_t kTableSize = 147;
 inline constexpr std::uint16_t kModelMx64 = 311;
 inline constexpr std::uint16_t kModelMx106 = 321;
+inline constexpr std::uint8_t kPositionControlMode = 3;  ///< Operating Mode value
 }  // namespace mx2
 
 /// Stock ROBOTIS CM730 (DARwIn-OP firmware) as NUbots uses it (igus.md 6.4).

@@ -21,42 +21,17 @@
 #include <memory>
 #include <random>
 #include <span>
-#include <string>
 #include <vector>
 
 #include "stride/hal/dynamixel/bus_responder.hpp"
 #include "stride/hal/dynamixel/control_table.hpp"
 #include "stride/hal/dynamixel/packet_parser.hpp"
 #include "stride/hal/dynamixel/units.hpp"
+#include "stride/hal/dynamixel/virtual_bus_faults.hpp"
 #include "stride/hal/dynamixel/virtual_bus_physics.hpp"
-#include "stride/hal/status.hpp"
 #include "stride/hal/types.hpp"
 
 namespace stride::hal::dxl {
-
-struct VirtualBusFaults {
-  double drop_probability = 0.0;         ///< each status packet is lost with this probability
-  double corrupt_probability = 0.0;      ///< each status packet gets one byte changed
-  std::array<bool, 256> silent{};        ///< these IDs never answer
-  std::array<bool, 256> overheat{};      ///< these servos report 85 deg C (limit 80)
-  std::uint64_t start_after_cycles = 0;  ///< faults act after this many BULK_READs
-  std::uint64_t seed = 1;
-
-  /// Parses one `--fault` item: drop:P, corrupt:P, silent:ID, overheat:ID, start:CYCLES.
-  /// The error names the item.
-  Status add(const std::string& spec);
-};
-
-struct VirtualBusCounters {
-  std::uint64_t instructions = 0;  ///< valid instruction packets received
-  std::uint64_t bad_packets = 0;   ///< damaged packets received (checksum)
-  std::uint64_t replies = 0;       ///< status packets sent
-  std::uint64_t bulk_reads = 0;
-  std::uint64_t sync_writes = 0;
-  std::uint64_t dropped = 0;    ///< replies dropped by fault injection
-  std::uint64_t corrupted = 0;  ///< replies corrupted by fault injection
-  std::uint64_t silenced = 0;   ///< replies withheld because a device is silent
-};
 
 class VirtualBus final : public BusResponder {
  public:
