@@ -174,7 +174,9 @@ Status RobotTask::run_trial(const Genome& genome, int trial, EpisodeScore& out) 
     const double lost = r.fell ? std::max(0.0, config_.duration_s - r.fall_time_s) : 0.0;
     out.constraints = {
         r.fell ? -(1.0 + lost / config_.duration_s) : 0.0,
-        limit_violation(t.drift_ratio(), config_.max_drift_ratio),
+        config_.max_drift_ratio > 0.0
+            ? limit_violation(t.drift_ratio() / config_.max_drift_ratio, 1.0)
+            : limit_violation(t.drift_ratio(), config_.max_drift_ratio),
         heading_limit > 0.0 ? limit_violation(t.heading_change_rad / heading_limit, 1.0) : 0.0};
   } else if (omni) {
     out.omni = omni_episode.segments();

@@ -300,6 +300,7 @@ TEST(RobotTask, WalkOmniScoresEverySegmentOfIndO) {
   EXPECT_LT(a.constraints[0], -1.0);  // the fall
   EXPECT_LT(a.constraints[1], -0.5);  // sideways drift far above 10 %
   EXPECT_LT(a.constraints[2], 0.0);   // forward and backward turn more than 10 deg
+  EXPECT_EQ(a.constraints[3], -2.0);  // neither turn reached
 }
 
 // A tiny walk-omni run; `stride report` prints the per-direction table of Ind_O, the picks,

@@ -72,16 +72,22 @@ TEST(WalkMeasures, OmniObjectiveIsTheBitBotsScoreAndConstraintsSumTheViolations)
   EXPECT_NEAR(omni_speed_objective(s), -(0.3 + 0.2 + 2 * 0.075 + 0.2 * 0.75), 1e-12);
   TaskConfig config;  // drift 0.1, heading 10 deg, turn translation 0.1 m
   EXPECT_EQ(omni_constraints(s, config), (std::array<double, 3>{0, 0, 0}));
-  s[0].drift_ratio = 0.15;                       // 0.05 over
-  s[2].drift_ratio = 0.3;                        // 0.2 over
-  s[1].heading_change_rad = 20.0 * kPi / 180.0;  // twice the limit
-  s[5].translation_m = 0.25;                     // 2.5 x the limit
-  s[3].measured = false;                         // not reached: no terms
-  s[3].drift_ratio = 5.0;
+  s[0].drift_ratio = 0.15;                       // 1.5 x the limit: -0.5
+  s[2].drift_ratio = 0.3;                        // 3 x the limit: capped at -1
+  s[1].heading_change_rad = 15.0 * kPi / 180.0;  // 1.5 x the limit: -0.5
+  s[5].translation_m = 0.25;                     // 2.5 x the limit: capped at -1
   const auto c = omni_constraints(s, config);
-  EXPECT_NEAR(c[0], -0.25, 1e-12);
-  EXPECT_NEAR(c[1], -1.0, 1e-12);
-  EXPECT_NEAR(c[2], -1.5, 1e-12);
+  EXPECT_NEAR(c[0], -1.5, 1e-12);
+  EXPECT_NEAR(c[1], -0.5, 1e-12);
+  EXPECT_NEAR(c[2], -1.0, 1e-12);
+  // A segment not reached (a fall before it) adds -1 to each of its constraints, whatever its
+  // (unset) figures: falling earlier never lowers the violation.
+  s[3].measured = false;
+  s[4].measured = false;
+  const auto fallen = omni_constraints(s, config);
+  EXPECT_NEAR(fallen[0], -2.5, 1e-12);
+  EXPECT_NEAR(fallen[1], -1.5, 1e-12);
+  EXPECT_NEAR(fallen[2], -2.0, 1e-12);
   config.max_drift_ratio = -1.0;  // off
   config.max_heading_change_deg = -1.0;
   config.max_turn_translation_m = -1.0;

@@ -12,7 +12,7 @@
 //       Obj2 = max |a| of the IMU over the episode [m/s^2].
 //       c0 = fell ? -(1 + time lost / duration) : 0  (g >= 0 is feasible).
 //       Straightness at the goal (or the episode's end), from ground truth (walk_measures.hpp):
-//       c1 = min(0, max_drift_ratio - |lateral drift| / max(forward, 0.25 m)),
+//       c1 = min(0, 1 - (|lateral drift| / max(forward, 0.25 m)) / max_drift_ratio),
 //       c2 = min(0, 1 - |heading change| / max_heading_change_deg); a limit of null is off.
 // walk-omni  six segments forward, backward, sideways both ways, turning both ways;
 //       Obj1 = -(v_f + v_b + 2 v_side + 0.2 w_turn), Obj2 = max |a|; c0 fell, c1 drift,

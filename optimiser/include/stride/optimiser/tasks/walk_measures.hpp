@@ -18,12 +18,14 @@
 //   Obj1 = -(v_forward + v_backward + 2 (v_left + v_right)/2 + 0.2 (w_left + w_right)/2)
 //          (the Hamburg Bit-Bots' score; sideways and turning averaged over both sides)
 //   Obj2 = max |a| of the IMU over the episode (the seed's stability measure)
-// Constraints (g >= 0 feasible; 0 when met):
+// Constraints (g >= 0 feasible; 0 when met), each term relative to its limit and at most 1:
 //   c0 fell: -(1 + time lost / episode length)
-//   c1 drift: sum over translation segments of min(0, max_drift_ratio - drift ratio)
-//   c2 heading: sum over translation segments of min(0, 1 - |heading change| / limit)
-//   c3 turn translation: sum over turns of min(0, 1 - translation / max_turn_translation_m)
-// A segment the robot did not reach (it fell before) has speed 0 and no c1-c3 terms.
+//   c1 drift: sum over translation segments of max(-1, min(0, 1 - drift ratio / max_drift_ratio))
+//   c2 heading: sum over translation segments of max(-1, min(0, 1 - |heading change| / limit))
+//   c3 turn translation: sum over turns of max(-1, min(0, 1 - translation / limit))
+// A segment the robot did not reach (it fell before) has speed 0 and adds -1 to each of its
+// constraints, so that falling earlier never lowers the violation (in a first short run without
+// this, the least-violating members were those that fell in the second segment).
 #pragma once
 
 #include <array>
