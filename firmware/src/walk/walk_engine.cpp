@@ -38,7 +38,8 @@ Eigen::Matrix3d yaw_pitch(double yaw, double pitch) {
 WalkEngine::WalkEngine(ParameterStore& store, const ServoTable& servos, std::int64_t period_ns)
     : parameter_set_(store),
       period_s_(static_cast<double>(period_ns) * 1e-9),
-      balance_(store, period_s_) {
+      balance_(store, period_s_),
+      heading_(store, period_s_) {
   if (period_ns <= 0) throw std::invalid_argument("walk engine: control period must be > 0");
   left_leg_index_ = {servo_index(servos, "l_hip_yaw"),     servo_index(servos, "l_hip_roll"),
                      servo_index(servos, "l_hip_pitch"),   servo_index(servos, "l_knee"),
@@ -82,6 +83,8 @@ void WalkEngine::start(const hal::SensorFrame& sensors, const hal::CommandFrame&
   start_tick_ = tick;
   step_begin_s_ = 0.0;
   balance_.reset();
+  heading_.reset();
+  heading_correction_ = 0.0;
   std::array<double, hal::kServoCount> pose{};
   for (std::size_t k = 0; k < kDriven; ++k) {
     const std::size_t i = driven_index_[k];
@@ -142,6 +145,11 @@ void WalkEngine::begin_step() noexcept {
   const auto target = walk::scale_command(command_, params_);
   velocity_ = walk::accelerate(velocity_, target, params_.step_time, params_);
   if (step_count_ <= kStepsWithoutLift) velocity_ = {};
+  // The heading hold turns the step back towards the held heading (only once the feet lift).
+  const double correction = heading_.begin_step();
+  heading_correction_ = step_count_ > kStepsWithoutLift ? correction : 0.0;
+  walk::PlanarVector planned = velocity_;
+  planned.angle += heading_correction_;
   left_source_ = left_destination_;
   right_source_ = right_destination_;
   torso_source_ = torso_destination_;
@@ -164,7 +172,7 @@ void WalkEngine::begin_step() noexcept {
     swing_destination = walk::plan_closing_step(swing_, support_foot, params_);
   } else {
     swing_destination =
-        walk::plan_swing_destination(swing_, swing_source, support_foot, velocity_, params_);
+        walk::plan_swing_destination(swing_, swing_source, support_foot, planned, params_);
   }
   torso_destination_ = walk::torso_between(left_destination_, right_destination_, params_);
   support_ = walk::support_point(walk::other(swing_), support_foot, params_);
@@ -187,6 +195,10 @@ void WalkEngine::step(const hal::SensorFrame& sensors, hal::Tick tick,
                       hal::CommandFrame& out) noexcept {
   tick_clamped_ = false;
   balance_shift_ = balance_.update(sensors.cm730);
+  // The heading hold learns the gyro bias while the start blend stands, then holds the heading
+  // while no turn is commanded (a NaN command counts as 0, as in scale_command).
+  const bool holding = !(std::abs(command_.angle) > 0.0);
+  heading_.update(sensors.cm730, params_.body_tilt, state_ == State::kStarting, holding);
   const double t = static_cast<double>(std::max<hal::Tick>(0, tick - start_tick_)) * period_s_;
   double blend = 1.0;
   if (state_ == State::kStarting) {
@@ -225,6 +237,8 @@ void WalkEngine::step(const hal::SensorFrame& sensors, hal::Tick tick,
   snapshot_.swing = swing_;
   snapshot_.support_point = support_;
   snapshot_.velocity = velocity_;
+  snapshot_.heading_correction = heading_correction_;
+  snapshot_.heading_error = heading_.heading_error();
 
   const double arm_gain = gain_register(params_.gain_arms);
   const double leg_gain = gain_register(params_.gain_legs);

@@ -112,7 +112,39 @@ constexpr std::array<WalkParameterInfo, kWalkParameterCount> kTable{{
 
 #undef STRIDE_WALK_FIELD
 
+// Store ranges wider than the seed's bounds, for the omnidirectional task (issue 22). Chosen so
+// that the published speeds of this robot class (Bit-Bots' NUgus in simulation: 0.38 m/s forward,
+// 0.42 backward, 0.26 sideways, 1.97 rad/s turning) are reachable at step times of 0.5-0.85 s:
+// velocities in m/step or rad/step = speed x step time, step limits about 1.5 x that, and
+// acceleration limits that reach full speed within about two steps.
+constexpr std::array<WalkParameterRange, 14> kWideRanges{{
+    {"walk.walk_cycle.step.limits.x_min", -0.30, -0.02},
+    {"walk.walk_cycle.step.limits.x_max", 0.05, 0.30},
+    {"walk.walk_cycle.step.limits.angle_max", 0.131, 0.80},
+    {"walk.walk_cycle.velocity.limits.x_min", -0.30, -0.0135},
+    {"walk.walk_cycle.velocity.limits.y_min", -0.25, -0.005},
+    {"walk.walk_cycle.velocity.limits.y_max", 0.005, 0.25},
+    {"walk.walk_cycle.velocity.limits.angle_min", -1.5, -0.4},
+    {"walk.walk_cycle.velocity.limits.angle_max", 0.4, 1.5},
+    {"walk.walk_cycle.acceleration.limits.y", 0.0225, 0.5},
+    {"walk.walk_cycle.acceleration.limits.angle", 2.5, 15.0},
+    {"walk.walk_cycle.acceleration.limits_high.x", 0.04, 1.0},
+    {"walk.walk_cycle.acceleration.limits_high.y", 0.025, 0.5},
+    {"walk.walk_cycle.acceleration.limits_high.angle", 2.5, 15.0},
+    {"walk.walk_cycle.acceleration.turning_factor", 0.3, 2.0},
+}};
+
 }  // namespace
+
+std::span<const WalkParameterRange> walk_parameter_wide_ranges() noexcept {
+  return kWideRanges;
+}
+
+WalkParameterRange walk_parameter_store_range(const WalkParameterInfo& row) noexcept {
+  for (const auto& wide : kWideRanges)
+    if (wide.name == row.name) return wide;
+  return {row.name, row.min, row.max};
+}
 
 std::span<const WalkParameterInfo, kWalkParameterCount> walk_parameter_table() noexcept {
   return kTable;
@@ -127,7 +159,8 @@ WalkParameters default_walk_parameters() noexcept {
 WalkParameterSet::WalkParameterSet(ParameterStore& store) : store_(store) {
   for (std::size_t i = 0; i < kTable.size(); ++i) {
     const auto& row = kTable[i];
-    handles_[i] = store.add_real(std::string(row.name), row.default_value, row.min, row.max,
+    const WalkParameterRange range = walk_parameter_store_range(row);
+    handles_[i] = store.add_real(std::string(row.name), row.default_value, range.min, range.max,
                                  std::string(row.unit), std::string(row.description));
   }
 }

@@ -1,7 +1,7 @@
 // `stride optimise`: runs NSGA-II on a problem and writes a run directory (optimiser/README.md).
 //
-// The problem is a test problem (--problem NAME) or a robot task (--config FILE: walk or kick,
-// optimiser/configs/). Robot runs also get front/ parameter files and SVG plots (run_report).
+// The problem is a test problem (--problem NAME) or a robot task (--config FILE: walk, walk-omni or
+// kick, optimiser/configs/). Robot runs also get front/ parameter files and SVG plots (run_report).
 // On a terminal a progress bar is drawn; Ctrl-C stops after the next checkpoint.
 #include <unistd.h>
 
@@ -68,7 +68,7 @@ std::string problem_list() {
 
 /// The problem named on the command line (test problems today; tasks from --config later).
 Status make_problem(const std::string& name, std::unique_ptr<opt::Problem>& out) {
-  if (name == "walk" || name == "kick")
+  if (name == "walk" || name == "walk-omni" || name == "kick")
     return Status::error("task '" + name + "' needs --config FILE");
   out = opt::make_test_problem(name);
   if (!out) return Status::error("--problem '" + name + "' is not one of " + problem_list());
@@ -202,7 +202,8 @@ int run_optimise(int argc, char** argv) {
       return bad_input("--problem " + args.get("problem") + " differs from the run's " +
                        s.config.problem);
     }
-    if (s.config.problem == "walk" || s.config.problem == "kick") {
+    if (s.config.problem == "walk" || s.config.problem == "walk-omni" ||
+        s.config.problem == "kick") {
       opt::TaskConfig task;
       if (auto st = opt::parse_task_config(s.config.task, task); !st)
         return bad_input("run.json task: " + st.message());

@@ -1,6 +1,7 @@
 // `stride report DIR`: rebuilds the plots and front/ files of a robot optimisation run and
 // prints the best member for each objective (walk: fastest, most stable; kick: least sway,
-// longest kick) and the knee point beside Ind_O.
+// longest kick) and the knee point beside Ind_O; for a walk-omni run also the per-direction
+// speed table (direction_speeds.hpp), re-simulated in the run's worlds.
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
@@ -11,6 +12,7 @@
 
 #include "stride/firmware/cli_args.hpp"
 #include "stride/host_tools/command.hpp"
+#include "stride/optimiser/run/direction_speeds.hpp"
 #include "stride/optimiser/run/optimisation_run.hpp"
 #include "stride/optimiser/run/run_report.hpp"
 #include "stride/optimiser/tasks/robot_task.hpp"
@@ -50,7 +52,10 @@ int run_report(int argc, char** argv) {
         "usage: stride report DIR [--json]\nRebuilds DIR/pareto_by_generation.svg, "
         "DIR/hypervolume.svg and DIR/front/,\n"
         "then prints the best member for each objective (walk: fastest, most stable;\n"
-        "kick: least sway, longest kick) and the knee point beside Ind_O.\n\n%s",
+        "kick: least sway, longest kick) and the knee point beside Ind_O.\n"
+        "A walk-omni run also gets a table of the speed per direction of Ind_O, the\n"
+        "picks and each direction's best front member (simulated again in the run's\n"
+        "worlds) beside the reference figures (Bit-Bots, NUgus in simulation).\n\n%s",
         args.help().c_str());
     return 0;
   }
@@ -60,8 +65,9 @@ int run_report(int argc, char** argv) {
     return bad_input((dir / "run.json").string() + " does not exist");
   stride::opt::RunConfig config;
   if (auto st = stride::opt::read_run_config(dir, config); !st) return bad_input(st.message());
-  if (config.problem != "walk" && config.problem != "kick")
-    return bad_input(dir.string() + " is a '" + config.problem + "' run, not a walk or kick task");
+  if (config.problem != "walk" && config.problem != "walk-omni" && config.problem != "kick")
+    return bad_input(dir.string() + " is a '" + config.problem +
+                     "' run, not a walk, walk-omni or kick task");
   stride::opt::TaskConfig task;
   if (auto st = stride::opt::parse_task_config(config.task, task); !st)
     return bad_input("run.json task: " + st.message());
@@ -79,6 +85,14 @@ int run_report(int argc, char** argv) {
   }
   summary["plots"] = {(dir / "pareto_by_generation.svg").string(),
                       (dir / "hypervolume.svg").string()};
+  std::vector<stride::opt::DirectionSpeeds> directions;
+  if (config.problem == "walk-omni") {
+    if (auto st = stride::opt::run_direction_table(dir, robot_task, summary, directions); !st) {
+      std::fprintf(stderr, "stride report: %s\n", st.message().c_str());
+      return 1;
+    }
+    summary["directions"] = stride::opt::direction_table_json(directions);
+  }
   if (args.has("json")) {
     std::printf("%s\n", summary.dump().c_str());
     return 0;
@@ -86,8 +100,10 @@ int run_report(int argc, char** argv) {
   std::printf("%s run, %zu evaluations, %zu front members (objectives: %s)\n",
               config.problem.c_str(), summary["evaluations"].get<std::size_t>(),
               summary["front_size"].get<std::size_t>(),
-              config.problem == "walk" ? "f1 time to goal [s], f2 max |a| [m/s^2]"
-                                       : "f1 max sway [m/s^2], f2 1/ball distance [1/m]");
+              config.problem == "walk"        ? "f1 time to goal [s], f2 max |a| [m/s^2]"
+              : config.problem == "walk-omni" ? "f1 -(v_f + v_b + 2 v_side + 0.2 w_turn), "
+                                                "f2 max |a| [m/s^2]"
+                                              : "f1 max sway [m/s^2], f2 1/ball distance [1/m]");
   const bool kick = config.problem == "kick";
   const nlohmann::json& o = summary["ind_o"];
   if (o.is_object()) print_member("Ind_O", o, nullptr, kick);
@@ -97,6 +113,8 @@ int run_report(int argc, char** argv) {
     std::replace(label.begin(), label.end(), '_', ' ');
     if (summary.contains(key)) print_member(label, summary[key], o, kick);
   }
+  if (!directions.empty())
+    std::printf("\n%s", stride::opt::direction_table_text(directions).c_str());
   std::printf("plots: %s, %s\n", (dir / "pareto_by_generation.svg").c_str(),
               (dir / "hypervolume.svg").c_str());
   return 0;

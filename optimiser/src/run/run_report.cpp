@@ -224,7 +224,9 @@ Status write_plots(const fs::path& dir) {
   if (Status s = read_jsonl(dir / "generations.jsonl", generations); !s) return s;
   const std::string task = run.value("problem", std::string("run"));
   const bool kick = task == "kick";
-  const std::string f1 = kick ? "max field-plane sway [m/s^2]" : "time to 2.5 m [s]";
+  const std::string f1 = kick                  ? "max field-plane sway [m/s^2]"
+                         : task == "walk-omni" ? "-(v_f + v_b + 2 v_side + 0.2 w_turn)"
+                                               : "time to 2.5 m [s]";
   const std::string f2 = kick ? "1 / ball distance [1/m]" : "max |a| [m/s^2]";
 
   // Pareto front (feasible, cumulative) after selected generations.
@@ -297,7 +299,7 @@ Status write_plots(const fs::path& dir) {
 
 RunPickNames run_pick_names(const std::string& task) {
   if (task == "kick") return {"least_sway", "longest_kick"};
-  if (task == "walk") return {"fastest", "most_stable"};
+  if (task == "walk" || task == "walk-omni") return {"fastest", "most_stable"};
   return {"best_obj1", "best_obj2"};
 }
 

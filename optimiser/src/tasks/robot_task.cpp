@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <numbers>
 
 #include "stride/firmware/firmware.hpp"
 #include "stride/firmware/motion_request.hpp"
@@ -27,7 +28,7 @@ sim::WorldOptions world_for_trial(const TaskConfig& config, int trial) {
     w.randomise.mass_range = config.randomisation.mass_range;
     w.randomise.strength_range = config.randomisation.strength_range;
   }
-  if (config.task == "walk") w.ball.present = false;
+  if (config.task != "kick") w.ball.present = false;
   return w;
 }
 
@@ -36,7 +37,7 @@ sim::WorldOptions world_for_trial(const TaskConfig& config, int trial) {
 RobotTask::RobotTask(TaskConfig config) : config_(std::move(config)) {
   for (const auto& g : config_.genes) shape_.reals.push_back({g.min, g.max});
   shape_.objectives = 2;
-  shape_.constraints = config_.task == "kick" ? 2 : 1;
+  shape_.constraints = config_.task == "kick" ? 2 : config_.task == "walk" ? 3 : 4;
   auto files = std::make_shared<fw::FirmwareFiles>();
   if (fw::FirmwareFiles::load({}, *files)) firmware_files_ = std::move(files);
   auto model = std::make_shared<sim::RobotModel>();
@@ -69,6 +70,7 @@ Status RobotTask::run_trial(const Genome& genome, int trial, EpisodeScore& out) 
     return Status::error("genome has " + std::to_string(genome.reals.size()) + " genes, the task " +
                          std::to_string(config_.genes.size()));
   const bool walk = config_.task == "walk";
+  const bool omni = config_.task == "walk-omni";
   using Clock = std::chrono::steady_clock;
   const auto setup_start = Clock::now();
   sim::WorldOptions world_options = world_for_trial(config_, trial);
@@ -98,10 +100,26 @@ Status RobotTask::run_trial(const Genome& genome, int trial, EpisodeScore& out) 
   const auto kick_tick = static_cast<hal::Tick>(std::llround(config_.kick_at_s / period_s));
   bool requested = false;
   double yaw_integral = 0.0;
+  OmniEpisode omni_episode(config_.omni, period_s);
+  std::array<double, 3> omni_requested{0.0, 0.0, 0.0};
+  const sim::GroundTruth start_truth = robot.world().ground_truth();
+  YawTracker yaw_tracker;
+  yaw_tracker.reset(torso_yaw(start_truth.torso));
   double controller_s = 0.0;
   const double setup_s = std::chrono::duration<double>(Clock::now() - setup_start).count();
   const sim::StepFunction step = [&](const hal::SensorFrame& sensors, hal::Tick tick) {
     params.apply_staged();
+    if (omni) {
+      omni_episode.observe(tick, robot.world());
+      const auto c = omni_episode.command(tick);
+      if (!requested || c != omni_requested) {
+        controller.request(fw::MotionRequest::walk(c[0], c[1], c[2]));
+        omni_requested = c;
+        requested = true;
+      }
+    } else if (walk) {
+      yaw_tracker.update(torso_yaw(robot.world().torso_pose()));
+    }
     if (!requested) {
       if (walk) {
         controller.request(fw::MotionRequest::walk(config_.walk_vx, 0.0, 0.0));
@@ -119,15 +137,15 @@ Status RobotTask::run_trial(const Genome& genome, int trial, EpisodeScore& out) 
     return commands;
   };
   sim::EpisodeOptions episode;
-  episode.duration_s = config_.duration_s;
-  episode.goal_distance_m = config_.goal_distance_m;
+  episode.duration_s = omni ? omni_episode.duration_s() : config_.duration_s;
+  episode.goal_distance_m = omni ? 1e9 : config_.goal_distance_m;
   episode.stop_on_fall = true;
   episode.stop_at_goal = walk;
   const sim::EpisodeResult r = sim::run_episode(robot, step, episode);
   if (params.has_staged()) return Status::error("the genome was never applied");
   if (controller.motion().refused_requests() > 0)
-    return Status::error(walk ? "walk request refused"
-                              : "kick script '" + config_.script + "' refused");
+    return Status::error(walk || omni ? "walk request refused"
+                                      : "kick script '" + config_.script + "' refused");
   if (r.status != sim::WorldStatus::kRunning)
     return Status::error("simulation: " + r.failure_reason);
 
@@ -143,11 +161,30 @@ Status RobotTask::run_trial(const Genome& genome, int trial, EpisodeScore& out) 
   out.setup_s = setup_s;
   out.controller_s = controller_s;
   if (walk) {
+    // Straightness in the start's walking frame, at the goal or the episode's end.
+    const PlanarPose a = walking_frame(start_truth, torso_yaw(start_truth.torso));
+    const PlanarPose b = walking_frame(robot.world().ground_truth(), yaw_tracker.yaw());
+    const Translation t = measure_translation(a, b, 1.0, 0.0);
+    out.lateral_drift_m = t.off_axis_m;
+    out.heading_change_rad = t.heading_change_rad;
+    const double heading_limit = config_.max_heading_change_deg * std::numbers::pi / 180.0;
     const double missing = std::max(0.0, config_.goal_distance_m - r.distance_m);
     const double time = r.time_to_goal_s ? *r.time_to_goal_s : config_.duration_s + 10.0 * missing;
     out.objectives = {time, r.max_accel};
     const double lost = r.fell ? std::max(0.0, config_.duration_s - r.fall_time_s) : 0.0;
-    out.constraints = {r.fell ? -(1.0 + lost / config_.duration_s) : 0.0};
+    out.constraints = {
+        r.fell ? -(1.0 + lost / config_.duration_s) : 0.0,
+        config_.max_drift_ratio > 0.0
+            ? limit_violation(t.drift_ratio() / config_.max_drift_ratio, 1.0)
+            : limit_violation(t.drift_ratio(), config_.max_drift_ratio),
+        heading_limit > 0.0 ? limit_violation(t.heading_change_rad / heading_limit, 1.0) : 0.0};
+  } else if (omni) {
+    out.omni = omni_episode.segments();
+    out.objectives = {omni_speed_objective(out.omni), r.max_accel};
+    const double length = omni_episode.duration_s();
+    const double lost = r.fell ? std::max(0.0, length - r.fall_time_s) : 0.0;
+    const auto c = omni_constraints(out.omni, config_);
+    out.constraints = {r.fell ? -(1.0 + lost / length) : 0.0, c[0], c[1], c[2]};
   } else {
     const double d = std::clamp(r.ball_distance_m, 0.001, 10.0);
     double sway = r.max_fps;

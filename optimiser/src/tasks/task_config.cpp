@@ -67,6 +67,10 @@ const char* const kKnownFields[] = {"task",
                                     "script",
                                     "kick_at_s",
                                     "yaw_drift_limit_rad",
+                                    "max_drift_ratio",
+                                    "max_heading_change_deg",
+                                    "max_turn_translation_m",
+                                    "omni",
                                     "trials",
                                     "aggregate",
                                     "trial_seed",
@@ -88,8 +92,8 @@ Status parse_task_config(const nlohmann::json& doc, TaskConfig& out) {
   if (!doc.contains("task") || !doc.at("task").is_string())
     return Status::error("task: missing or not a string");
   c.task = doc.at("task").get<std::string>();
-  if (c.task != "walk" && c.task != "kick")
-    return Status::error("task: '" + c.task + "' is not walk or kick");
+  if (c.task != "walk" && c.task != "walk-omni" && c.task != "kick")
+    return Status::error("task: '" + c.task + "' is not walk, walk-omni or kick");
   std::int64_t v = 0;
   if (Status s = integer(doc, "seed", 0, INT64_MAX, v, true); !s) return s;
   c.settings.seed = static_cast<std::uint64_t>(v);
@@ -142,6 +146,33 @@ Status parse_task_config(const nlohmann::json& doc, TaskConfig& out) {
   if (!(c.kick_at_s >= 0.0 && c.kick_at_s < c.duration_s))
     return Status::error("kick_at_s: must be in [0, duration_s)");
   if (Status s = number(doc, "yaw_drift_limit_rad", c.yaw_drift_limit_rad, false); !s) return s;
+  // Straightness limits: a number >= 0, or null (off).
+  for (auto [name, target] : {std::pair{"max_drift_ratio", &c.max_drift_ratio},
+                              {"max_heading_change_deg", &c.max_heading_change_deg},
+                              {"max_turn_translation_m", &c.max_turn_translation_m}}) {
+    if (doc.contains(name) && doc.at(name).is_null()) {
+      *target = -1.0;
+      continue;
+    }
+    if (Status s = number(doc, name, *target, false); !s) return s;
+    if (*target < 0.0) return Status::error(std::string(name) + ": must be >= 0 or null (off)");
+  }
+  if (doc.contains("omni")) {
+    const auto& o = doc.at("omni");
+    if (!o.is_object()) return Status::error("omni: must be an object");
+    for (const auto& [key, value] : o.items())
+      if (key != "start_s" && key != "ramp_s" && key != "hold_s" && key != "stop_s")
+        return Status::error("omni." + key + ": unknown field");
+    for (auto [name, target] : {std::pair{"start_s", &c.omni.start_s},
+                                {"ramp_s", &c.omni.ramp_s},
+                                {"hold_s", &c.omni.hold_s},
+                                {"stop_s", &c.omni.stop_s}}) {
+      if (Status s = number(o, name, *target, false, "omni."); !s) return s;
+      if (!(*target >= 0.0 && *target <= 60.0))
+        return Status::error(std::string("omni.") + name + ": must be in [0, 60]");
+    }
+    if (!(c.omni.hold_s >= 1.0)) return Status::error("omni.hold_s: must be at least 1 s");
+  }
   if (Status s = integer(doc, "trials", 1, 1000, v, false); !s) return s;
   if (doc.contains("trials")) c.trials = static_cast<int>(v);
   if (doc.contains("aggregate")) {
@@ -219,6 +250,14 @@ nlohmann::json to_json(const TaskConfig& c) {
                         {"friction_range", c.randomisation.friction_range},
                         {"mass_range", c.randomisation.mass_range},
                         {"strength_range", c.randomisation.strength_range}}}};
+  auto limit = [](double v) { return v < 0.0 ? nlohmann::json(nullptr) : nlohmann::json(v); };
+  j["max_drift_ratio"] = limit(c.max_drift_ratio);
+  j["max_heading_change_deg"] = limit(c.max_heading_change_deg);
+  j["max_turn_translation_m"] = limit(c.max_turn_translation_m);
+  j["omni"] = {{"start_s", c.omni.start_s},
+               {"ramp_s", c.omni.ramp_s},
+               {"hold_s", c.omni.hold_s},
+               {"stop_s", c.omni.stop_s}};
   if (!c.hv_ideal.empty()) {
     j["hypervolume_ideal"] = c.hv_ideal;
     j["hypervolume_nadir"] = c.hv_nadir;

@@ -9,7 +9,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -104,7 +106,7 @@ TEST(RobotTask, TheGenomeIsFlashedIntoTheFirmware) {
   EXPECT_EQ(original.distance_m, again.distance_m);    // and the episode is deterministic
   EXPECT_EQ(original.objectives, again.objectives);
   ASSERT_EQ(original.objectives.size(), 2u);
-  ASSERT_EQ(original.constraints.size(), 1u);
+  ASSERT_EQ(original.constraints.size(), 3u);  // fell, lateral drift, heading change
   EXPECT_EQ(original.objectives[1], original.max_accel);
   EXPECT_GT(original.max_accel, 5.0);
 }
@@ -240,6 +242,105 @@ TEST(RobotTaskCli, CtrlCStopsAfterACheckpointAndResumeFinishesTheSameRun) {
       << read(tmp.path() / "stderr");
   for (const char* f : {"run.json", "evaluations.jsonl", "checkpoint.json", "pareto.csv"})
     EXPECT_EQ(read(cut / f), read(ref / f)) << f;
+}
+
+/// walk-omni with short segments (start 4 s, ramp 0.5 s, hold 2 s, stop 0.5 s: 22 s).
+fs::path short_omni_config(const fs::path& dir) {
+  std::ifstream in(kConfigs + "walk-omni.json");
+  nlohmann::json c = nlohmann::json::parse(in);
+  c["pop"] = 4;
+  c["generations"] = 1;
+  c["pm"] = 0.2;
+  c["trials"] = 1;
+  c["omni"] = {{"start_s", 4.0}, {"ramp_s", 0.5}, {"hold_s", 2.0}, {"stop_s", 0.5}};
+  const fs::path path = dir / "omni-short.json";
+  std::ofstream(path) << c.dump(1);
+  return path;
+}
+
+// Ind_O in the shipped walk-omni episode (nominal world, one trial): the per-segment speeds
+// and constraints are computed and deterministic.
+TEST(RobotTask, WalkOmniScoresEverySegmentOfIndO) {
+  TaskConfig c = load("walk-omni.json");
+  c.trials = 1;
+  const RobotTask task(c);
+  EpisodeScore a, b;
+  ASSERT_TRUE(task.run_trial(task.start_genome(), 0, a));
+  ASSERT_TRUE(task.run_trial(task.start_genome(), 0, b));
+  ASSERT_EQ(a.objectives.size(), 2u);
+  ASSERT_EQ(a.constraints.size(), 4u);
+  EXPECT_EQ(a.objectives, b.objectives);
+  EXPECT_EQ(a.constraints, b.constraints);
+  for (int k = 0; k < kOmniSegments; ++k) {
+    const OmniSegment& s = a.omni[k];
+    std::printf("  %-10s measured %d speed %+.4f drift %.3f heading %.2f deg translation %.3f m\n",
+                to_string(static_cast<OmniDirection>(k)), s.measured ? 1 : 0, s.speed,
+                s.drift_ratio, s.heading_change_rad * 180.0 / 3.141592653589793, s.translation_m);
+    EXPECT_EQ(s.speed, b.omni[k].speed);
+  }
+  std::printf("  objectives %.4f %.3f constraints %.4f %.4f %.4f %.4f fell %d\n", a.objectives[0],
+              a.objectives[1], a.constraints[0], a.constraints[1], a.constraints[2],
+              a.constraints[3], a.fell ? 1 : 0);
+  EXPECT_DOUBLE_EQ(a.objectives[0], omni_speed_objective(a.omni));
+  const auto c13 = omni_constraints(a.omni, c);
+  EXPECT_EQ(a.constraints[1], c13[0]);
+  EXPECT_EQ(a.constraints[2], c13[1]);
+  EXPECT_EQ(a.constraints[3], c13[2]);
+  EXPECT_EQ(a.objectives[1], a.max_accel);
+  // Measured (nominal world, seed 1; walk-omni.json timing): Ind_O walks forward at 0.107 m/s,
+  // creeps the wrong way when asked for backward (-0.027 m/s) and sideways (about 0), and
+  // falls in the turn-left segment; the later segments are not measured.
+  EXPECT_NEAR(a.omni[0].speed, 0.1068, 5e-4);
+  EXPECT_NEAR(a.omni[1].speed, -0.0267, 5e-4);
+  EXPECT_LT(std::abs(a.omni[2].speed), 0.01);
+  EXPECT_LT(std::abs(a.omni[3].speed), 0.01);
+  for (int k = 0; k < 4; ++k) EXPECT_TRUE(a.omni[k].measured) << k;
+  EXPECT_FALSE(a.omni[5].measured);
+  EXPECT_TRUE(a.fell);
+  EXPECT_LT(a.constraints[0], -1.0);  // the fall
+  EXPECT_LT(a.constraints[1], -0.5);  // sideways drift far above 10 %
+  EXPECT_LT(a.constraints[2], 0.0);   // forward and backward turn more than 10 deg
+  EXPECT_EQ(a.constraints[3], -2.0);  // neither turn reached
+}
+
+// A tiny walk-omni run; `stride report` prints the per-direction table of Ind_O, the picks,
+// each direction's best and the reference figures.
+TEST(RobotTaskCli, WalkOmniRunReportsSpeedsPerDirection) {
+  test::TempDir tmp;
+  const fs::path config = short_omni_config(tmp.path());
+  const std::string stride = kBin + "/stride";
+  const fs::path out = tmp.path() / "omni";
+  ASSERT_EQ(
+      run(stride, {"optimise", "--config", config.string(), "--out", out.string(), "--jobs", "1"},
+          tmp.path()),
+      0)
+      << read(tmp.path() / "stderr");
+  ASSERT_EQ(run(stride, {"report", out.string(), "--json"}, tmp.path()), 0)
+      << read(tmp.path() / "stderr");
+  const auto summary = nlohmann::json::parse(read(tmp.path() / "stdout"));
+  EXPECT_EQ(summary["task"], "walk-omni");
+  ASSERT_TRUE(summary["directions"].is_array());
+  std::vector<std::string> labels;
+  for (const auto& row : summary["directions"]) labels.push_back(row["label"]);
+  ASSERT_GE(labels.size(), 3u);
+  EXPECT_EQ(labels.front(), "Ind_O");
+  EXPECT_EQ(labels.back(), "Bit-Bots NUgus (sim)");
+  EXPECT_EQ(labels[labels.size() - 2], "best per direction");
+  EXPECT_NE(std::find(labels.begin(), labels.end(), "fastest"), labels.end());
+  EXPECT_DOUBLE_EQ(summary["directions"].back()["speeds"]["turn_left"].get<double>(), 1.97);
+  // The table's fastest member scores the run's best Obj1 again (same worlds, deterministic).
+  for (const auto& row : summary["directions"]) {
+    if (row["label"] != "fastest") continue;
+    const auto& v = row["speeds"];
+    const double obj1 = -(v["forward"].get<double>() + v["backward"].get<double>() +
+                          v["left"].get<double>() + v["right"].get<double>() +
+                          0.1 * (v["turn_left"].get<double>() + v["turn_right"].get<double>()));
+    EXPECT_NEAR(obj1, summary["fastest"]["objectives"][0].get<double>(), 1e-12);
+  }
+  ASSERT_EQ(run(stride, {"report", out.string()}, tmp.path()), 0);
+  const std::string text = read(tmp.path() / "stdout");
+  EXPECT_NE(text.find("best per direction"), std::string::npos) << text;
+  EXPECT_NE(text.find("Bit-Bots NUgus (sim)"), std::string::npos) << text;
 }
 
 TEST(RobotTaskCli, BadConfigNamesTheField) {

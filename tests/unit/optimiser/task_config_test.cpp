@@ -37,8 +37,38 @@ TEST(TaskConfig, WalkConfigIsTheSeedsTable71With46Genes) {
   }
   const RobotTask task(c);
   EXPECT_EQ(task.shape().reals.size(), 46u);
-  EXPECT_EQ(task.shape().constraints, 1);
+  // fell, lateral drift, heading change (issue 22: straightness on by default).
+  EXPECT_EQ(task.shape().constraints, 3);
+  EXPECT_DOUBLE_EQ(c.max_drift_ratio, 0.1);
+  EXPECT_DOUBLE_EQ(c.max_heading_change_deg, 10.0);
   EXPECT_EQ(task.start_genome().reals[0], c.genes[0].start);
+}
+
+TEST(TaskConfig, WalkOmniConfigHasTheWalkGenesWidenedAndTheBalanceGains) {
+  TaskConfig omni, walk;
+  ASSERT_TRUE(load_task_config(kConfigs + "walk-omni.json", omni));
+  ASSERT_TRUE(load_task_config(kConfigs + "walk.json", walk));
+  EXPECT_EQ(omni.task, "walk-omni");
+  EXPECT_EQ(omni.trials, 3);
+  EXPECT_TRUE(omni.randomisation.imu_noise);
+  ASSERT_EQ(omni.genes.size(), 54u);
+  int wider = 0;
+  for (std::size_t i = 0; i < 46; ++i) {
+    EXPECT_EQ(omni.genes[i].parameter, walk.genes[i].parameter);
+    EXPECT_EQ(omni.genes[i].start, walk.genes[i].start);
+    EXPECT_LE(omni.genes[i].min, walk.genes[i].min);
+    EXPECT_GE(omni.genes[i].max, walk.genes[i].max);
+    if (omni.genes[i].max - omni.genes[i].min > walk.genes[i].max - walk.genes[i].min) ++wider;
+  }
+  EXPECT_EQ(wider, 14);
+  for (std::size_t i = 46; i < omni.genes.size(); ++i)
+    EXPECT_EQ(omni.genes[i].parameter.rfind("walk.balance.", 0), 0u) << omni.genes[i].parameter;
+  EXPECT_EQ(omni.genes.back().parameter, "walk.balance.heading_rate_gain");
+  EXPECT_DOUBLE_EQ(omni.omni.hold_s, 8.0);
+  EXPECT_DOUBLE_EQ(omni.omni.total_s(), 4.0 + 6 * 11.0);
+  const RobotTask task(omni);
+  EXPECT_EQ(task.shape().constraints, 4);
+  EXPECT_EQ(task.shape().objectives, 2);
 }
 
 TEST(TaskConfig, KickConfigsAreTheSeedsTable61) {
@@ -117,6 +147,33 @@ TEST(TaskConfig, ErrorsNameTheField) {
   d = minimal();
   d["randomisation"] = {{"friction_range", 2.0}};
   EXPECT_NE(error_of(d).find("randomisation.friction_range"), std::string::npos);
+  d = minimal();
+  d["max_drift_ratio"] = -0.1;
+  EXPECT_EQ(error_of(d), "max_drift_ratio: must be >= 0 or null (off)");
+  d = minimal();
+  d["max_heading_change_deg"] = nullptr;  // off
+  EXPECT_EQ(error_of(d), "ok");
+  d = minimal();
+  d["omni"] = {{"hold_s", 0.5}};
+  EXPECT_EQ(error_of(d), "omni.hold_s: must be at least 1 s");
+  d = minimal();
+  d["omni"] = {{"pause_s", 1.0}};
+  EXPECT_EQ(error_of(d), "omni.pause_s: unknown field");
+}
+
+TEST(TaskConfig, StraightnessLimitsRoundTripIncludingOff) {
+  auto d = minimal();
+  d["max_drift_ratio"] = nullptr;
+  d["max_turn_translation_m"] = 0.2;
+  TaskConfig a, b;
+  ASSERT_TRUE(parse_task_config(d, a));
+  EXPECT_LT(a.max_drift_ratio, 0.0);
+  EXPECT_DOUBLE_EQ(a.max_heading_change_deg, 10.0);
+  const nlohmann::json j = to_json(a);
+  EXPECT_TRUE(j["max_drift_ratio"].is_null());
+  ASSERT_TRUE(parse_task_config(j, b));
+  EXPECT_LT(b.max_drift_ratio, 0.0);
+  EXPECT_DOUBLE_EQ(b.max_turn_translation_m, 0.2);
 }
 
 TEST(TaskConfig, RoundTripsThroughJson) {
@@ -138,7 +195,7 @@ TEST(RunReport, NonDominatedAndKnee) {
 // A kick run's summary names its picks after the kick's objectives (Obj1 sway, Obj2 1/distance);
 // a walk run's after the walk's.
 TEST(RunReport, SummaryNamesThePicksAfterTheTask) {
-  for (const std::string task : {"kick", "walk"}) {
+  for (const std::string task : {"kick", "walk", "walk-omni"}) {
     test::TempDir tmp;
     tmp.write("run.json", R"({"problem":")" + task + R"(","start":{"reals":[0.5]}})");
     tmp.write("evaluations.jsonl",

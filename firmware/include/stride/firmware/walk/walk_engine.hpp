@@ -20,7 +20,9 @@
 // step the last (the swing foot lands beside the support foot); then the engine stands still
 // (phase 0.5, both feet down) and done() is true. Parameters are latched at each step start.
 // Gyro feedback (walk.balance.*, not in the genome; gains 0 = open loop) shifts the support leg's
-// ankle and hip joints (balance_feedback.hpp). Pure: no I/O, no clock, no allocation and no
+// ankle and hip joints (balance_feedback.hpp); the heading hold (walk.balance.heading_*,
+// heading_hold.hpp) adds the integrated gyro yaw, fed back, to each step's turn while no turn is
+// commanded. Pure: no I/O, no clock, no allocation and no
 // exceptions in start()/step().
 #pragma once
 
@@ -32,6 +34,7 @@
 #include "stride/firmware/servo_table.hpp"
 #include "stride/firmware/walk/balance_feedback.hpp"
 #include "stride/firmware/walk/footstep_planner.hpp"
+#include "stride/firmware/walk/heading_hold.hpp"
 #include "stride/firmware/walk/leg_kinematics.hpp"
 #include "stride/firmware/walk/lipm_trajectory.hpp"
 #include "stride/firmware/walk/pose2.hpp"
@@ -54,7 +57,9 @@ class WalkEngine final : public WalkControl {
     double left_lift = 0.0, right_lift = 0.0;  ///< ankle lift above its stance height [m]
     walk::Pose2 support_point;                 ///< ZMP target of the single-support phase
     walk::PlanarVector velocity;               ///< current velocity [m/step, rad/step]
-    bool ik_clamped = false;                   ///< a leg target was out of reach this tick
+    double heading_correction = 0.0;  ///< turn the heading hold added to this step [rad/step]
+    double heading_error = 0.0;       ///< the heading hold's integrated yaw error [rad]
+    bool ik_clamped = false;          ///< a leg target was out of reach this tick
   };
 
   /// Blend time from the previous pose into the walk's stance at start() [s].
@@ -102,6 +107,8 @@ class WalkEngine final : public WalkControl {
   double period_s_;
   walk::BalanceFeedback balance_;
   walk::BalanceShift balance_shift_;
+  walk::HeadingHold heading_;
+  double heading_correction_ = 0.0;  // added to the current step's turn [rad/step]
   walk::LegKinematics left_leg_{walk::LegSide::kLeft};
   walk::LegKinematics right_leg_{walk::LegSide::kRight};
   std::array<std::size_t, 6> left_leg_index_{}, right_leg_index_{};

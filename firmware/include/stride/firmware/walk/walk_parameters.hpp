@@ -91,6 +91,19 @@ inline constexpr std::size_t kWalkParameterCount = 47;
 /// All walk parameters: body height first, then Table E order 1..46.
 std::span<const WalkParameterInfo, kWalkParameterCount> walk_parameter_table() noexcept;
 
+/// A range wider than the seed's +-50 % that the store accepts for a parameter (issue 22: the
+/// omnidirectional task searches these; at +-50 % the walk cannot go faster sideways than
+/// 0.015 m/step). The row's min/max stay the seed's optimiser bounds (walk.json).
+struct WalkParameterRange {
+  std::string_view name;
+  double min;
+  double max;
+};
+/// The widened ranges (velocity, step and acceleration limits of the omnidirectional walk).
+std::span<const WalkParameterRange> walk_parameter_wide_ranges() noexcept;
+/// The range the store registers for a row: its wide range if it has one, else [min, max].
+WalkParameterRange walk_parameter_store_range(const WalkParameterInfo& row) noexcept;
+
 /// The defaults (Ind_O) as a snapshot.
 WalkParameters default_walk_parameters() noexcept;
 

@@ -33,8 +33,8 @@ Status write_front_files(const std::filesystem::path& dir, const RobotTask& task
 /// Writes both SVG plots from evaluations.jsonl and generations.jsonl.
 Status write_plots(const std::filesystem::path& dir);
 /// Summary keys of the best-Obj1 and best-Obj2 front members for a task: "fastest" and
-/// "most_stable" for the walk, "least_sway" and "longest_kick" for the kick (Obj2 = 1/distance),
-/// "best_obj1" and "best_obj2" otherwise.
+/// "most_stable" for the walk and walk-omni, "least_sway" and "longest_kick" for the kick (Obj2 =
+/// 1/distance), "best_obj1" and "best_obj2" otherwise.
 struct RunPickNames {
   const char* best_obj1;
   const char* best_obj2;

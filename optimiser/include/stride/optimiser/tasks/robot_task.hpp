@@ -11,6 +11,12 @@
 //       distance still missing (a penalty that still rewards progress).
 //       Obj2 = max |a| of the IMU over the episode [m/s^2].
 //       c0 = fell ? -(1 + time lost / duration) : 0  (g >= 0 is feasible).
+//       Straightness at the goal (or the episode's end), from ground truth (walk_measures.hpp):
+//       c1 = min(0, 1 - (|lateral drift| / max(forward, 0.25 m)) / max_drift_ratio),
+//       c2 = min(0, 1 - |heading change| / max_heading_change_deg); a limit of null is off.
+// walk-omni  six segments forward, backward, sideways both ways, turning both ways;
+//       Obj1 = -(v_f + v_b + 2 v_side + 0.2 w_turn), Obj2 = max |a|; c0 fell, c1 drift,
+//       c2 heading change, c3 translation while turning (walk_measures.hpp).
 // kick  Obj1 = max field-plane sway sqrt(ax^2 + ay^2) [m/s^2] (1000 if fell),
 //       Obj2 = 1 / ball distance, distance clamped to [0.001, 10] m (1000 if fell).
 //       c0 = fell ? -10 : 0; c1 = -(|integral of gyro z| - limit) when over the limit.
@@ -27,6 +33,7 @@
 #include "stride/firmware/firmware.hpp"
 #include "stride/optimiser/nsga2/problem.hpp"
 #include "stride/optimiser/tasks/task_config.hpp"
+#include "stride/optimiser/tasks/walk_measures.hpp"
 #include "stride/sim_hal/robot_model.hpp"
 
 namespace stride::opt {
@@ -45,6 +52,11 @@ struct EpisodeScore {
   double wall_time_s = 0.0;   ///< the episode loop (controller + physics + metrics) [s]
   double setup_s = 0.0;       ///< building the firmware and the world, flashing the genome [s]
   double controller_s = 0.0;  ///< inside Controller::step over the episode [s]
+  // walk: straightness at the end, in the start's walking frame (walk_measures.hpp).
+  double lateral_drift_m = 0.0;
+  double heading_change_rad = 0.0;
+  // walk-omni: the segments.
+  OmniSegments omni{};
 };
 
 class RobotTask final : public Problem {

@@ -1,8 +1,8 @@
 // Task configuration: what a robot optimisation (optimiser/configs/*.json) asks for.
 //
-// A task config names the task ("walk" or "kick"), the NSGA-II inputs (seed, pop, generations,
-// pc, pm, etaC, etaM, seed_fraction), the genome as parameter names with bounds and start
-// values (the firmware's current values, Ind_O), the episode settings and the robust
+// A task config names the task ("walk", "walk-omni" or "kick"), the NSGA-II inputs (seed, pop,
+// generations, pc, pm, etaC, etaM, seed_fraction), the genome as parameter names with bounds and
+// start values (the firmware's current values, Ind_O), the episode settings and the robust
 // evaluation (trials under seeded randomised worlds, aggregated by mean or worst).
 // Every error names the offending field, e.g. "genes[3].max: must be greater than min".
 #pragma once
@@ -37,8 +37,20 @@ struct TrialRandomisation {
   double strength_range = 0.1;
 };
 
+/// The segments of the omnidirectional walk task (walk-omni): after start_s of walking in
+/// place from standing, six segments (forward, backward, left, right, turn left, turn right),
+/// each a command ramp from 0 to full over ramp_s, a hold of hold_s (where the speed is
+/// measured) and a stop (command 0) of stop_s. Episode length start_s + 6 (ramp + hold + stop).
+struct OmniTiming {
+  double start_s = 4.0;
+  double ramp_s = 1.0;
+  double hold_s = 8.0;
+  double stop_s = 2.0;
+  double total_s() const { return start_s + 6.0 * (ramp_s + hold_s + stop_s); }
+};
+
 struct TaskConfig {
-  std::string task;  ///< "walk" or "kick"
+  std::string task;  ///< "walk", "walk-omni" or "kick"
   Nsga2Settings settings;
   std::vector<TaskGene> genes;
   // Episode.
@@ -48,6 +60,14 @@ struct TaskConfig {
   std::string script = "kick_right";  ///< kick
   double kick_at_s = 1.0;             ///< kick
   double yaw_drift_limit_rad = 6.66;  ///< kick constraint (seed: |integral of gyro z| > 6.66)
+  // Straightness (walk and walk-omni; a negative value switches the constraint off, written
+  // as null in JSON): lateral drift at most max_drift_ratio of the distance walked, heading
+  // change at most max_heading_change_deg; walk-omni's turns translate at most
+  // max_turn_translation_m.
+  double max_drift_ratio = 0.1;
+  double max_heading_change_deg = 10.0;
+  double max_turn_translation_m = 0.1;
+  OmniTiming omni;  ///< walk-omni
   // Robust evaluation.
   int trials = 1;  ///< 1: the nominal world; K > 1: K seeded randomised worlds
   Aggregate aggregate = Aggregate::kMean;
