@@ -96,8 +96,7 @@ std::string replay_section_html() {
          "aria-label=\"time\">"
          "<span id=\"replay-clock\" data-time=\"0\">t = 0.00 s</span></div>\n"
          "<div id=\"replay-cards\"></div>\n"
-         "<noscript>" +
-         missing_note("The replay needs JavaScript.") + "</noscript>\n";
+         "<noscript><p class=\"note\">The replay needs JavaScript.</p></noscript>\n";
 }
 
 namespace {
