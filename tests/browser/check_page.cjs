@@ -5,7 +5,8 @@
 //     and, unless --expect-warnings, none of them says something is missing;
 //   - with --replay N: at least N individuals in the replay, a card for each whose canvas has
 //     been drawn on, and the replay's time
-//     advances after Play is clicked (the clock's data-time and the slider both move);
+//     advances after Play is clicked (the clock's data-time and the slider both move), and
+//     the slider moves the clock;
 //   - screenshots of the whole page, of each section and of the replay after playing go to
 //     OUT_DIR/NAME-full.png, NAME-SECTION.png.
 // usage: node check_page.cjs --chromium PATH --modules DIR --out OUT_DIR
@@ -124,6 +125,17 @@ async function checkPage(browser, args) {
       if (!(sliderAfter > sliderBefore)) failures.push('replay: the time slider did not move');
       if (label !== 'Pause') failures.push('replay: the button reads "' + label + '" while playing');
       await page.click('#replay-play');
+      // Scrub to the middle with the slider: the clock follows.
+      const middle = await page.$eval('#replay-time', (s) => {
+        s.value = (parseFloat(s.max) / 2).toFixed(2);
+        s.dispatchEvent(new Event('input'));
+        return parseFloat(s.value);
+      });
+      const shown = await page.$eval('#replay-clock', (c) => parseFloat(c.dataset.time));
+      if (Math.abs(shown - middle) > 0.01)
+        failures.push('replay: the slider set ' + middle + ' s, the clock shows ' + shown);
+      await (await page.$('section#replay')).screenshot(
+          {path: path.join(args.out, args.name + '-replay-middle.png')});
       replay = {cards: cards.length, ink: cards, time_before: before, time_after: after};
       const el = await page.$('section#replay');
       await el.screenshot({path: path.join(args.out, args.name + '-replay.png')});

@@ -93,7 +93,7 @@ std::string pareto_chart_svg(const RunData& data, const std::vector<RunPick>& pi
     s.colour = kGenerationColours[shown.size() == 1 ? 6 : k * 6 / (shown.size() - 1)];
     s.css_class = "front-generation";
     const bool last = k + 1 == shown.size();
-    s.marker_r = last ? 3.5 : 4.0 + 1.6 * static_cast<double>(shown.size() - 1 - k);
+    s.marker_r = last ? 3.0 : 3.5 + 1.0 * static_cast<double>(shown.size() - 1 - k);
     s.hollow = !last;
     s.line_width = last ? 2.0 : 1.2;
     for (const auto& p : non_dominated(pts)) {

@@ -212,7 +212,8 @@ std::string render_chart(const ChartSpec& spec) {
       svg << "<line x1=\"" << num(lx) << "\" x2=\"" << num(lx + 22) << "\" y1=\"" << num(y)
           << "\" y2=\"" << num(y) << "\" stroke=\"" << s.colour << "\" stroke-width=\"3\"/>";
       if (s.marker_r > 0)
-        svg << "<circle cx=\"" << num(lx + 11) << "\" cy=\"" << num(y) << "\" r=\"" << s.marker_r
+        svg << "<circle cx=\"" << num(lx + 11) << "\" cy=\"" << num(y) << "\" r=\""
+            << std::min(s.marker_r, 5.0)
             << "\" "
             << (s.hollow ? "fill=\"white\" stroke=\"" + s.colour + "\""
                          : "fill=\"" + s.colour + "\"")
