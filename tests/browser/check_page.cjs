@@ -2,7 +2,8 @@
 // browser; nothing is downloaded) and checks it like a person would look at it:
 //   - no console error, no uncaught exception, no request other than file: and data: URLs;
 //   - every expected section is present and not empty (text, a table, a chart or a canvas),
-//     and, unless --expect-warnings, none of them says something is missing;
+//     and, unless --expect-warnings, none of them says something is missing, Ind_O is named on
+//     the front chart and every point there has a tooltip, some naming their front file;
 //   - with --replay N: at least N individuals in the replay, a card for each whose canvas has
 //     been drawn on, and the replay's time
 //     advances after Play is clicked (the clock's data-time and the slider both move), and
@@ -87,6 +88,22 @@ async function checkPage(browser, args) {
       if (!args.expectWarnings && s.missing.length > 0)
         failures.push('section ' + s.id + ' says: ' + s.missing.join(' / '));
     }
+    // The front chart names Ind_O and every point has a tooltip (objectives, front file).
+    const front = await page.evaluate(() => {
+      const svg = document.querySelector('section#pareto svg');
+      if (!svg) return null;
+      const names = Array.from(svg.querySelectorAll('g.marker text')).map((t) => t.textContent);
+      const points = svg.querySelectorAll('g.front-generation circle').length;
+      const tips = Array.from(svg.querySelectorAll('g.front-generation circle > title'))
+          .map((t) => t.textContent);
+      return {names, points, tips: tips.length, files: tips.filter((t) => /front\/\d{3}\.json/.test(t)).length};
+    });
+    if (front && !args.expectWarnings) {
+      if (!front.names.includes('Ind_O')) failures.push('front chart: Ind_O is not named');
+      if (front.points === 0 || front.tips !== front.points)
+        failures.push('front chart: ' + front.tips + ' tooltips for ' + front.points + ' points');
+      if (front.files === 0) failures.push('front chart: no tooltip names a front file');
+    }
     const warnings = await page.evaluate(() => {
       const w = document.getElementById('warnings');
       return w && !w.hidden ? w.querySelectorAll('li').length : 0;
@@ -145,7 +162,7 @@ async function checkPage(browser, args) {
       const el = s.present && s.id !== 'replay' ? await page.$('section#' + s.id) : null;
       if (el) await el.screenshot({path: path.join(args.out, args.name + '-' + s.id + '.png')});
     }
-    console.log(JSON.stringify({page: args.page, sections, warnings, replay, failures}));
+    console.log(JSON.stringify({page: args.page, sections, front, warnings, replay, failures}));
     await page.close();
   }
   return failures;

@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
-#include <map>
+#include <cstdio>
 
 #include "stride/optimiser/report/html_page.hpp"
 
