@@ -213,8 +213,7 @@ std::string render_chart(const ChartSpec& spec) {
           << "\" y2=\"" << num(y) << "\" stroke=\"" << s.colour << "\" stroke-width=\"3\"/>";
       if (s.marker_r > 0)
         svg << "<circle cx=\"" << num(lx + 11) << "\" cy=\"" << num(y) << "\" r=\""
-            << std::min(s.marker_r, 5.0)
-            << "\" "
+            << std::min(s.marker_r, 5.0) << "\" "
             << (s.hollow ? "fill=\"white\" stroke=\"" + s.colour + "\""
                          : "fill=\"" + s.colour + "\"")
             << "/>";
