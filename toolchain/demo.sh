@@ -2,7 +2,7 @@
 # The main job from a fresh machine: installs the dependencies, builds the release preset and
 # runs a short walk optimisation in the simulator (optimiser/configs/walk-demo.json: the seed's
 # walk task with pop 12, 5 generations and a 25 s time limit; about a minute on 2 cores),
-# then prints the report and where the plots are.
+# then prints the report and where report.html (the page to open) and the plots are.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -16,5 +16,6 @@ echo "== stride optimise: walk demo (pop 12, 5 generations) into $out/"
 build/release/bin/stride optimise --config optimiser/configs/walk-demo.json --out "$out"
 echo "== stride report $out"
 build/release/bin/stride report "$out"
-echo "Plots: $out/pareto_by_generation.svg and $out/hypervolume.svg (open in a browser);"
+echo "Open $out/report.html in a browser: fronts, accelerometer, poses and a replay of Ind_O"
+echo "beside the picks. SVG plots: $out/pareto_by_generation.svg, $out/hypervolume.svg;"
 echo "front parameter files: $out/front/*.json (stride sim walk --vx 1 --params FILE)."

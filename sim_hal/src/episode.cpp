@@ -51,6 +51,7 @@ EpisodeResult run_episode(SimRobot& robot, const StepFunction& controller,
     const Eigen::Isometry3d torso = world.torso_pose();
     const double t = static_cast<double>(tick - first_tick) * period_s;
     if (options.recorder) options.recorder->record(tick - first_tick, world, sensors, commands);
+    if (options.on_tick) options.on_tick(tick - first_tick, world, sensors);
     while (next_snapshot < snapshot_times.size() && snapshot_times[next_snapshot] <= t + 1e-9) {
       result.snapshots.push_back({t, world.link_poses(), world.ground_truth().ball_position});
       ++next_snapshot;

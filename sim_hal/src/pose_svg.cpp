@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <string>
 
+#include "stride/sim_hal/stick_figure.hpp"
+
 namespace stride::sim {
 namespace {
 
@@ -36,12 +38,6 @@ void line(std::string& svg, const View& v, const Eigen::Vector3d& a, const Eigen
          "\" stroke-linecap=\"round\"/>\n";
 }
 
-const char* colour_of(const std::string& name) {
-  if (name.find("left") != std::string::npos) return "#1f77b4";
-  if (name.find("right") != std::string::npos) return "#d62728";
-  return "#333333";
-}
-
 void draw_robot(std::string& svg, const View& v, const RobotModel& model, const PoseSnapshot& s,
                 double grass, double ball_radius) {
   // Field: solid ground and grass top.
@@ -51,31 +47,17 @@ void draw_robot(std::string& svg, const View& v, const RobotModel& model, const 
          "\" fill=\"#b7e3a1\"/>\n";
   svg += "<line x1=\"" + num(left) + "\" y1=\"" + num(v.y0 + kGroundY) + "\" x2=\"" + num(right) +
          "\" y2=\"" + num(v.y0 + kGroundY) + "\" stroke=\"#6b4f2a\" stroke-width=\"2\"/>\n";
-  if (s.links.size() != model.links().size()) return;
-  for (const JointSpec& j : model.joints()) {
-    const auto parent = static_cast<std::size_t>(j.parent_link);
-    const auto child = static_cast<std::size_t>(j.child_link);
-    const Eigen::Vector3d a = s.links[parent] * j.origin.translation();
-    line(svg, v, s.links[parent].translation(), a, colour_of(j.name), 4.0);
-    line(svg, v, a, s.links[child].translation(), colour_of(j.name), 4.0);
-  }
-  for (std::size_t l = 0; l < model.links().size(); ++l) {
-    const LinkSpec& link = model.links()[l];
-    for (const CollisionBox& b : link.boxes) {
-      if (link.spheres.empty()) continue;  // only the feet: a box with studs
-      const Eigen::Vector3d h = b.size / 2;
-      const Eigen::Vector3d heel = s.links[l] * (b.pose * Eigen::Vector3d(-h.x(), 0, -h.z()));
-      const Eigen::Vector3d toe = s.links[l] * (b.pose * Eigen::Vector3d(h.x(), 0, -h.z()));
-      const Eigen::Vector3d in = s.links[l] * (b.pose * Eigen::Vector3d(0, -h.y(), -h.z()));
-      const Eigen::Vector3d out = s.links[l] * (b.pose * Eigen::Vector3d(0, h.y(), -h.z()));
-      line(svg, v, heel, toe, colour_of(link.name), 3.0);
-      line(svg, v, in, out, colour_of(link.name), 3.0);
-    }
-    for (const CollisionSphere& c : link.spheres) {
-      if (c.radius < 0.03) continue;  // studs are too small to draw
-      const Eigen::Vector3d p = s.links[l] * c.center;
+  const std::vector<Eigen::Vector3d> points = stick_points(model, s.links);
+  if (!points.empty()) {
+    const StickFigure figure = stick_figure(model);
+    for (const StickStroke& k : figure.strokes)
+      line(svg, v, points[static_cast<std::size_t>(k.a)], points[static_cast<std::size_t>(k.b)],
+           stick_colour(k.side), k.sole ? 3.0 : 4.0);
+    for (const StickCircle& c : figure.circles) {
+      const Eigen::Vector3d& p = points[static_cast<std::size_t>(c.centre)];
       svg += "<circle cx=\"" + num(v.px(p)) + "\" cy=\"" + num(v.py(p)) + "\" r=\"" +
-             num(kScale * c.radius) + "\" fill=\"none\" stroke=\"#333333\" stroke-width=\"2\"/>\n";
+             num(kScale * c.radius_m) +
+             "\" fill=\"none\" stroke=\"#333333\" stroke-width=\"2\"/>\n";
     }
   }
   if (ball_radius > 0) {

@@ -1,7 +1,8 @@
-// `stride report DIR`: rebuilds the plots and front/ files of a robot optimisation run and
-// prints the best member for each objective (walk: fastest, most stable; kick: least sway,
-// longest kick) and the knee point beside Ind_O; for a walk-omni run also the per-direction
-// speed table (direction_speeds.hpp), re-simulated in the run's worlds.
+// `stride report DIR`: rebuilds the plots and front/ files of a robot optimisation run, writes
+// report.html (report_page.hpp) and prints the best member for each objective (walk: fastest,
+// most stable; kick: least sway, longest kick) and the knee point beside Ind_O; for a
+// walk-omni run also the per-direction speed table (direction_speeds.hpp), re-simulated in the
+// run's worlds.
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
@@ -12,6 +13,8 @@
 
 #include "stride/firmware/cli_args.hpp"
 #include "stride/host_tools/command.hpp"
+#include "stride/optimiser/report/report_page.hpp"
+#include "stride/optimiser/report/run_data.hpp"
 #include "stride/optimiser/run/direction_speeds.hpp"
 #include "stride/optimiser/run/optimisation_run.hpp"
 #include "stride/optimiser/run/run_report.hpp"
@@ -22,6 +25,11 @@ namespace {
 int bad_input(const std::string& message) {
   std::fprintf(stderr, "stride report: %s\n", message.c_str());
   return 2;
+}
+
+int failure(const std::string& message) {
+  std::fprintf(stderr, "stride report: %s\n", message.c_str());
+  return 1;
 }
 
 void print_member(const std::string& label, const nlohmann::json& m, const nlohmann::json& ind_o,
@@ -50,7 +58,9 @@ int run_report(int argc, char** argv) {
   if (args.has("help")) {
     std::printf(
         "usage: stride report DIR [--json]\nRebuilds DIR/pareto_by_generation.svg, "
-        "DIR/hypervolume.svg and DIR/front/,\n"
+        "DIR/hypervolume.svg and DIR/front/, writes DIR/report.html\n"
+        "(one self-contained page: settings, picks, fronts, accelerometer, poses, replay of\n"
+        "Ind_O and the picks re-run in the run's world, parameter changes),\n"
         "then prints the best member for each objective (walk: fastest, most stable;\n"
         "kick: least sway, longest kick) and the knee point beside Ind_O.\n"
         "A walk-omni run also gets a table of the speed per direction of Ind_O, the\n"
@@ -72,19 +82,33 @@ int run_report(int argc, char** argv) {
   if (auto st = stride::opt::parse_task_config(config.task, task); !st)
     return bad_input("run.json task: " + st.message());
   const stride::opt::RobotTask robot_task(task);
-  for (auto st : {stride::opt::write_front_files(dir, robot_task), stride::opt::write_plots(dir)}) {
-    if (!st) {
-      std::fprintf(stderr, "stride report: %s\n", st.message().c_str());
-      return 1;
-    }
+  // What is missing is said once, on one line, and on the page; only an unreadable run.json
+  // or an unwritable file stops the report.
+  stride::opt::report::RunData before;
+  if (auto st = stride::opt::report::load_run_data(dir, before); !st)
+    return bad_input(st.message());
+  stride::opt::report::ReportOutcome page;
+  if (!before.front.empty()) {
+    for (const std::string& w : before.warnings)
+      if (w.rfind("front/", 0) == 0) page.warnings.push_back(w + "; rewritten from pareto.csv");
+    if (auto st = stride::opt::write_front_files(dir, robot_task); !st)
+      return failure(st.message());
   }
+  if (auto st = stride::opt::write_plots(dir); !st) return failure(st.message());
   nlohmann::json summary;
-  if (auto st = stride::opt::summarise_run(dir, summary); !st) {
-    std::fprintf(stderr, "stride report: %s\n", st.message().c_str());
-    return 1;
-  }
+  if (auto st = stride::opt::summarise_run(dir, summary); !st) return failure(st.message());
+  if (auto st = stride::opt::report::write_report_html(dir, robot_task, page); !st)
+    return failure(st.message());
+  summary["warnings"] = page.warnings;
   summary["plots"] = {(dir / "pareto_by_generation.svg").string(),
                       (dir / "hypervolume.svg").string()};
+  summary["report"] = page.file.string();
+  summary["report_bytes"] = page.bytes;
+  if (!page.warnings.empty()) {
+    std::string line;
+    for (const auto& w : page.warnings) line += (line.empty() ? "" : "; ") + w;
+    std::fprintf(stderr, "stride report: warning: %s (see %s)\n", line.c_str(), page.file.c_str());
+  }
   std::vector<stride::opt::DirectionSpeeds> directions;
   if (config.problem == "walk-omni") {
     if (auto st = stride::opt::run_direction_table(dir, robot_task, summary, directions); !st) {
@@ -115,8 +139,9 @@ int run_report(int argc, char** argv) {
   }
   if (!directions.empty())
     std::printf("\n%s", stride::opt::direction_table_text(directions).c_str());
-  std::printf("plots: %s, %s\n", (dir / "pareto_by_generation.svg").c_str(),
-              (dir / "hypervolume.svg").c_str());
+  std::printf("plots: %s, %s\nreport: %s (%.1f MB; open it in a browser)\n",
+              (dir / "pareto_by_generation.svg").c_str(), (dir / "hypervolume.svg").c_str(),
+              page.file.c_str(), static_cast<double>(page.bytes) / 1e6);
   return 0;
 }
 

@@ -1,5 +1,7 @@
 // `stride sim stand|walk|kick`: one simulated episode of the firmware against the Simbody world,
-// with the DESIGN.md metrics (--json), a trajectory recording and pose pictures.
+// with the DESIGN.md metrics (--json), a trajectory recording, pose pictures and a replay page
+// (--html, the replay of report.html for one episode).
+#include <algorithm>
 #include <cstdio>
 #include <sstream>
 #include <string>
@@ -10,7 +12,10 @@
 #include "stride/firmware/firmware.hpp"
 #include "stride/firmware/motion_request.hpp"
 #include "stride/host_tools/command.hpp"
+#include "stride/optimiser/report/report_page.hpp"
+#include "stride/optimiser/report/run_plots.hpp"
 #include "stride/sim_hal/episode.hpp"
+#include "stride/sim_hal/episode_capture.hpp"
 #include "stride/sim_hal/pose_svg.hpp"
 #include "stride/sim_hal/script_episodes.hpp"
 #include "stride/sim_hal/sim_cli.hpp"
@@ -43,6 +48,53 @@ Status parse_times(const std::string& text, std::vector<double>& out) {
   return Status::ok();
 }
 
+std::string fixed(double v, const char* unit) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.3f %s", v, unit);
+  return text;
+}
+
+// The --html page: the episode's settings and results, accelerometer, poses and replay.
+Status write_html(const stride::fw::CliArgs& args, const std::string& motion,
+                  const sim::WorldOptions& world, sim::SimRobot& robot,
+                  const sim::EpisodeResult& result, const sim::EpisodeCapture& capture) {
+  namespace report = stride::opt::report;
+  report::ReplayIndividual episode;
+  episode.name = args.has("params") ? args.get("params") : "default parameters";
+  episode.colour = report::individual_colour(0);
+  episode.capture = capture;
+  const double end = capture.frames.empty() ? 0.0 : capture.frames.back().time_s;
+  char note[128];
+  std::snprintf(note, sizeof note, "%s: %s after %.2f s, %.2f m forward", motion.c_str(),
+                result.fell ? "fell" : "standing", end, result.distance_m);
+  episode.note = note;
+  report::ReplayScene scene;
+  scene.grass_m = world.contact.grass_thickness_m;
+  scene.ball_radius_m = world.ball.present ? world.ball.radius_m : 0.0;
+  const std::vector<double> times =
+      motion == "kick"
+          ? report::strip_times(std::max(1.0, report::first_ball_motion_s({episode}, 2.0) - 1.5),
+                                0.25, 9, end)
+      : motion == "walk" ? report::strip_times(std::min(4.0, end / 3), 0.25, 9, end)
+                         : report::strip_times(0.0, end / 8, 9, end);
+  const std::vector<std::pair<std::string, std::string>> facts = {
+      {"motion", motion + (motion == "kick" ? " (" + args.get("script") + ")" : "")},
+      {"parameters", episode.name},
+      {"walk command", motion == "walk" ? "vx " + args.get("vx") + ", vy " + args.get("vy") +
+                                              ", vth " + args.get("vth")
+                                        : "-"},
+      {"seed, noise", args.get("seed") + ", " + args.get("noise")},
+      {"duration", args.get("duration") + " s"},
+      {"result", result.fell ? "fell at " + fixed(result.fall_time_s, "s") : "standing"},
+      {"distance (torso, x)", fixed(result.distance_m, "m")},
+      {"max |a|", fixed(result.max_accel, "m/s^2")},
+      {"max field-plane sway", fixed(result.max_fps, "m/s^2")},
+      {"ball moved", fixed(result.ball_distance_m, "m")},
+      {"state hash", sim::hash_hex(result.state_hash)}};
+  return report::write_episode_html(args.get("html"), "Stride sim " + motion, facts,
+                                    robot.world().model(), episode, scene, times);
+}
+
 }  // namespace
 
 int run_sim_servo(int argc, char** argv);  // sim_servo.cpp
@@ -60,6 +112,7 @@ int run_sim(int argc, char** argv) {
   args.option("record", "write the trajectory (JSON lines, see trajectory_recorder.hpp)", true);
   args.option("snapshot", "write an SVG picture of the robot's pose at --snapshot-times", true);
   args.option("snapshot-times", "comma-separated times [s] for --snapshot", true, "0,1,2,5,10");
+  args.option("html", "write a self-contained replay page (accelerometer, poses, animation)", true);
   args.option("json", "print the result as one JSON object", false);
   sim::declare_world_options(args);
   if (Status s = args.parse(argc, argv); !s) return bad_input(s.message());
@@ -102,6 +155,8 @@ int run_sim(int argc, char** argv) {
   episode.duration_s = duration;
   episode.recorder = args.has("record") ? &recorder : nullptr;
   if (args.has("snapshot")) episode.snapshot_times_s = snapshot_times;
+  sim::EpisodeCapturer capturer;
+  if (args.has("html")) episode.on_tick = capturer.observer();
   std::unique_ptr<sim::SimRobot> robot_ptr;
   sim::EpisodeResult result;
   if (motion == "kick") {
@@ -163,6 +218,12 @@ int run_sim(int argc, char** argv) {
         robot.world().model(), result.snapshots, world_options.contact.grass_thickness_m,
         world_options.ball.present ? world_options.ball.radius_m : 0.0);
     if (Status s = stride::fw::write_file_atomically(args.get("snapshot"), svg); !s) {
+      std::fprintf(stderr, "stride sim: %s\n", s.message().c_str());
+      return 1;
+    }
+  }
+  if (args.has("html")) {
+    if (Status s = write_html(args, motion, world_options, robot, result, capturer.finish()); !s) {
       std::fprintf(stderr, "stride sim: %s\n", s.message().c_str());
       return 1;
     }

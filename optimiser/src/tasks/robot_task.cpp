@@ -65,7 +65,8 @@ std::optional<FrontReference> RobotTask::reference() const {
   return r;
 }
 
-Status RobotTask::run_trial(const Genome& genome, int trial, EpisodeScore& out) const {
+Status RobotTask::run_trial(const Genome& genome, int trial, EpisodeScore& out,
+                            sim::EpisodeCapturer* capture) const {
   if (genome.reals.size() != config_.genes.size())
     return Status::error("genome has " + std::to_string(genome.reals.size()) + " genes, the task " +
                          std::to_string(config_.genes.size()));
@@ -141,6 +142,7 @@ Status RobotTask::run_trial(const Genome& genome, int trial, EpisodeScore& out) 
   episode.goal_distance_m = omni ? 1e9 : config_.goal_distance_m;
   episode.stop_on_fall = true;
   episode.stop_at_goal = walk;
+  if (capture != nullptr) episode.on_tick = capture->observer();
   const sim::EpisodeResult r = sim::run_episode(robot, step, episode);
   if (params.has_staged()) return Status::error("the genome was never applied");
   if (controller.motion().refused_requests() > 0)

@@ -50,7 +50,10 @@ struct EpisodeOptions {
   bool stop_on_fall = true;
   bool stop_at_goal = false;               ///< end once goal_distance_m is covered
   TrajectoryRecorder* recorder = nullptr;  ///< optional, records every tick
-  std::vector<double> snapshot_times_s;    ///< moments to capture link poses at
+  /// Optional observer called every tick after the commands are written (replays, pictures);
+  /// it only reads the world, so the episode is the same with or without it.
+  std::function<void(hal::Tick, const SimWorld&, const hal::SensorFrame&)> on_tick;
+  std::vector<double> snapshot_times_s;  ///< moments to capture link poses at
 };
 
 struct EpisodeResult {

@@ -2,8 +2,9 @@
 //   front/NNN.json            one parameter file per pareto.csv row (the genes by parameter name),
 //                             loadable by `stride-fw --params` and `stride sim walk --params`
 //   pareto_by_generation.svg  the non-dominated feasible evaluations so far, after selected
-//                             generations (like the seed's figures), Ind_O marked
+//                             generations (like the seed's figures), Ind_O and the picks marked
 //   hypervolume.svg           hypervolume against evaluations
+// (both drawn by report/run_plots.hpp; report.html by report/report_page.hpp)
 // and a summary: the best-Obj1 and best-Obj2 members (walk: the fastest and the most stable;
 // kick: the least sway and the longest kick) and the knee point (closest to the ideal point
 // after normalising the front) beside Ind_O.
@@ -42,7 +43,8 @@ struct RunPickNames {
 RunPickNames run_pick_names(const std::string& task);
 
 /// Summary JSON: task, evaluations, front_size, ind_o, the two run_pick_names() members and
-/// "knee" (each with objectives and front file name).
+/// "knee" (each with objectives and front file name), warnings (what is missing or damaged in
+/// the directory). Only a missing or unreadable run.json is an error.
 Status summarise_run(const std::filesystem::path& dir, nlohmann::json& out);
 
 /// The non-dominated points of `points` (minimisation, 2 objectives), sorted by Obj1.

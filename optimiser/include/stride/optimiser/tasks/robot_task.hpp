@@ -34,6 +34,7 @@
 #include "stride/optimiser/nsga2/problem.hpp"
 #include "stride/optimiser/tasks/task_config.hpp"
 #include "stride/optimiser/tasks/walk_measures.hpp"
+#include "stride/sim_hal/episode_capture.hpp"
 #include "stride/sim_hal/robot_model.hpp"
 
 namespace stride::opt {
@@ -71,7 +72,9 @@ class RobotTask final : public Problem {
   /// The start genome (Ind_O: every gene's start value).
   Genome start_genome() const;
   /// One episode of trial `trial` (0-based); a failure reason on a broken set-up or world.
-  Status run_trial(const Genome& genome, int trial, EpisodeScore& out) const;
+  /// `capture`, if given, observes every tick (replays in `stride report`); it changes nothing.
+  Status run_trial(const Genome& genome, int trial, EpisodeScore& out,
+                   sim::EpisodeCapturer* capture = nullptr) const;
   /// The genome as a parameter file body {"name": value, ...} (loadable by --params).
   nlohmann::json parameter_file(const Genome& genome) const;
 

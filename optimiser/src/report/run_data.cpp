@@ -1,0 +1,166 @@
+// RunData: tolerant reading of a robot run directory for reports.
+#include "stride/optimiser/report/run_data.hpp"
+
+#include <cstdio>
+#include <fstream>
+
+namespace stride::opt::report {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+void read_log(const fs::path& path, std::vector<json>& out, std::vector<std::string>& warnings) {
+  std::ifstream in(path);
+  if (!in) {
+    warnings.push_back(path.filename().string() + " is missing");
+    return;
+  }
+  std::string line;
+  std::size_t n = 0, bad = 0, first_bad = 0;
+  while (std::getline(in, line)) {
+    ++n;
+    if (line.empty()) continue;
+    json j = json::parse(line, nullptr, false);
+    if (j.is_discarded() || !j.is_object()) {
+      if (bad++ == 0) first_bad = n;
+      continue;
+    }
+    out.push_back(std::move(j));
+  }
+  if (bad > 0)
+    warnings.push_back(path.filename().string() + ": " + std::to_string(bad) +
+                       " damaged line(s) skipped, the first is line " + std::to_string(first_bad) +
+                       " (a truncated log?)");
+  if (out.empty() && bad == 0) warnings.push_back(path.filename().string() + " is empty");
+}
+
+}  // namespace
+
+std::string front_file_name(std::size_t index) {
+  char name[32];
+  std::snprintf(name, sizeof name, "front/%03zu.json", index);
+  return name;
+}
+
+Status load_run_data(const fs::path& dir, RunData& out) {
+  out = RunData{};
+  out.dir = dir;
+  std::ifstream in(dir / "run.json");
+  if (!in) return Status::error((dir / "run.json").string() + ": cannot open");
+  out.run = json::parse(in, nullptr, false);
+  if (out.run.is_discarded() || !out.run.is_object())
+    return Status::error((dir / "run.json").string() + ": not a JSON object");
+  if (out.run.contains("problem") && out.run["problem"].is_string())
+    out.task = out.run["problem"].get<std::string>();
+  read_log(dir / "evaluations.jsonl", out.evaluations, out.warnings);
+  read_log(dir / "generations.jsonl", out.generations, out.warnings);
+  if (!fs::exists(dir / "pareto.csv")) {
+    out.warnings.push_back("pareto.csv is missing: no front members to show");
+  } else if (Status s = read_pareto_csv(dir / "pareto.csv", 2, out.front); !s) {
+    out.front.clear();
+    out.warnings.push_back(s.message());
+  }
+  for (std::size_t i = 0; i < out.front.size(); ++i)
+    if (!fs::exists(dir / front_file_name(i)))
+      out.warnings.push_back(front_file_name(i) + " is missing (pareto.csv row " +
+                             std::to_string(i) + ")");
+  return {};
+}
+
+std::vector<double> objectives_of(const json& e) {
+  std::vector<double> out;
+  if (!e.contains("objectives") || !e["objectives"].is_array()) return out;
+  for (const json& v : e["objectives"]) {
+    if (!v.is_number()) return {};
+    out.push_back(v.get<double>());
+  }
+  return out;
+}
+
+bool feasible(const json& e) {
+  return !e.value("failed", false) && e.contains("violation") && e["violation"].is_number() &&
+         e["violation"].get<double>() <= 0.0 && objectives_of(e).size() >= 2;
+}
+
+std::vector<double> start_genes(const RunData& data) {
+  const json& run = data.run;
+  if (run.contains("start") && run["start"].is_object() && run["start"].contains("reals") &&
+      run["start"]["reals"].is_array()) {
+    std::vector<double> out;
+    for (const json& v : run["start"]["reals"])
+      if (v.is_number()) out.push_back(v.get<double>());
+    return out;
+  }
+  return {};
+}
+
+const json* find_ind_o(const RunData& data) {
+  const std::vector<double> start = start_genes(data);
+  if (start.empty()) return nullptr;
+  for (const auto& e : data.evaluations)
+    if (e.value("generation", 0) == 1 && e.contains("reals") && e["reals"].is_array() &&
+        e["reals"] == json(start) && objectives_of(e).size() >= 2)
+      return &e;
+  return nullptr;
+}
+
+std::vector<RunPick> run_picks(const RunData& data) {
+  std::vector<RunPick> picks;
+  if (data.front.empty()) return picks;
+  std::vector<std::vector<double>> objs;
+  for (const auto& m : data.front) objs.push_back(m.objectives);
+  std::size_t best1 = 0, best2 = 0;
+  for (std::size_t i = 0; i < objs.size(); ++i) {
+    if (objs[i].size() < 2) return picks;
+    if (objs[i][0] < objs[best1][0]) best1 = i;
+    if (objs[i][1] < objs[best2][1]) best2 = i;
+  }
+  const RunPickNames names = run_pick_names(data.task);
+  const std::pair<std::string, std::size_t> chosen[] = {
+      {names.best_obj1, best1}, {names.best_obj2, best2}, {"knee", knee_index(objs)}};
+  for (const auto& [key, index] : chosen) {
+    std::string label = key;
+    for (char& c : label)
+      if (c == '_') c = ' ';
+    RunPick* same = nullptr;
+    for (RunPick& p : picks)
+      if (p.front_index == index) same = &p;
+    if (same != nullptr) {
+      same->keys.push_back(key);
+      same->label += ", " + label;
+      continue;
+    }
+    picks.push_back({{key},
+                     label,
+                     index,
+                     front_file_name(index),
+                     data.front[index].objectives,
+                     data.front[index].genes});
+  }
+  return picks;
+}
+
+}  // namespace stride::opt::report
+
+namespace stride::opt::report {
+
+ObjectiveNames objective_names(const RunData& data) {
+  if (data.task == "kick") return {"max field-plane sway [m/s^2]", "1 / ball distance [1/m]"};
+  if (data.task == "walk") {
+    double goal = 2.5;
+    const auto& run = data.run;
+    if (run.contains("task") && run["task"].is_object() &&
+        run["task"].contains("goal_distance_m") && run["task"]["goal_distance_m"].is_number())
+      goal = run["task"]["goal_distance_m"].get<double>();
+    char f1[64];
+    std::snprintf(f1, sizeof f1, "time to %.3g m [s]", goal);
+    return {f1, "max |a| [m/s^2]"};
+  }
+  if (data.task == "walk-omni")
+    return {"-(v_f + v_b + 2 v_side + 0.2 w_turn) [m/s]", "max |a| [m/s^2]"};
+  return {"f1", "f2"};
+}
+
+}  // namespace stride::opt::report

@@ -1,0 +1,171 @@
+// Loads one Stride report page in headless Chromium (puppeteer-core driving the system's
+// browser; nothing is downloaded) and checks it like a person would look at it:
+//   - no console error, no uncaught exception, no request other than file: and data: URLs;
+//   - every expected section is present and not empty (text, a table, a chart or a canvas),
+//     and, unless --expect-warnings, none of them says something is missing, Ind_O is named on
+//     the front chart and every point there has a tooltip, some naming their front file;
+//   - with --replay N: at least N individuals in the replay, a card for each whose canvas has
+//     been drawn on, and the replay's time
+//     advances after Play is clicked (the clock's data-time and the slider both move), and
+//     the slider moves the clock;
+//   - screenshots of the whole page, of each section and of the replay after playing go to
+//     OUT_DIR/NAME-full.png, NAME-SECTION.png.
+// usage: node check_page.cjs --chromium PATH --modules DIR --out OUT_DIR
+//          { --name NAME --page FILE --sections a,b,c [--replay N] [--expect-warnings] } ...
+// (one browser for all pages; exit status 1 if any page fails a check)
+'use strict';
+const path = require('path');
+const fs = require('fs');
+
+function parseArgs(argv) {
+  const out = {pages: []};
+  let page = null;
+  for (let i = 2; i < argv.length; ++i) {
+    const a = argv[i];
+    if (a === '--name') out.pages.push(page = {name: argv[++i], replay: 0, expectWarnings: false});
+    else if (a === '--expect-warnings') page.expectWarnings = true;
+    else if (a === '--replay') page.replay = parseInt(argv[++i], 10);
+    else if (['--page', '--sections'].includes(a)) page[a.slice(2)] = argv[++i];
+    else out[a.replace(/^--/, '')] = argv[++i];
+  }
+  for (const k of ['chromium', 'modules', 'out'])
+    if (!out[k]) throw new Error('missing --' + k);
+  for (const p of out.pages)
+    if (!p.page || !p.sections) throw new Error(p.name + ': missing --page or --sections');
+  return out;
+}
+
+async function main() {
+  const opts = parseArgs(process.argv);
+  const puppeteer = require(path.join(opts.modules, 'puppeteer-core'));
+  fs.mkdirSync(opts.out, {recursive: true});
+  const browser = await puppeteer.launch({
+    executablePath: opts.chromium,
+    headless: true,
+    args: ['--no-sandbox', '--disable-gpu', '--disable-dev-shm-usage', '--no-first-run',
+           '--allow-file-access-from-files'],
+  });
+  let failed = 0;
+  try {
+    for (const spec of opts.pages) {
+      const failures = await checkPage(browser, {...spec, out: opts.out});
+      for (const f of failures) console.error(spec.name + ': ' + f);
+      if (failures.length > 0) ++failed;
+    }
+  } finally {
+    await browser.close();
+  }
+  process.exit(failed > 0 ? 1 : 0);
+}
+
+async function checkPage(browser, args) {
+  const failures = [];
+  {
+    const page = await browser.newPage();
+    await page.setViewport({width: 1400, height: 1000});
+    page.on('console', (m) => {
+      if (m.type() === 'error') failures.push('console error: ' + m.text());
+    });
+    page.on('pageerror', (e) => failures.push('uncaught exception: ' + e.message));
+    page.on('request', (r) => {
+      if (!/^(file|data|about):/.test(r.url())) failures.push('network request: ' + r.url());
+    });
+    page.on('requestfailed', (r) => failures.push('failed request: ' + r.url()));
+    await page.goto('file://' + path.resolve(args.page), {waitUntil: 'load'});
+
+    const sections = await page.evaluate((ids) => ids.map((id) => {
+      const s = document.querySelector('section#' + id);
+      if (!s) return {id, present: false};
+      const body = Array.from(s.children).filter((c) => c.tagName !== 'H2');
+      const text = body.map((c) => c.textContent.trim()).join(' ');
+      return {id, present: true, text: text.length,
+              graphics: s.querySelectorAll('svg, canvas, table').length,
+              missing: Array.from(s.querySelectorAll('.missing')).map((m) => m.textContent)};
+    }), args.sections.split(','));
+    for (const s of sections) {
+      if (!s.present) { failures.push('section ' + s.id + ' is absent'); continue; }
+      if (s.text === 0 && s.graphics === 0) failures.push('section ' + s.id + ' is empty');
+      if (!args.expectWarnings && s.missing.length > 0)
+        failures.push('section ' + s.id + ' says: ' + s.missing.join(' / '));
+    }
+    // The front chart names Ind_O and every point has a tooltip (objectives, front file).
+    const front = await page.evaluate(() => {
+      const svg = document.querySelector('section#pareto svg');
+      if (!svg) return null;
+      const names = Array.from(svg.querySelectorAll('g.marker text')).map((t) => t.textContent);
+      const points = svg.querySelectorAll('g.front-generation circle').length;
+      const tips = Array.from(svg.querySelectorAll('g.front-generation circle > title'))
+          .map((t) => t.textContent);
+      return {names, points, tips: tips.length, files: tips.filter((t) => /front\/\d{3}\.json/.test(t)).length};
+    });
+    if (front && !args.expectWarnings) {
+      if (!front.names.includes('Ind_O')) failures.push('front chart: Ind_O is not named');
+      if (front.points === 0 || front.tips !== front.points)
+        failures.push('front chart: ' + front.tips + ' tooltips for ' + front.points + ' points');
+      if (front.files === 0) failures.push('front chart: no tooltip names a front file');
+    }
+    const warnings = await page.evaluate(() => {
+      const w = document.getElementById('warnings');
+      return w && !w.hidden ? w.querySelectorAll('li').length : 0;
+    });
+    if (args.expectWarnings && warnings === 0) failures.push('no warnings listed at the top');
+    if (!args.expectWarnings && warnings > 0) failures.push(warnings + ' warnings listed at the top');
+
+    let replay = null;
+    if (args.replay > 0) {
+      const cards = await page.evaluate(() => Array.from(
+          document.querySelectorAll('#replay-cards canvas')).map((c) => {
+        const ctx = c.getContext('2d');
+        const px = ctx.getImageData(0, 0, c.width, c.height).data;
+        let ink = 0;  // pixels darker than the light panel backgrounds
+        for (let i = 0; i < px.length; i += 4) if (px[i] + px[i + 1] + px[i + 2] < 300) ++ink;
+        return ink;
+      }));
+      const people = await page.evaluate(() =>
+          JSON.parse(document.getElementById('replay-data').textContent).individuals.length);
+      if (people < args.replay)
+        failures.push('replay: ' + people + ' individuals in the data, expected at least ' + args.replay);
+      if (cards.length !== people)
+        failures.push('replay: ' + cards.length + ' cards for ' + people + ' individuals');
+      cards.forEach((ink, i) => { if (ink < 200) failures.push('replay card ' + i + ' is blank'); });
+      const before = await page.$eval('#replay-clock', (c) => parseFloat(c.dataset.time));
+      const sliderBefore = await page.$eval('#replay-time', (s) => parseFloat(s.value));
+      await page.click('#replay-play');
+      // Wait until the clock moved (or give up after 10 s of page time).
+      await page.waitForFunction(
+          (t0) => parseFloat(document.getElementById('replay-clock').dataset.time) > t0 + 0.2,
+          {timeout: 10000}, before).catch(() => {});
+      const after = await page.$eval('#replay-clock', (c) => parseFloat(c.dataset.time));
+      const sliderAfter = await page.$eval('#replay-time', (s) => parseFloat(s.value));
+      const label = await page.$eval('#replay-play', (b) => b.textContent);
+      if (!(after > before)) failures.push('replay: time did not advance after Play (' + before + ' -> ' + after + ')');
+      if (!(sliderAfter > sliderBefore)) failures.push('replay: the time slider did not move');
+      if (label !== 'Pause') failures.push('replay: the button reads "' + label + '" while playing');
+      await page.click('#replay-play');
+      // Scrub to the middle with the slider: the clock follows.
+      const middle = await page.$eval('#replay-time', (s) => {
+        s.value = (parseFloat(s.max) / 2).toFixed(2);
+        s.dispatchEvent(new Event('input'));
+        return parseFloat(s.value);
+      });
+      const shown = await page.$eval('#replay-clock', (c) => parseFloat(c.dataset.time));
+      if (Math.abs(shown - middle) > 0.01)
+        failures.push('replay: the slider set ' + middle + ' s, the clock shows ' + shown);
+      await (await page.$('section#replay')).screenshot(
+          {path: path.join(args.out, args.name + '-replay-middle.png')});
+      replay = {cards: cards.length, ink: cards, time_before: before, time_after: after};
+      const el = await page.$('section#replay');
+      await el.screenshot({path: path.join(args.out, args.name + '-replay.png')});
+    }
+    await page.screenshot({path: path.join(args.out, args.name + '-full.png'), fullPage: true});
+    for (const s of sections) {
+      const el = s.present && s.id !== 'replay' ? await page.$('section#' + s.id) : null;
+      if (el) await el.screenshot({path: path.join(args.out, args.name + '-' + s.id + '.png')});
+    }
+    console.log(JSON.stringify({page: args.page, sections, front, warnings, replay, failures}));
+    await page.close();
+  }
+  return failures;
+}
+
+main().catch((e) => { console.error(e.stack || String(e)); process.exit(1); });

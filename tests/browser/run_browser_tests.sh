@@ -1,0 +1,76 @@
+#!/usr/bin/env bash
+# Stride's report pages in a real browser: makes a tiny walk run and a tiny kick run (seconds),
+# `stride report` on each and on a run directory with nothing evaluated yet, and a
+# `stride sim kick --html` page, then loads every page in headless Chromium (check_page.cjs:
+# no console error, no network, every section present and not empty, the replay drawn and its
+# time advancing after Play) and writes screenshots to OUT_DIR.
+#
+# usage: run_browser_tests.sh STRIDE_BINARY OUT_DIR SOURCE_DIR
+# Chromium: $STRIDE_CHROMIUM or chromium on the PATH; puppeteer-core:
+# $STRIDE_BROWSER_MODULES, else /opt/stride/browser-test/node_modules (toolchain/install-deps.sh),
+# else installed into OUT_DIR/node with npm ci. Exit 77 (ctest: skipped) only when no browser or
+# no node is installed, saying so.
+set -euo pipefail
+stride=$1 out=$2 src=$3
+here="$src/tests/browser"
+
+chromium=${STRIDE_CHROMIUM:-}
+if [[ -z "$chromium" ]]; then
+  for c in chromium chromium-browser google-chrome; do
+    if command -v "$c" >/dev/null; then chromium=$(command -v "$c"); break; fi
+  done
+fi
+if [[ -z "$chromium" ]]; then
+  echo "SKIPPED: no Chromium on this machine (toolchain/install-deps.sh installs Debian's chromium)"
+  exit 77
+fi
+if ! command -v node >/dev/null; then
+  echo "SKIPPED: no node on this machine to drive Chromium (toolchain/install-deps.sh installs it)"
+  exit 77
+fi
+modules=${STRIDE_BROWSER_MODULES:-/opt/stride/browser-test/node_modules}
+if [[ ! -f "$modules/puppeteer-core/package.json" ]]; then
+  echo "puppeteer-core not in $modules: installing it into $out/node (npm ci)"
+  mkdir -p "$out/node"
+  cp "$here/package.json" "$here/package-lock.json" "$out/node/"
+  (cd "$out/node" && PUPPETEER_SKIP_DOWNLOAD=1 npm ci --no-audit --no-fund --ignore-scripts >/dev/null)
+  modules="$out/node/node_modules"
+fi
+
+runs="$out/runs"
+rm -rf "$runs" "$out"/*.png
+mkdir -p "$runs"
+echo "== tiny runs (pop 4, 2 generations)"
+"$stride" optimise --config "$src/optimiser/configs/walk-demo.json" --out "$runs/walk" --pop 4 \
+  --generations 2 --jobs 2 >/dev/null 2>"$runs/walk.log"
+"$stride" optimise --config "$src/optimiser/configs/kick.json" --out "$runs/kick" --pop 4 \
+  --generations 2 --jobs 2 >/dev/null 2>"$runs/kick.log"
+# A validation.json of the shape `stride validate` may write (the report reads any shape).
+cat >"$runs/walk/validation.json" <<'JSON'
+{"picks": [{"name": "fastest", "worlds": [{"world": "mujoco", "time_to_goal_s": 26.1, "kept": 0.8},
+                                          {"world": "seed 101", "time_to_goal_s": 27.0, "kept": 0.95}]}]}
+JSON
+# A run that has evaluated nothing yet.
+mkdir -p "$runs/empty"
+cp "$runs/walk/run.json" "$runs/empty/"
+: >"$runs/empty/evaluations.jsonl"
+
+echo "== stride report / stride sim --html"
+"$stride" report "$runs/walk"
+"$stride" report "$runs/kick"
+"$stride" report "$runs/empty" 2>&1
+"$stride" sim kick --duration 6 --html "$runs/sim-kick.html"
+
+echo "== pages in $chromium"
+report_sections=settings,picks,pareto,hypervolume,accelerometer,poses,replay,parameters
+status=0
+node "$here/check_page.cjs" --chromium "$chromium" --modules "$modules" --out "$out" \
+  --name walk --page "$runs/walk/report.html" --sections "$report_sections,validation" \
+  --replay 2 \
+  --name kick --page "$runs/kick/report.html" --sections "$report_sections" --replay 2 \
+  --name empty --page "$runs/empty/report.html" --sections "$report_sections" --replay 1 \
+  --expect-warnings \
+  --name sim-kick --page "$runs/sim-kick.html" --sections episode,accelerometer,poses,replay \
+  --replay 1 || status=1
+ls "$out"/*.png
+exit $status

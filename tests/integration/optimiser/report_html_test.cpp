@@ -1,0 +1,188 @@
+// report.html end to end: a short walk run, `stride report` re-running Ind_O and the picks (the
+// re-run scores exactly what the run logged), every section on the page, no network resource;
+// run directories with pieces missing give a page and one warning line, never a failure;
+// `stride sim --html` writes the one-episode page. (The page in a real browser:
+// tests/browser/.)
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <regex>
+
+#include <nlohmann/json.hpp>
+
+#include "child_process.hpp"
+#include "temp_dir.hpp"
+
+namespace stride {
+namespace {
+
+namespace fs = std::filesystem;
+const std::string kStride = std::string(STRIDE_BIN_DIR) + "/stride";
+const std::string kConfigs = std::string(STRIDE_SOURCE_DIR) + "/optimiser/configs/";
+
+struct Result {
+  int code = -1;
+  std::string out, err;
+};
+
+Result stride(const std::vector<std::string>& args, const fs::path& dir) {
+  std::vector<std::string> argv = {kStride};
+  argv.insert(argv.end(), args.begin(), args.end());
+  Result r;
+  r.code = test::wait_exit(test::spawn(argv, dir / "out.txt", dir / "err.txt"));
+  r.out = test::slurp(dir / "out.txt");
+  r.err = test::slurp(dir / "err.txt");
+  return r;
+}
+
+int count(const std::string& text, const std::string& what) {
+  int n = 0;
+  for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+// One short walk run shared by the tests (2 s episodes, goal 0.3 m, pop 4, 2 generations).
+class ReportHtml : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    tmp_ = new test::TempDir();
+    std::ifstream in(kConfigs + "walk.json");
+    nlohmann::json c = nlohmann::json::parse(in);
+    c["pop"] = 4;
+    c["generations"] = 2;
+    c["duration_s"] = 2.0;
+    c["goal_distance_m"] = 0.3;
+    c["pm"] = 0.2;
+    std::ofstream(tmp_->path() / "walk.json") << c.dump(1);
+    run_ = tmp_->path() / "run";
+    const Result r = stride({"optimise", "--config", (tmp_->path() / "walk.json").string(), "--out",
+                             run_.string(), "--jobs", "2"},
+                            tmp_->path());
+    ASSERT_EQ(r.code, 0) << r.err;
+  }
+  static void TearDownTestSuite() { delete tmp_; }
+  static fs::path copy_run(const std::string& name) {
+    const fs::path to = tmp_->path() / name;
+    fs::copy(run_, to, fs::copy_options::recursive);
+    return to;
+  }
+  static test::TempDir* tmp_;
+  static fs::path run_;
+};
+test::TempDir* ReportHtml::tmp_ = nullptr;
+fs::path ReportHtml::run_;
+
+TEST_F(ReportHtml, EverySectionAndTheReRunScoresWhatTheRunLogged) {
+  const fs::path dir = copy_run("complete");
+  const Result r = stride({"report", dir.string(), "--json"}, tmp_->path());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.err, "");  // nothing missing, no warning
+  const auto summary = nlohmann::json::parse(r.out);
+  EXPECT_EQ(summary["report"], (dir / "report.html").string());
+  EXPECT_TRUE(summary["warnings"].empty());
+  const std::string html = test::slurp(dir / "report.html");
+  EXPECT_EQ(html.size(), summary["report_bytes"].get<std::size_t>());
+  EXPECT_LT(html.size(), 5u << 20);
+  for (const char* id : {"settings", "picks", "pareto", "hypervolume", "accelerometer", "poses",
+                         "replay", "parameters"})
+    EXPECT_EQ(count(html, std::string("data-section=\"") + id + "\""), 1) << id;
+  EXPECT_EQ(count(html, "data-section=\"validation\""), 0);  // no validation.json
+  EXPECT_EQ(count(html, "class=\"missing\""), 0);
+  // Ind_O and each distinct pick were re-run in the run's world and scored exactly as logged.
+  const int rows = count(html, "<tr><td class=\"name\"><span class=\"swatch\"");
+  EXPECT_GE(rows, 2);
+  EXPECT_EQ(count(html, "(same as logged)"), rows);
+  EXPECT_EQ(count(html, "(differs)"), 0);
+  // Self-contained: nothing fetched from anywhere (the only URL is the SVG namespace).
+  EXPECT_FALSE(std::regex_search(html, std::regex(R"re((src|href)\s*=\s*"(https?:)?//)re")));
+  EXPECT_EQ(count(html, "url("), 0);
+  EXPECT_EQ(count(html, "http"), count(html, "http://www.w3.org/2000/svg"));
+  // Replay data for every individual, and Ind_O marked on the front.
+  const std::size_t data = html.find("<script type=\"application/json\" id=\"replay-data\">");
+  ASSERT_NE(data, std::string::npos);
+  const std::size_t start = html.find('>', data) + 1;
+  const auto replay =
+      nlohmann::json::parse(html.substr(start, html.find("</script>", start) - start));
+  EXPECT_EQ(replay["individuals"].size(), static_cast<std::size_t>(rows));
+  for (const auto& ind : replay["individuals"]) EXPECT_GT(ind["frames"].get<int>(), 5);
+  const std::string svg = test::slurp(dir / "pareto_by_generation.svg");
+  EXPECT_NE(svg.find(">Ind_O<"), std::string::npos);
+  EXPECT_NE(svg.find("front/000.json"), std::string::npos);  // tooltips name the front files
+  // The same run reported twice gives the same page (deterministic re-runs).
+  ASSERT_EQ(stride({"report", dir.string()}, tmp_->path()).code, 0);
+  EXPECT_EQ(test::slurp(dir / "report.html"), html);
+}
+
+TEST_F(ReportHtml, MissingPiecesGiveAPageAndOneWarningLine) {
+  // A run that has not evaluated anything yet: run.json only, an empty log.
+  const fs::path empty = tmp_->path() / "empty";
+  fs::create_directories(empty);
+  fs::copy_file(run_ / "run.json", empty / "run.json");
+  std::ofstream(empty / "evaluations.jsonl").flush();
+  Result r = stride({"report", empty.string()}, tmp_->path());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(count(r.err, "\n"), 1) << r.err;
+  EXPECT_NE(r.err.find("warning: evaluations.jsonl is empty"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("pareto.csv is missing"), std::string::npos) << r.err;
+  std::string html = test::slurp(empty / "report.html");
+  EXPECT_NE(html.find("No evaluations logged yet."), std::string::npos);
+  EXPECT_NE(html.find("<li>generations.jsonl is missing</li>"), std::string::npos);
+  EXPECT_NE(html.find("No front member to compare with Ind_O."), std::string::npos);
+  EXPECT_EQ(count(html, "</html>"), 1);
+
+  // A log torn in its last line and a front file deleted: said, and the file rewritten.
+  const fs::path torn = copy_run("torn");
+  std::string log = test::slurp(torn / "evaluations.jsonl");
+  log.resize(log.size() - 40);
+  std::ofstream(torn / "evaluations.jsonl", std::ios::trunc) << log;
+  fs::remove(torn / "front/000.json");
+  r = stride({"report", torn.string()}, tmp_->path());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(count(r.err, "\n"), 1) << r.err;
+  EXPECT_NE(r.err.find("evaluations.jsonl: 1 damaged line(s) skipped"), std::string::npos);
+  EXPECT_NE(r.err.find("front/000.json is missing (pareto.csv row 0); rewritten"),
+            std::string::npos);
+  EXPECT_TRUE(fs::exists(torn / "front/000.json"));
+  html = test::slurp(torn / "report.html");
+  EXPECT_NE(html.find("damaged line(s) skipped"), std::string::npos);
+  EXPECT_NE(html.find("data-section=\"replay\""), std::string::npos);
+
+  // validation.json: shown as a table when readable, said when not.
+  std::ofstream(torn / "validation.json")
+      << R"({"picks":[{"name":"knee","worlds":[{"world":"mujoco","kept":0.81}]}]})";
+  ASSERT_EQ(stride({"report", torn.string()}, tmp_->path()).code, 0);
+  html = test::slurp(torn / "report.html");
+  EXPECT_NE(html.find("id=\"validation-table\""), std::string::npos);
+  EXPECT_NE(html.find("picks / knee / worlds / mujoco"), std::string::npos);
+  std::ofstream(torn / "validation.json", std::ios::trunc) << "{\"picks\": [";
+  ASSERT_EQ(stride({"report", torn.string()}, tmp_->path()).code, 0);
+  EXPECT_NE(test::slurp(torn / "report.html").find("validation.json exists but cannot be parsed"),
+            std::string::npos);
+
+  // No run.json: bad input, one line, exit 2, no page.
+  const fs::path none = tmp_->path() / "none";
+  fs::create_directories(none);
+  r = stride({"report", none.string()}, tmp_->path());
+  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(count(r.err, "\n"), 1) << r.err;
+  EXPECT_FALSE(fs::exists(none / "report.html"));
+}
+
+TEST(StrideSimHtml, WritesTheReplayOfOneEpisode) {
+  test::TempDir tmp;
+  const fs::path page = tmp.path() / "stand.html";
+  Result r = stride({"sim", "stand", "--duration", "1", "--html", page.string()}, tmp.path());
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string html = test::slurp(page);
+  for (const char* id : {"episode", "accelerometer", "poses", "replay"})
+    EXPECT_EQ(count(html, std::string("data-section=\"") + id + "\""), 1) << id;
+  EXPECT_NE(html.find("id=\"replay-data\""), std::string::npos);
+  r = stride({"sim", "stand", "--duration", "0.2", "--html", "/nonexistent/dir/x.html"},
+             tmp.path());
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("/nonexistent/dir"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace stride
