@@ -2,7 +2,6 @@
 // its bad-input contract (one line naming the option and what is allowed, exit 2); the world
 // options `--urdf`, `--servo-law` and `--imu` of `stride sim`.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <cstdio>
 #include <fstream>
@@ -10,19 +9,13 @@
 #include <sstream>
 #include <string>
 
+#include "run_command.hpp"
 #include "temp_dir.hpp"
 
 namespace {
 
 std::string run_stride(const std::string& args, int& code) {
-  const std::string cmd = std::string(STRIDE_BIN_DIR) + "/stride " + args;
-  FILE* pipe = popen(cmd.c_str(), "r");
-  std::string out;
-  char buffer[4096];
-  while (pipe && fgets(buffer, sizeof buffer, pipe)) out += buffer;
-  const int status = pipe ? pclose(pipe) : -1;
-  code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return out;
+  return stride::test::run_command(std::string(STRIDE_BIN_DIR) + "/stride " + args, code);
 }
 
 TEST(StrideSimServo, NoLoadBlockedAndPendulumAsJson) {

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "run_command.hpp"
 #include "stride/firmware/firmware.hpp"
 #include "stride/sim_hal/episode.hpp"
 #include "stride/sim_hal/sim_robot.hpp"
@@ -66,13 +67,7 @@ TEST(StandIntegration, SameSeedSameHashWholeEpisode) {
 }
 
 std::string popen_read(const std::string& cmd, int& code) {
-  FILE* pipe = popen(cmd.c_str(), "r");
-  std::string out;
-  char buffer[4096];
-  while (pipe && fgets(buffer, sizeof buffer, pipe)) out += buffer;
-  const int status = pipe ? pclose(pipe) : -1;
-  code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return out;
+  return stride::test::run_command(cmd, code);
 }
 
 std::string run(const std::string& args, int& code) {
