@@ -8,6 +8,7 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "stride/sim_hal/physics_engine.hpp"
 #include "stride/sim_hal/world_rng.hpp"
 
 namespace stride::sim {
@@ -40,15 +41,6 @@ Eigen::Isometry3d to_isometry(const Transform& x) {
     for (int c = 0; c < 3; ++c) out.linear()(r, c) = x.R().asMat33()(r, c);
   out.translation() = to_eigen(x.p());
   return out;
-}
-
-std::uint64_t fnv1a(std::uint64_t hash, const void* data, std::size_t bytes) {
-  const auto* p = static_cast<const unsigned char*>(data);
-  for (std::size_t i = 0; i < bytes; ++i) {
-    hash ^= p[i];
-    hash *= 0x100000001b3ULL;
-  }
-  return hash;
 }
 
 /// Inertia about the body origin with reflected rotor inertia J about `axis` added. Simbody

@@ -33,98 +33,12 @@
 #include "stride/sim_hal/mx_servo.hpp"
 #include "stride/sim_hal/robot_model.hpp"
 #include "stride/sim_hal/servo_model.hpp"
+#include "stride/sim_hal/world_options.hpp"
 
 namespace stride::sim {
 
-/// URDF joint names of the 20 servos in Dynamixel-ID order (servo index = id - 1).
-const std::array<std::string, hal::kServoCount>& igus_servo_joints();
-
 /// The Stand pose of igus.md 3.4 in URDF joint angles (shoulder pitch = NUbots - pi/2), head 0.
 const std::array<double, hal::kServoCount>& igus_stand_pose();
-
-struct ContactOptions {
-  double grass_thickness_m = 0.02;           ///< soft layer on top of the solid ground (seed: 2 cm)
-  double grass_stiffness_n_m = 1500.0;       ///< per contact point [N/m]
-  double grass_damping_n_s_m = 40.0;         ///< per contact point [N s/m]
-  double ground_stiffness_n_m = 2.0e4;       ///< solid ground under the grass, per point [N/m]
-  double ground_damping_n_s_m = 100.0;       ///< [N s/m]
-  double friction = 1.0;                     ///< Coulomb coefficient (feet and links on the field)
-  double tangential_stiffness_n_m = 5000.0;  ///< stick spring per point [N/m]
-  double tangential_damping_n_s_m = 20.0;    ///< [N s/m]
-  double ball_robot_stiffness_n_m = 5000.0;  ///< ball against robot links [N/m]
-  double ball_robot_damping_n_s_m = 10.0;
-};
-
-struct BallOptions {
-  bool present = true;
-  double radius_m = 0.095;  ///< TeenSize ball (igus.md 5)
-  double mass_kg = 0.26;
-  double inertia_kg_m2 = 0.00156;   ///< thin-shell value of the seed's model
-  double rolling_damping = 0.0016;  ///< angular velocity decay [N m s/rad]
-};
-
-struct ImuOptions {
-  double accel_noise_std = 0.0;                          ///< white noise per sample [m/s^2]
-  double gyro_noise_std = 0.0;                           ///< [rad/s]
-  Eigen::Vector3d accel_bias = Eigen::Vector3d::Zero();  ///< fixed bias [m/s^2]
-  Eigen::Vector3d gyro_bias = Eigen::Vector3d::Zero();   ///< fixed bias [rad/s]
-  double accel_bias_std = 0.0;  ///< per-reset random bias drawn on top [m/s^2]
-  double gyro_bias_std = 0.0;   ///< [rad/s]
-  /// The sensor chain (imu_model.hpp): ideal (true value at the period's end plus the white
-  /// noise above) or the chips and CM730 of the robot (their own noise; the stds above unused).
-  ImuChain chain = ImuChain::ideal();
-  /// Typical values of the igus' CM730 IMU (used by `--noise on`).
-  static ImuOptions noisy();
-};
-
-/// Which servo law drives the joints: the seed's (Gazebo figures, ServoModel) or the MX servo
-/// identified on a bench (MxServo: firmware duty law, DC motor with back-EMF, BAM's M6
-/// friction, backlash, the identified armature).
-enum class ServoLaw { kSeed, kIdentified };
-
-struct ServoOptions {
-  ServoLaw law = ServoLaw::kSeed;
-  // ServoLaw::kIdentified: the published MX parameters (mx_servo_params) with these options.
-  MxFrictionModel friction_model = MxFrictionModel::kM6;
-  double backlash_rad = 0.33 * 3.14159265358979323846 / 180.0;  ///< e-manual: 20 arcmin
-  double driver_drop_v = 0.27;          ///< fitted to BAM's no-load speed table (mx_servo.hpp)
-  double kp_per_register = 4.0 / 2.54;  ///< N m/rad per P unit (see README: the seed's 4 g)
-  double viscous_friction = 1.0;        ///< seed 1 [N m s/rad]
-  double coulomb_friction = 0.5;        ///< seed 0.5 [N m]
-  /// Motor rotor inertia before the gearbox [kg m^2]; reflected as J N^2 (N = 200 or 225).
-  double rotor_inertia_kg_m2 = 6.0e-8;
-};
-
-/// Seeded randomisation applied at every reset (relative ranges are uniform +-range).
-struct Randomisation {
-  double friction_range = 0.0;       ///< friction coefficient scale
-  double mass_range = 0.0;           ///< per-link mass and inertia scale
-  double strength_range = 0.0;       ///< per-servo stall torque scale
-  double latency_probability = 0.0;  ///< chance of one control tick of command latency
-};
-
-struct WorldOptions {
-  std::filesystem::path urdf = RobotModel::igus_path();
-  /// The robot model already parsed (from `urdf`): set by callers that build many worlds of
-  /// one model, such as the optimiser, to skip reading the file again; null reads `urdf`.
-  std::shared_ptr<const RobotModel> model;
-  std::array<std::string, hal::kServoCount> servo_joints = igus_servo_joints();
-  /// Servo models in servo order (default: the shipped servo table's models).
-  std::array<fw::ServoModel, hal::kServoCount> servo_models{};
-  bool servo_models_from_table = true;
-  std::int64_t physics_step_ns = 2'000'000;     ///< fixed integration step
-  std::int64_t control_period_ns = 10'000'000;  ///< one advance_period(); multiple of the step
-  double battery_voltage_v = 14.8;
-  double gravity_mps2 = 9.81;
-  ServoOptions servo;
-  ContactOptions contact;
-  BallOptions ball;
-  ImuOptions imu;
-  Randomisation randomise;
-  std::uint64_t seed = 1;
-  /// A state with a speed above this [rad/s or m/s] counts as exploded.
-  double max_speed = 200.0;
-};
 
 /// Initial conditions for reset().
 struct ResetSpec {
@@ -140,19 +54,6 @@ struct ResetSpec {
   Eigen::Vector3d ball_velocity = Eigen::Vector3d::Zero();
   /// The robot standing in the Stand pose of igus.md 3.4.
   static ResetSpec standing();
-};
-
-enum class WorldStatus : std::uint8_t {
-  kRunning = 0,
-  kNonFinite,          ///< NaN or infinity in the state
-  kExploded,           ///< a speed above WorldOptions::max_speed
-  kIntegratorFailure,  ///< Simbody threw during a step
-};
-const char* to_string(WorldStatus status);
-
-struct FootContact {
-  int points_in_contact = 0;
-  Eigen::Vector3d force = Eigen::Vector3d::Zero();  ///< total contact force on the foot [N]
 };
 
 /// Ground truth for evaluators (world frame: x forward, y left, z up; the field at z = 0 is the

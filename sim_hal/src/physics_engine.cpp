@@ -1,0 +1,62 @@
+// What every physics engine shares: engine names, the state hash and the state check.
+#include "stride/sim_hal/physics_engine.hpp"
+
+#include <cmath>
+
+namespace stride::sim {
+
+const char* to_string(EngineKind kind) {
+  switch (kind) {
+    case EngineKind::kSimbody:
+      return "simbody";
+    case EngineKind::kMujoco:
+      return "mujoco";
+  }
+  return "unknown";
+}
+
+bool parse_engine_kind(std::string_view text, EngineKind& out) {
+  if (text == "simbody") {
+    out = EngineKind::kSimbody;
+  } else if (text == "mujoco") {
+    out = EngineKind::kMujoco;
+  } else {
+    return false;
+  }
+  return true;
+}
+
+std::uint64_t fnv1a(std::uint64_t hash, const void* data, std::size_t bytes) {
+  const auto* p = static_cast<const unsigned char*>(data);
+  for (std::size_t i = 0; i < bytes; ++i) {
+    hash ^= p[i];
+    hash *= 0x100000001b3ULL;
+  }
+  return hash;
+}
+
+WorldStatus check_state(const double* q, std::size_t nq, const double* u, std::size_t nu,
+                        double max_speed, double time_s, std::string& reason) {
+  for (std::size_t i = 0; i < nq; ++i)
+    if (!std::isfinite(q[i])) {
+      reason = "non-finite coordinate q[" + std::to_string(i) + "] at t=" +
+               std::to_string(time_s) + " s";
+      return WorldStatus::kNonFinite;
+    }
+  for (std::size_t i = 0; i < nu; ++i) {
+    if (!std::isfinite(u[i])) {
+      reason =
+          "non-finite speed u[" + std::to_string(i) + "] at t=" + std::to_string(time_s) + " s";
+      return WorldStatus::kNonFinite;
+    }
+    if (std::abs(u[i]) > max_speed) {
+      reason = "exploding state: |u[" + std::to_string(i) + "]| = " +
+               std::to_string(std::abs(u[i])) + " > " + std::to_string(max_speed) +
+               " at t=" + std::to_string(time_s) + " s";
+      return WorldStatus::kExploded;
+    }
+  }
+  return WorldStatus::kRunning;
+}
+
+}  // namespace stride::sim
