@@ -85,7 +85,7 @@ Status write_report_html(const fs::path& dir, const RobotTask& task, ReportOutco
       r.replay.capture = r.capturer.finish();
       r.replay.note = outcome_note(config, r.score, end_of(r.replay));
       row.outcome = r.replay.note;
-      if (config.trials == 1) row.rerun = r.score.objectives;
+      if (config.world_count() == 1) row.rerun = r.score.objectives;
       replays.push_back(r.replay);
     }
     if (i == 0 && ind_o == nullptr && !data.evaluations.empty())

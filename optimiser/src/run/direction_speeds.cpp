@@ -26,7 +26,7 @@ Status measure_direction_speeds(const RobotTask& task, const Genome& genome,
                          "'");
   DirectionSpeeds row;
   row.label = label;
-  const int trials = task.config().trials;
+  const int trials = task.config().world_count();
   for (int k = 0; k < trials; ++k) {
     EpisodeScore score;
     if (Status s = task.run_trial(genome, k, score); !s)

@@ -19,8 +19,11 @@ namespace {
 
 constexpr double kFallPenalty = 1000.0;
 
-sim::WorldOptions world_for_trial(const TaskConfig& config, int trial) {
+sim::WorldOptions world_for_trial(const TaskConfig& config, int world) {
   sim::WorldOptions w;
+  const int trial = world % config.trials;
+  w.engine =
+      config.engines[static_cast<std::size_t>(world / config.trials) % config.engines.size()];
   w.seed = config.trial_seed + static_cast<std::uint64_t>(trial);
   if (config.trials > 1) {
     if (config.randomisation.imu_noise) w.imu = sim::ImuOptions::noisy();
@@ -65,7 +68,18 @@ std::optional<FrontReference> RobotTask::reference() const {
   return r;
 }
 
-Status RobotTask::run_trial(const Genome& genome, int trial, EpisodeScore& out,
+sim::WorldOptions RobotTask::world_options(int world) const {
+  return world_for_trial(config_, world);
+}
+
+Status RobotTask::run_trial(const Genome& genome, int world, EpisodeScore& out,
+                            sim::EpisodeCapturer* capture) const {
+  if (Status s = run_world(genome, world_for_trial(config_, world), out, capture); !s) return s;
+  if (!out.world_failure.empty()) return Status::error("simulation: " + out.world_failure);
+  return {};
+}
+
+Status RobotTask::run_world(const Genome& genome, sim::WorldOptions options, EpisodeScore& out,
                             sim::EpisodeCapturer* capture) const {
   if (genome.reals.size() != config_.genes.size())
     return Status::error("genome has " + std::to_string(genome.reals.size()) + " genes, the task " +
@@ -74,18 +88,17 @@ Status RobotTask::run_trial(const Genome& genome, int trial, EpisodeScore& out,
   const bool omni = config_.task == "walk-omni";
   using Clock = std::chrono::steady_clock;
   const auto setup_start = Clock::now();
-  sim::WorldOptions world_options = world_for_trial(config_, trial);
-  world_options.model = robot_model_;
+  if (options.urdf == sim::WorldOptions{}.urdf) options.model = robot_model_;
   std::unique_ptr<fw::Firmware> firmware;
   if (Status s = firmware_files_ ? fw::Firmware::create({}, *firmware_files_, firmware)
                                  : fw::Firmware::create({}, firmware);
       !s)
     return s;
-  world_options.control_period_ns = firmware->period_ns();
+  options.control_period_ns = firmware->period_ns();
   sim::ResetSpec spec = sim::ResetSpec::standing();
   spec.ball_position = {0.25, -0.06, std::nan("")};  // in front of the right (kicking) foot
   std::unique_ptr<sim::SimWorld> world;
-  if (Status s = sim::SimWorld::create(world_options, world); !s) return s;
+  if (Status s = sim::SimWorld::create(options, world); !s) return s;
   if (Status s = world->reset(spec); !s) return s;
   sim::SimRobot robot(std::move(world));
 
@@ -143,15 +156,23 @@ Status RobotTask::run_trial(const Genome& genome, int trial, EpisodeScore& out,
   episode.stop_on_fall = true;
   episode.stop_at_goal = walk;
   if (capture != nullptr) episode.on_tick = capture->observer();
-  const sim::EpisodeResult r = sim::run_episode(robot, step, episode);
+  sim::EpisodeResult r = sim::run_episode(robot, step, episode);
   if (params.has_staged()) return Status::error("the genome was never applied");
   if (controller.motion().refused_requests() > 0)
     return Status::error(walk || omni ? "walk request refused"
                                       : "kick script '" + config_.script + "' refused");
-  if (r.status != sim::WorldStatus::kRunning)
-    return Status::error("simulation: " + r.failure_reason);
+  // A failed world ends the episode: scored below as a fall at that moment.
+  const bool failed = r.status != sim::WorldStatus::kRunning;
+  if (failed && !r.fell) {
+    r.fell = true;
+    r.fall_time_s = r.sim_time_s;
+    r.time_to_goal_s.reset();
+  }
 
   out = {};
+  if (failed)
+    out.world_failure =
+        r.failure_reason.empty() ? std::string(sim::to_string(r.status)) : r.failure_reason;
   out.fell = r.fell;
   out.distance_m = r.distance_m;
   out.time_to_goal_s = r.time_to_goal_s ? *r.time_to_goal_s : -1.0;
@@ -202,7 +223,8 @@ Status RobotTask::run_trial(const Genome& genome, int trial, EpisodeScore& out,
 
 EvaluationOutcome RobotTask::evaluate(const Genome& genome) const {
   EvaluationOutcome outcome;
-  for (int k = 0; k < config_.trials; ++k) {
+  const int worlds = config_.world_count();
+  for (int k = 0; k < worlds; ++k) {
     EpisodeScore score;
     if (Status s = run_trial(genome, k, score); !s)
       return EvaluationOutcome::failure("trial " + std::to_string(k) + ": " + s.message());
@@ -220,8 +242,8 @@ EvaluationOutcome RobotTask::evaluate(const Genome& genome) const {
                                    ? outcome.constraints[i] + score.constraints[i]
                                    : std::min(outcome.constraints[i], score.constraints[i]);
   }
-  if (config_.aggregate == Aggregate::kMean && config_.trials > 1) {
-    const double n = config_.trials;
+  if (config_.aggregate == Aggregate::kMean && worlds > 1) {
+    const double n = worlds;
     for (double& v : outcome.objectives) v /= n;
     for (double& v : outcome.constraints) v /= n;
   }

@@ -75,9 +75,43 @@ const char* const kKnownFields[] = {"task",
                                     "aggregate",
                                     "trial_seed",
                                     "randomisation",
+                                    "engine",
+                                    "engines",
+                                    "validate",
                                     "hypervolume_ideal",
                                     "hypervolume_nadir",
                                     "_comment"};
+
+// `engine` ("simbody" | "mujoco") or `engines` (a list of distinct engines), not both.
+Status parse_engines(const nlohmann::json& doc, std::vector<sim::EngineKind>& out) {
+  const char* const allowed = "must be \"simbody\" or \"mujoco\"";
+  if (doc.contains("engine") && doc.contains("engines"))
+    return Status::error("engines: give either engine or engines, not both");
+  if (doc.contains("engine")) {
+    sim::EngineKind kind{};
+    const auto& e = doc.at("engine");
+    if (!e.is_string() || !sim::parse_engine_kind(e.get<std::string>(), kind))
+      return Status::error(std::string("engine: ") + allowed + ", got " + e.dump());
+    out = {kind};
+  }
+  if (doc.contains("engines")) {
+    const auto& list = doc.at("engines");
+    if (!list.is_array() || list.empty())
+      return Status::error("engines: must be a non-empty array of engine names");
+    out.clear();
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      const std::string field = "engines[" + std::to_string(i) + "]";
+      sim::EngineKind kind{};
+      if (!list[i].is_string() || !sim::parse_engine_kind(list[i].get<std::string>(), kind))
+        return Status::error(field + ": " + allowed + ", got " + list[i].dump());
+      for (sim::EngineKind other : out)
+        if (other == kind)
+          return Status::error(field + ": '" + sim::to_string(kind) + "' appears twice");
+      out.push_back(kind);
+    }
+  }
+  return {};
+}
 
 }  // namespace
 
@@ -199,6 +233,19 @@ Status parse_task_config(const nlohmann::json& doc, TaskConfig& out) {
         return Status::error(std::string("randomisation.") + name + ": must be in [0, 1)");
     }
   }
+  if (Status s = parse_engines(doc, c.engines); !s) return s;
+  if (doc.contains("validate")) {
+    const auto& val = doc.at("validate");
+    if (!val.is_object()) return Status::error("validate: must be an object");
+    for (const auto& [key, value] : val.items())
+      if (key != "seeds") return Status::error("validate." + key + ": unknown field");
+    if (val.contains("seeds")) {
+      const auto& n = val.at("seeds");
+      if (!n.is_number_integer() || n.get<std::int64_t>() < 1 || n.get<std::int64_t>() > 1000)
+        return Status::error("validate.seeds: must be an integer in [1, 1000]");
+      c.validate_seeds = n.get<int>();
+    }
+  }
   if (Status s = vector_of(doc, "hypervolume_ideal", c.hv_ideal); !s) return s;
   if (Status s = vector_of(doc, "hypervolume_nadir", c.hv_nadir); !s) return s;
   if (c.hv_ideal.empty() != c.hv_nadir.empty())
@@ -250,6 +297,10 @@ nlohmann::json to_json(const TaskConfig& c) {
                         {"friction_range", c.randomisation.friction_range},
                         {"mass_range", c.randomisation.mass_range},
                         {"strength_range", c.randomisation.strength_range}}}};
+  nlohmann::json engines = nlohmann::json::array();
+  for (sim::EngineKind e : c.engines) engines.push_back(sim::to_string(e));
+  j["engines"] = engines;
+  j["validate"] = {{"seeds", c.validate_seeds}};
   auto limit = [](double v) { return v < 0.0 ? nlohmann::json(nullptr) : nlohmann::json(v); };
   j["max_drift_ratio"] = limit(c.max_drift_ratio);
   j["max_heading_change_deg"] = limit(c.max_heading_change_deg);

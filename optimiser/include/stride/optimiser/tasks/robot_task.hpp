@@ -1,8 +1,9 @@
 // RobotTask: the walk and kick optimisation tasks as NSGA-II problems.
 //
-// One evaluation = `trials` episodes. Each episode builds a simulated world (SimWorld seeded
-// with trial_seed + k; trial 0 of a single-trial task is the nominal world, robust trials
-// randomise friction, masses, servo strength and IMU noise) and a Firmware, stages the genome
+// One evaluation = `trials` x engines episodes (TaskConfig::world_count). Each episode builds a
+// simulated world (SimWorld on the world's engine, seeded with trial_seed + trial; trial 0 of a
+// single-trial task is the nominal world, robust trials randomise friction, masses, servo
+// strength and IMU noise) and a Firmware, stages the genome
 // into the firmware's ParameterStore (ParameterStore::stage, the console's atomic write; it
 // takes effect at tick 0 through apply_staged, as in the ControlLoop), and runs the unmodified
 // Controller against SimRobot in lockstep (sim::run_episode).
@@ -20,7 +21,7 @@
 // kick  Obj1 = max field-plane sway sqrt(ax^2 + ay^2) [m/s^2] (1000 if fell),
 //       Obj2 = 1 / ball distance, distance clamped to [0.001, 10] m (1000 if fell).
 //       c0 = fell ? -10 : 0; c1 = -(|integral of gyro z| - limit) when over the limit.
-// Trials are aggregated per value by mean or worst (max objective, min constraint).
+// Worlds are aggregated per value by mean or worst (max objective, min constraint).
 // Every world and firmware is private to the call, so evaluate() is thread-safe and the
 // outcome depends on the genome alone. The files they are built from (servo table, keyframe
 // scripts, URDF) are read once, when the task is made, and shared read-only.
@@ -58,6 +59,9 @@ struct EpisodeScore {
   double heading_change_rad = 0.0;
   // walk-omni: the segments.
   OmniSegments omni{};
+  /// Empty, or why the world failed (NaN, explosion, integrator): run_world() then scores the
+  /// episode as a fall at that moment; run_trial() returns it as an error.
+  std::string world_failure;
 };
 
 class RobotTask final : public Problem {
@@ -71,9 +75,16 @@ class RobotTask final : public Problem {
   const TaskConfig& config() const { return config_; }
   /// The start genome (Ind_O: every gene's start value).
   Genome start_genome() const;
-  /// One episode of trial `trial` (0-based); a failure reason on a broken set-up or world.
+  /// The options of world `world` (0-based, < config().world_count()) of the task.
+  sim::WorldOptions world_options(int world) const;
+  /// One episode in world `world` (0-based); a failure reason on a broken set-up or world.
   /// `capture`, if given, observes every tick (replays in `stride report`); it changes nothing.
-  Status run_trial(const Genome& genome, int trial, EpisodeScore& out,
+  Status run_trial(const Genome& genome, int world, EpisodeScore& out,
+                   sim::EpisodeCapturer* capture = nullptr) const;
+  /// One episode in any world (validation). A world that fails mid-episode (NaN, explosion)
+  /// is not an error: the score is a fall at that moment with `world_failure` set. Errors are
+  /// a set-up that cannot be built (engine, model, genome refused).
+  Status run_world(const Genome& genome, sim::WorldOptions world, EpisodeScore& out,
                    sim::EpisodeCapturer* capture = nullptr) const;
   /// The genome as a parameter file body {"name": value, ...} (loadable by --params).
   nlohmann::json parameter_file(const Genome& genome) const;

@@ -3,7 +3,8 @@
 // A task config names the task ("walk", "walk-omni" or "kick"), the NSGA-II inputs (seed, pop,
 // generations, pc, pm, etaC, etaM, seed_fraction), the genome as parameter names with bounds and
 // start values (the firmware's current values, Ind_O), the episode settings and the robust
-// evaluation (trials under seeded randomised worlds, aggregated by mean or worst).
+// evaluation (trials under seeded randomised worlds, on one or more physics engines, aggregated
+// by mean or worst) and the validation that follows a run (`stride validate`, validation.hpp).
 // Every error names the offending field, e.g. "genes[3].max: must be greater than min".
 #pragma once
 
@@ -16,6 +17,7 @@
 
 #include "stride/hal/status.hpp"
 #include "stride/optimiser/nsga2/settings.hpp"
+#include "stride/sim_hal/world_options.hpp"
 
 namespace stride::opt {
 
@@ -73,6 +75,13 @@ struct TaskConfig {
   Aggregate aggregate = Aggregate::kMean;
   std::uint64_t trial_seed = 1;  ///< base world seed of the trials
   TrialRandomisation randomisation;
+  /// The physics engines every trial runs on (config `engine`: one, or `engines`: a list);
+  /// a genome is scored in trials x engines worlds (world k: engine k / trials, trial
+  /// k % trials, so both engines see the same seeds).
+  std::vector<sim::EngineKind> engines{sim::EngineKind::kSimbody};
+  int world_count() const { return trials * static_cast<int>(engines.size()); }
+  /// `stride validate` after a run (config `validate` {seeds}): fresh seeds per world.
+  int validate_seeds = 10;
   // Hypervolume normalisation (ideal and nadir objective vectors).
   std::vector<double> hv_ideal;
   std::vector<double> hv_nadir;
