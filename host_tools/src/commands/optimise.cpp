@@ -25,6 +25,7 @@
 #include "stride/optimiser/run/optimisation_run.hpp"
 #include "stride/optimiser/run/progress.hpp"
 #include "stride/optimiser/run/run_report.hpp"
+#include "stride/optimiser/run/validation.hpp"
 #include "stride/optimiser/tasks/robot_task.hpp"
 
 namespace {
@@ -147,6 +148,7 @@ int run_optimise(int argc, char** argv) {
       .option("trials",
               "robust evaluation: K seeded randomised worlds per genome (overrides the config)")
       .option("aggregate", "how trials combine: mean or worst (overrides the config)")
+      .option("engine", "robot tasks: physics engine simbody|mujoco (overrides the config's)")
       .option("out", "run directory to write (or resume)")
       .option("resume", "continue the run in --out from its checkpoint", false)
       .option("seed", "random seed", true, "1")
@@ -165,6 +167,7 @@ int run_optimise(int argc, char** argv) {
               "0")
       .option("mpi", "evaluate on MPI ranks (under mpirun: rank 0 optimises, the others evaluate)",
               false)
+      .option("no-validate", "robot runs: skip `stride validate` at the end", false)
       .option("json", "print a JSON summary on stdout", false)
       .option("help", "show this help", false);
   if (auto st = args.parse(argc, argv); !st) return bad_input(st.message());
@@ -175,7 +178,9 @@ int run_optimise(int argc, char** argv) {
         "mean|worst]\n"
         "       stride optimise --out DIR --resume\n"
         "Runs NSGA-II and writes run.json, evaluations.jsonl, generations.jsonl, checkpoint.json\n"
-        "and pareto.csv to DIR; prints one progress line per generation on stderr.\n\n%s",
+        "and pareto.csv to DIR; prints one progress line per generation on stderr.\n"
+        "A robot run ends with `stride validate DIR` (validation.json; the config's\n"
+        "validate.seeds seeds per world) unless --no-validate.\n\n%s",
         args.help().c_str());
     return 0;
   }
@@ -231,6 +236,12 @@ int run_optimise(int argc, char** argv) {
       if (a != "mean" && a != "worst")
         return bad_input("--aggregate: must be mean or worst, got '" + a + "'");
       task.aggregate = a == "mean" ? opt::Aggregate::kMean : opt::Aggregate::kWorst;
+    }
+    if (args.has("engine")) {
+      stride::sim::EngineKind engine{};
+      if (!stride::sim::parse_engine_kind(args.get("engine"), engine))
+        return bad_input("--engine: must be simbody or mujoco, got '" + args.get("engine") + "'");
+      task.engines = {engine};
     }
     s.config.settings = task.settings;
     if (auto st = read_settings(args, 0, s); !st) return bad_input(st.message());
@@ -327,6 +338,28 @@ int run_optimise(int argc, char** argv) {
                  (dir / "pareto_by_generation.svg").c_str(), (dir / "hypervolume.svg").c_str(),
                  (dir / "front").c_str());
   }
+  nlohmann::json validation = nullptr;
+  if (robot_task != nullptr && !summary.stopped && !args.has("no-validate")) {
+    opt::ValidationSubject subject;
+    if (auto st = opt::load_validation_subject(dir, subject); !st) {
+      std::fprintf(stderr, "stride optimise: validation skipped: %s\n", st.message().c_str());
+    } else {
+      opt::ValidationOptions v;
+      v.seeds = subject.config.validate_seeds;
+      v.jobs = static_cast<int>(s.jobs);
+      v.progress = opt::validation_progress_printer(isatty(STDERR_FILENO) != 0);
+      nlohmann::json result;
+      Status done = opt::run_validation(subject, v, result);
+      if (done) done = opt::write_validation_file(dir, result);
+      if (!done) {
+        std::fprintf(stderr, "stride optimise: validation: %s\n", done.message().c_str());
+        return 1;
+      }
+      std::fprintf(stderr, "%svalidation: %s\n", opt::validation_text(result).c_str(),
+                   (dir / "validation.json").c_str());
+      validation = (dir / "validation.json").string();
+    }
+  }
   if (summary.stopped) {
     std::fprintf(stderr,
                  "stride optimise: stopped after generation %d (checkpoint written); continue with "
@@ -352,7 +385,8 @@ int run_optimise(int argc, char** argv) {
                                 {"igd", number(r.igd)},
                                 {"resumed", summary.resumed},
                                 {"resumed_at_generation", summary.resumed_at_generation},
-                                {"stopped", summary.stopped}};
+                                {"stopped", summary.stopped},
+                                {"validation", validation}};
     std::printf("%s\n", out.dump().c_str());
   }
   return summary.stopped ? 130 : 0;

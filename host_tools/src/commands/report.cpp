@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <memory>
 #include <string>
 
@@ -18,6 +19,7 @@
 #include "stride/optimiser/run/direction_speeds.hpp"
 #include "stride/optimiser/run/optimisation_run.hpp"
 #include "stride/optimiser/run/run_report.hpp"
+#include "stride/optimiser/run/validation.hpp"
 #include "stride/optimiser/tasks/robot_task.hpp"
 
 namespace {
@@ -65,7 +67,8 @@ int run_report(int argc, char** argv) {
         "kick: least sway, longest kick) and the knee point beside Ind_O.\n"
         "A walk-omni run also gets a table of the speed per direction of Ind_O, the\n"
         "picks and each direction's best front member (simulated again in the run's\n"
-        "worlds) beside the reference figures (Bit-Bots, NUgus in simulation).\n\n%s",
+        "worlds) beside the reference figures (Bit-Bots, NUgus in simulation).\n"
+        "With DIR/validation.json (stride validate) also the validation table.\n\n%s",
         args.help().c_str());
     return 0;
   }
@@ -117,6 +120,17 @@ int run_report(int argc, char** argv) {
     }
     summary["directions"] = stride::opt::direction_table_json(directions);
   }
+  // validation.json (stride validate): shown when present and readable.
+  nlohmann::json validation = nullptr;
+  if (std::ifstream in(dir / "validation.json"); in) {
+    validation = nlohmann::json::parse(in, nullptr, false);
+    if (validation.is_discarded() || !validation.is_object()) {
+      std::fprintf(stderr, "stride report: warning: %s is not a JSON object\n",
+                   (dir / "validation.json").c_str());
+      validation = nullptr;
+    }
+  }
+  if (validation.is_object()) summary["validation"] = validation;
   if (args.has("json")) {
     std::printf("%s\n", summary.dump().c_str());
     return 0;
@@ -139,6 +153,10 @@ int run_report(int argc, char** argv) {
   }
   if (!directions.empty())
     std::printf("\n%s", stride::opt::direction_table_text(directions).c_str());
+  if (validation.is_object() && validation.value("format", "") == "stride-validation-1")
+    std::printf("\n%s", stride::opt::validation_text(validation).c_str());
+  else if (validation.is_null())
+    std::printf("\nno validation.json (stride validate %s)\n", dir.c_str());
   std::printf("plots: %s, %s\nreport: %s (%.1f MB; open it in a browser)\n",
               (dir / "pareto_by_generation.svg").c_str(), (dir / "hypervolume.svg").c_str(),
               page.file.c_str(), static_cast<double>(page.bytes) / 1e6);

@@ -122,6 +122,55 @@ std::string picks_table_html(const RunData& data, const std::vector<PickRow>& ro
   return html + "</table>\n";
 }
 
+// validation.json as `stride validate` writes it: the worlds, then one row per individual and
+// world (gate passed or failed marked), the walk-omni speeds as extra columns.
+static std::string stride_validation_html(const json& doc) {
+  std::string html =
+      "<table id=\"validation-worlds\"><tr><th class=\"name\">world</th>"
+      "<th>engine</th><th>step [us]</th><th>friction +-</th><th>mass +-</th>"
+      "<th>strength +-</th><th>latency p</th><th>seeds</th>"
+      "<th class=\"name\">note</th></tr>\n";
+  for (const json& w : doc["worlds"]) {
+    if (!w.is_object()) continue;
+    html += "<tr>" + cell(w.value("name", ""), "name") + cell(w.value("engine", ""));
+    for (const char* k : {"physics_step_us", "friction_range", "mass_range", "strength_range",
+                          "latency_probability"})
+      html += cell(w.contains(k) ? scalar_text(w[k]) : "-");
+    html += cell(std::to_string(w.value("seeds", json::array()).size())) +
+            cell(w.contains("unavailable") ? "unavailable: " + scalar_text(w["unavailable"]) : "",
+                 "name") +
+            "</tr>\n";
+  }
+  html += "</table>\n";
+  std::vector<std::string> columns;
+  for (const json& r : doc["table"])
+    if (r.is_object())
+      for (const auto& [k, v] : r.items())
+        if (is_scalar(v) && std::find(columns.begin(), columns.end(), k) == columns.end())
+          columns.push_back(k);
+  html += "<table id=\"validation-table\"><tr>";
+  for (const auto& c : columns) html += "<th>" + html_escape(c) + "</th>";
+  html += "</tr>\n";
+  for (const json& r : doc["table"]) {
+    if (!r.is_object()) continue;
+    html += "<tr>";
+    for (const auto& c : columns) {
+      const std::string text = r.contains(c) ? scalar_text(r[c]) : "";
+      const char* cls = c == "individual" || c == "world" ? "name"
+                        : c != "gate"                     ? nullptr
+                        : text == "pass"                  ? "better"
+                                                          : "worse";
+      html += cell(text, cls);
+    }
+    html += "</tr>\n";
+  }
+  return html +
+         "</table>\n<p class=\"note\">Gate: at least 80 % of the seeds reach the goal "
+         "without a fall and the median of the task's measure is within 25 % of the "
+         "individual's own value in the run. Gain kept = (Ind_O's median - the pick's) "
+         "in the world / the same in the run, shown only where Ind_O passes the gate.</p>\n";
+}
+
 std::string validation_table_html(const std::filesystem::path& file) {
   std::ifstream in(file);
   if (!in) return "";
@@ -129,6 +178,10 @@ std::string validation_table_html(const std::filesystem::path& file) {
   if (doc.is_discarded())
     return missing_note(file.filename().string() +
                         " exists but cannot be parsed (not valid JSON).");
+  if (doc.is_object() && doc.value("format", "") == "stride-validation-1" &&
+      doc.contains("worlds") && doc["worlds"].is_array() && doc.contains("table") &&
+      doc["table"].is_array())
+    return stride_validation_html(doc);
   std::vector<std::pair<std::string, const json*>> rows;
   collect_rows(doc, "", rows);
   if (rows.empty())

@@ -1,0 +1,108 @@
+// Validation of a robot run (`stride validate`, issue 21): Ind_O and the picks re-scored on
+// worlds the run never saw, and how much of each pick's gain over Ind_O survives there.
+//
+// Individuals: Ind_O (run.json's start genome) and the picks of `stride report` (best Obj1,
+// best Obj2, knee: report::run_picks; a member picked twice appears once).
+// Worlds (each run with N fresh seeds, trial_seed + 1000 + i, i < N, never a seed of the run's
+// trials; IMU noise on in all of them):
+//   engine E            every engine the run was not scored on (or the --engine list), with the
+//                       run's randomisation
+//   fresh seeds         the run's (first) engine and randomisation
+//   wider randomisation friction, masses and servo strength at 1.5x the run's ranges, at least
+//                       1.5x the robust defaults (0.3, 0.075, 0.15), at most 0.9; one control
+//                       tick of command latency in half of the worlds (latency probability 0.5).
+//                       sim_hal has no centre-of-mass randomisation: the mass scale per link
+//                       moves the whole robot's centre of mass only through the link masses.
+//   half step           the physics step halved (or --physics-step-us), the run's randomisation
+// A world that fails mid-episode (NaN, explosion) is a fall with its reason; a world that cannot
+// be built (an engine not in this build) is reported as unavailable with the reason.
+//
+// Per individual and world: reached (walk: the goal without a fall; walk-omni: every segment
+// without a fall; kick: no fall and the ball at least 0.5 m), falls, the median of each
+// objective over the seeds. Gate: at least 80 % of the seeds reached (8 of 10) and the median
+// of the task's measure (walk: time to the goal, Obj1; walk-omni: the speed score, Obj1; kick:
+// 1 / ball distance, Obj2) no worse than the individual's own value in the run's world (its
+// logged objective) by more than 25 % of that value. Gain kept per objective (picks only, and
+// only where Ind_O passes the gate in that world):
+//   (Ind_O's median - the pick's median) in the world / (Ind_O's - the pick's) in the run.
+// The result is deterministic: jobs are indexed, seeds fixed, no wall times recorded.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "stride/hal/status.hpp"
+#include "stride/optimiser/nsga2/genome.hpp"
+#include "stride/optimiser/tasks/robot_task.hpp"
+
+namespace stride::opt {
+
+inline constexpr double kGateMinReachedFraction = 0.8;
+inline constexpr double kGateMaxWorseFraction = 0.25;
+inline constexpr double kKickSuccessDistanceM = 0.5;
+/// First of the validation seeds, above trial_seed (the run's trials use trial_seed + k, k <
+/// trials <= 1000).
+inline constexpr std::uint64_t kValidationSeedOffset = 1000;
+
+struct ValidationOptions {
+  /// The engines of the "engine E" worlds; empty: every engine the run did not use.
+  std::vector<sim::EngineKind> engines;
+  int seeds = 10;
+  /// Physics step of the "half step" world [ns]; 0: half the run's.
+  std::int64_t physics_step_ns = 0;
+  int jobs = 1;  ///< evaluation threads
+  /// Called on the calling thread after each episode (done, total).
+  std::function<void(std::size_t, std::size_t)> progress;
+};
+
+/// An individual to validate.
+struct ValidationIndividual {
+  std::string name;  ///< "Ind_O", "fastest, knee", ...
+  std::string file;  ///< front file, empty for Ind_O
+  Genome genome;
+  std::vector<double> run_objectives;  ///< its score in the run's own world (logged)
+};
+
+/// What a run directory offers for validation: its task, Ind_O and the picks.
+struct ValidationSubject {
+  std::filesystem::path dir;
+  TaskConfig config;
+  std::vector<ValidationIndividual> individuals;  ///< Ind_O first
+};
+
+/// Reads a run directory. Every error is bad input (one line naming what is wrong): not a
+/// robot run, no run.json, a damaged task config, no picks (no front members).
+Status load_validation_subject(const std::filesystem::path& dir, ValidationSubject& out);
+
+/// One validation world: its name, its options (seed set per episode) and the seeds.
+struct ValidationWorld {
+  std::string name;
+  sim::WorldOptions options;
+  std::vector<std::uint64_t> seeds;
+};
+/// The worlds for a task; bad options (an engine list, a step that does not divide the
+/// control period) are an error naming the option.
+Status validation_worlds(const RobotTask& task, const ValidationOptions& options,
+                         std::vector<ValidationWorld>& out);
+
+/// Runs every individual in every world and summarises (format "stride-validation-1"). A
+/// missing Ind_O score in the log is computed with task.evaluate().
+Status run_validation(const ValidationSubject& subject, const ValidationOptions& options,
+                      nlohmann::json& out);
+
+/// Writes `result` as DIR/validation.json (temp file + rename: never half written).
+Status write_validation_file(const std::filesystem::path& dir, const nlohmann::json& result);
+
+/// Progress of a validation on stderr: "validate: done/total episodes" redrawn in place on a
+/// terminal, else a line at every tenth of the work.
+std::function<void(std::size_t, std::size_t)> validation_progress_printer(bool terminal);
+
+/// The human table of a validation result.
+std::string validation_text(const nlohmann::json& result);
+
+}  // namespace stride::opt

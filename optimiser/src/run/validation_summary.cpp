@@ -1,0 +1,271 @@
+// Validation summaries: gate, gain kept, the flat table and its text (validation_summary.hpp).
+#include "stride/optimiser/run/validation_summary.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <sstream>
+
+#include "stride/optimiser/run/direction_speeds.hpp"
+
+namespace stride::opt {
+
+using nlohmann::json;
+
+namespace {
+
+json number_or_null(double v) {
+  return std::isfinite(v) ? json(v) : json(nullptr);
+}
+
+json world_json(const ValidationWorld& w, const std::string& unavailable) {
+  const sim::WorldOptions& o = w.options;
+  json j = {{"name", w.name},
+            {"engine", sim::to_string(o.engine)},
+            {"physics_step_us", o.physics_step_ns / 1000},
+            {"imu_noise", true},
+            {"friction_range", o.randomise.friction_range},
+            {"mass_range", o.randomise.mass_range},
+            {"strength_range", o.randomise.strength_range},
+            {"latency_probability", o.randomise.latency_probability},
+            {"seeds", w.seeds}};
+  if (!unavailable.empty()) j["unavailable"] = unavailable;
+  return j;
+}
+
+/// The gate and medians of one individual in one world.
+struct Cell {
+  int seeds = 0, reached = 0, falls = 0;
+  std::vector<double> medians;
+  bool gate = false;
+  double gate_median = 0.0, gate_limit = 0.0;
+  std::string unavailable;
+  json failures = json::array();
+  std::array<double, kOmniSegments> speeds{};
+};
+
+Cell summarise_cell(const TaskConfig& config, const ValidationIndividual& ind,
+                    const ValidationWorld& world, const std::vector<EpisodeOutcome>& seeds) {
+  Cell c;
+  c.seeds = static_cast<int>(seeds.size());
+  std::vector<std::vector<double>> values(2);
+  for (std::size_t s = 0; s < seeds.size(); ++s) {
+    const EpisodeOutcome& e = seeds[s];
+    if (!e.setup_error.empty()) {
+      c.unavailable = e.setup_error;
+      return c;
+    }
+    if (e.score.fell) ++c.falls;
+    if (validation_reached(config, e.score)) ++c.reached;
+    if (!e.score.world_failure.empty())
+      c.failures.push_back({{"seed", world.seeds[s]}, {"reason", e.score.world_failure}});
+    for (std::size_t m = 0; m < 2 && m < e.score.objectives.size(); ++m)
+      values[m].push_back(e.score.objectives[m]);
+    for (int d = 0; d < kOmniSegments; ++d)
+      c.speeds[d] += e.score.omni[d].speed / static_cast<double>(seeds.size());
+  }
+  for (auto& v : values) c.medians.push_back(median(v));
+  const int m = gate_objective(config);
+  const double own = ind.run_objectives.size() > static_cast<std::size_t>(m)
+                         ? ind.run_objectives[m]
+                         : std::numeric_limits<double>::quiet_NaN();
+  c.gate_median = c.medians[m];
+  c.gate_limit = own + kGateMaxWorseFraction * std::abs(own);
+  const int needed = static_cast<int>(std::ceil(kGateMinReachedFraction * c.seeds - 1e-9));
+  c.gate = c.seeds > 0 && c.reached >= needed && c.gate_median <= c.gate_limit;
+  return c;
+}
+
+std::string fixed(const json& v, int decimals) {
+  if (!v.is_number()) return "-";
+  char text[32];
+  std::snprintf(text, sizeof text, "%.*f", decimals, v.get<double>());
+  return text;
+}
+
+}  // namespace
+
+bool validation_reached(const TaskConfig& config, const EpisodeScore& score) {
+  if (score.fell || !score.world_failure.empty()) return false;
+  if (config.task == "walk") return score.time_to_goal_s >= 0.0;
+  if (config.task == "kick") return score.ball_distance_m >= kKickSuccessDistanceM;
+  for (const OmniSegment& s : score.omni)
+    if (!s.measured) return false;
+  return true;
+}
+
+int gate_objective(const TaskConfig& config) {
+  return config.task == "kick" ? 1 : 0;
+}
+
+double median(std::vector<double> values) {
+  if (values.empty()) return std::numeric_limits<double>::quiet_NaN();
+  std::sort(values.begin(), values.end());
+  const std::size_t n = values.size();
+  return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+json summarise_validation(const std::filesystem::path& dir, const TaskConfig& config,
+                          const std::vector<ValidationIndividual>& individuals,
+                          const std::vector<ValidationWorld>& worlds,
+                          const std::vector<std::vector<std::vector<EpisodeOutcome>>>& outcomes) {
+  (void)dir;  // not recorded: the same run validated anywhere gives the same file
+  std::vector<std::vector<Cell>> cells(individuals.size());
+  for (std::size_t i = 0; i < individuals.size(); ++i)
+    for (std::size_t w = 0; w < worlds.size(); ++w)
+      cells[i].push_back(summarise_cell(config, individuals[i], worlds[w], outcomes[i][w]));
+  json engines = json::array();
+  for (sim::EngineKind e : config.engines) engines.push_back(sim::to_string(e));
+  json worlds_json = json::array();
+  for (std::size_t w = 0; w < worlds.size(); ++w)
+    worlds_json.push_back(world_json(worlds[w], cells.empty() ? "" : cells[0][w].unavailable));
+  const bool omni = config.task == "walk-omni";
+  json individuals_json = json::array(), table = json::array();
+  bool all_passed = true;
+  for (std::size_t i = 0; i < individuals.size(); ++i) {
+    const ValidationIndividual& ind = individuals[i];
+    json per_world = json::array();
+    for (std::size_t w = 0; w < worlds.size(); ++w) {
+      const Cell& c = cells[i][w];
+      json row = {{"world", worlds[w].name}};
+      json flat = {{"individual", ind.name}, {"world", worlds[w].name}};
+      if (!c.unavailable.empty()) {
+        row["unavailable"] = c.unavailable;
+        flat["gate"] = "unavailable";
+        per_world.push_back(row);
+        table.push_back(flat);
+        all_passed = false;
+        continue;
+      }
+      json gain = nullptr;
+      const Cell& o = cells[0][w];
+      if (i > 0 && o.gate) {
+        gain = json::array();
+        for (std::size_t m = 0; m < 2; ++m) {
+          const double run_gain = individuals[0].run_objectives[m] - ind.run_objectives[m];
+          const double world_gain = o.medians[m] - c.medians[m];
+          gain.push_back(std::abs(run_gain) > 1e-12 ? number_or_null(world_gain / run_gain)
+                                                    : json(nullptr));
+        }
+      }
+      json medians = json::array();
+      for (double v : c.medians) medians.push_back(number_or_null(v));
+      row["seeds"] = c.seeds;
+      row["reached"] = c.reached;
+      row["reached_fraction"] = c.seeds > 0 ? static_cast<double>(c.reached) / c.seeds : 0.0;
+      row["falls"] = c.falls;
+      row["median_objectives"] = medians;
+      row["gate"] = {{"passed", c.gate},
+                     {"objective", gate_objective(config) + 1},
+                     {"median", number_or_null(c.gate_median)},
+                     {"limit", number_or_null(c.gate_limit)}};
+      row["gain_kept"] = gain;
+      row["failures"] = c.failures;
+      flat["reached_fraction"] = row["reached_fraction"];
+      flat["falls"] = c.falls;
+      flat["median_f1"] = medians[0];
+      flat["median_f2"] = medians[1];
+      flat["gate"] = c.gate ? "pass" : "fail";
+      flat["gain_kept_f1"] = gain.is_array() ? gain[0] : json(nullptr);
+      flat["gain_kept_f2"] = gain.is_array() ? gain[1] : json(nullptr);
+      if (omni) {
+        json speeds = json::object();
+        for (int d = 0; d < kOmniSegments; ++d)
+          speeds[to_string(static_cast<OmniDirection>(d))] = c.speeds[d];
+        row["speeds"] = speeds;
+        for (int d = 0; d < kOmniSegments; ++d)
+          flat[to_string(static_cast<OmniDirection>(d))] = c.speeds[d];
+      }
+      all_passed = all_passed && c.gate;
+      per_world.push_back(row);
+      table.push_back(flat);
+    }
+    json run_objectives = json::array();
+    for (double v : ind.run_objectives) run_objectives.push_back(number_or_null(v));
+    individuals_json.push_back({{"name", ind.name},
+                                {"file", ind.file},
+                                {"run_objectives", run_objectives},
+                                {"worlds", per_world}});
+  }
+  return {{"format", "stride-validation-1"},
+          {"task", config.task},
+          {"run_engines", engines},
+          {"gate",
+           {{"min_reached_fraction", kGateMinReachedFraction},
+            {"max_worse_fraction", kGateMaxWorseFraction},
+            {"objective", gate_objective(config) + 1}}},
+          {"worlds", worlds_json},
+          {"individuals", individuals_json},
+          {"table", table},
+          {"all_passed", all_passed}};
+}
+
+std::string validation_text(const json& result) {
+  std::ostringstream out;
+  char line[512];
+  const std::string task = result.value("task", "");
+  out << "validation of a " << task << " run (objectives: "
+      << (task == "kick"        ? "f1 max sway [m/s^2], f2 1/ball distance [1/m]"
+          : task == "walk-omni" ? "f1 -(v_f + v_b + 2 v_side + 0.2 w_turn), f2 max |a| [m/s^2]"
+                                : "f1 time to goal [s], f2 max |a| [m/s^2]")
+      << ")\nworlds (IMU noise on in all):\n";
+  for (const json& w : result.value("worlds", json::array())) {
+    std::snprintf(line, sizeof line,
+                  "  %-20s %-7s step %4lld us, friction +-%.3g, mass +-%.3g, strength +-%.3g, "
+                  "latency p %.2g, %zu seeds%s%s\n",
+                  w.value("name", "").c_str(), w.value("engine", "").c_str(),
+                  static_cast<long long>(w.value("physics_step_us", 0)),
+                  w.value("friction_range", 0.0), w.value("mass_range", 0.0),
+                  w.value("strength_range", 0.0), w.value("latency_probability", 0.0),
+                  w.value("seeds", json::array()).size(),
+                  w.contains("unavailable") ? ": UNAVAILABLE, " : "",
+                  w.contains("unavailable") ? w["unavailable"].get<std::string>().c_str() : "");
+    out << line;
+  }
+  std::snprintf(line, sizeof line, "%-22s %-20s %7s %5s %10s %10s %5s %8s %8s\n", "individual",
+                "world", "reached", "falls", "median f1", "median f2", "gate", "kept f1",
+                "kept f2");
+  out << line;
+  for (const json& r : result.value("table", json::array())) {
+    const std::string gate = r.value("gate", "");
+    std::snprintf(line, sizeof line, "%-22s %-20s %7s %5s %10s %10s %5s %8s %8s\n",
+                  r.value("individual", "").c_str(), r.value("world", "").c_str(),
+                  r.contains("reached_fraction")
+                      ? (fixed(r["reached_fraction"].get<double>() * 100.0, 0) + "%").c_str()
+                      : "-",
+                  r.contains("falls") ? std::to_string(r["falls"].get<int>()).c_str() : "-",
+                  fixed(r.value("median_f1", json()), 3).c_str(),
+                  fixed(r.value("median_f2", json()), 3).c_str(), gate.c_str(),
+                  fixed(r.value("gain_kept_f1", json()), 2).c_str(),
+                  fixed(r.value("gain_kept_f2", json()), 2).c_str());
+    out << line;
+  }
+  if (task == "walk-omni") {
+    for (const json& w : result.value("worlds", json::array())) {
+      std::vector<DirectionSpeeds> rows;
+      for (const json& ind : result.value("individuals", json::array()))
+        for (const json& cell : ind.value("worlds", json::array())) {
+          if (cell.value("world", "") != w.value("name", "") || !cell.contains("speeds")) continue;
+          DirectionSpeeds row;
+          row.label = ind.value("name", "");
+          for (int d = 0; d < kOmniSegments; ++d)
+            row.speed[d] = cell["speeds"].value(to_string(static_cast<OmniDirection>(d)), 0.0);
+          row.falls = cell.value("falls", 0);
+          row.trials = cell.value("seeds", 0);
+          rows.push_back(row);
+        }
+      if (rows.empty()) continue;
+      rows.push_back(reference_direction_speeds());
+      out << "\nspeeds per direction, world " << w.value("name", "") << " (mean over seeds)\n"
+          << direction_table_text(rows);
+    }
+  }
+  out << (result.value("all_passed", false)
+              ? "every individual passes the gate in every world\n"
+              : "not every individual passes the gate in every world (gate: >= 80 % of the seeds "
+                "reached without a fall, median within 25 % of the run's own value)\n");
+  return out.str();
+}
+
+}  // namespace stride::opt
