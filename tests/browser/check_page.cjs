@@ -88,6 +88,21 @@ async function checkPage(browser, args) {
       if (!args.expectWarnings && s.missing.length > 0)
         failures.push('section ' + s.id + ' says: ' + s.missing.join(' / '));
     }
+    // The validation section (stride validate's validation.json): a row per individual and
+    // world, Ind_O among them, each with its gate.
+    if (args.sections.split(',').includes('validation')) {
+      const v = await page.evaluate(() => {
+        const t = document.querySelector('section#validation table#validation-table');
+        if (!t) return null;
+        const rows = Array.from(t.querySelectorAll('tr')).slice(1);
+        return {rows: rows.length, ind_o: rows.filter((r) => /Ind_O/.test(r.textContent)).length,
+                gates: rows.filter((r) => Array.from(r.querySelectorAll('td'))
+                    .some((td) => ['pass', 'fail'].includes(td.textContent.trim()))).length};
+      });
+      if (!v) failures.push('section validation has no table#validation-table');
+      else if (v.rows < 2 || v.ind_o < 1 || v.gates !== v.rows)
+        failures.push('validation table: ' + JSON.stringify(v));
+    }
     // The front chart names Ind_O and every point has a tooltip (objectives, front file).
     const front = await page.evaluate(() => {
       const svg = document.querySelector('section#pareto svg');

@@ -142,7 +142,10 @@ static std::string stride_validation_html(const json& doc) {
             "</tr>\n";
   }
   html += "</table>\n";
-  std::vector<std::string> columns;
+  // The table's own order first (JSON objects come back sorted by key), then any other column.
+  std::vector<std::string> columns = {"individual", "world",        "reached_fraction",
+                                      "falls",      "median_f1",    "median_f2",
+                                      "gate",       "gain_kept_f1", "gain_kept_f2"};
   for (const json& r : doc["table"])
     if (r.is_object())
       for (const auto& [k, v] : r.items())

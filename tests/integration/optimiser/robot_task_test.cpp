@@ -80,6 +80,7 @@ fs::path short_walk_config(const fs::path& dir, int generations) {
   c["duration_s"] = 2.0;
   c["goal_distance_m"] = 0.3;
   c["pm"] = 0.2;
+  c["validate"] = {{"seeds", 2}};  // the validation at the end of each run stays short
   const fs::path path = dir / "walk-short.json";
   std::ofstream(path) << c.dump(1);
   return path;
@@ -155,9 +156,35 @@ TEST(RobotTask, RobustTrialsAggregateByMeanOrWorst) {
   EXPECT_EQ(mean_task.evaluate(g).objectives, mean.objectives);  // seeded: repeatable
 }
 
+// `engines` lists the engines every trial runs on: trials x engines worlds, aggregated like trials.
+TEST(RobotTask, TrialsOnTwoEnginesAggregateOverEveryWorld) {
+  TaskConfig c = load("walk.json");
+  c.duration_s = 1.0;
+  c.trials = 1;
+  c.engines = {sim::EngineKind::kSimbody, sim::EngineKind::kMujoco};
+  const RobotTask task(c);
+  EXPECT_EQ(task.world_options(0).engine, sim::EngineKind::kSimbody);
+  EXPECT_EQ(task.world_options(1).engine, sim::EngineKind::kMujoco);
+  EXPECT_EQ(task.world_options(0).seed, task.world_options(1).seed);
+  const Genome g = task.start_genome();
+  EpisodeScore w0, w1;
+  ASSERT_TRUE(task.run_trial(g, 0, w0));
+  ASSERT_TRUE(task.run_trial(g, 1, w1));
+  const EvaluationOutcome mean = task.evaluate(g);
+  ASSERT_FALSE(mean.failed) << mean.reason;
+  for (int m = 0; m < 2; ++m)
+    EXPECT_DOUBLE_EQ(mean.objectives[m], 0.5 * (w0.objectives[m] + w1.objectives[m]));
+}
+
 TEST(RobotTaskCli, SerialThreadsAndMpiGiveTheSameRunAndTheFrontLoads) {
   test::TempDir tmp;
-  const fs::path config = short_walk_config(tmp.path(), 2);
+  // Every genome scored on both engines (issue 21): the same run whatever the evaluator.
+  fs::path config = short_walk_config(tmp.path(), 2);
+  {
+    nlohmann::json c = nlohmann::json::parse(read(config));
+    c["engines"] = {"simbody", "mujoco"};
+    std::ofstream(config) << c.dump(1);
+  }
   const std::string stride = kBin + "/stride";
   auto args = [&](const std::string& out, std::vector<std::string> extra) {
     std::vector<std::string> a = {"optimise", "--config", config.string(), "--out",
@@ -253,6 +280,7 @@ fs::path short_omni_config(const fs::path& dir) {
   c["pm"] = 0.2;
   c["trials"] = 1;
   c["omni"] = {{"start_s", 4.0}, {"ramp_s", 0.5}, {"hold_s", 2.0}, {"stop_s", 0.5}};
+  c["validate"] = {{"seeds", 1}};
   const fs::path path = dir / "omni-short.json";
   std::ofstream(path) << c.dump(1);
   return path;
@@ -341,6 +369,12 @@ TEST(RobotTaskCli, WalkOmniRunReportsSpeedsPerDirection) {
   const std::string text = read(tmp.path() / "stdout");
   EXPECT_NE(text.find("best per direction"), std::string::npos) << text;
   EXPECT_NE(text.find("Bit-Bots NUgus (sim)"), std::string::npos) << text;
+  // The validation at the end of the run: per world, the speed table of Ind_O and the picks.
+  EXPECT_NE(text.find("speeds per direction, world fresh seeds"), std::string::npos) << text;
+  const auto validation = nlohmann::json::parse(read(out / "validation.json"));
+  EXPECT_EQ(validation["task"], "walk-omni");
+  for (const auto& ind : validation["individuals"])
+    for (const auto& cell : ind["worlds"]) EXPECT_TRUE(cell["speeds"].contains("turn_right"));
 }
 
 TEST(RobotTaskCli, BadConfigNamesTheField) {

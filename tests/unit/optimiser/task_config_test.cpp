@@ -176,6 +176,60 @@ TEST(TaskConfig, StraightnessLimitsRoundTripIncludingOff) {
   EXPECT_DOUBLE_EQ(b.max_turn_translation_m, 0.2);
 }
 
+// Issue 21: the engines a genome is scored on, and the validation's seed count.
+TEST(TaskConfig, EnginesAndValidateSeedsParseRoundTripAndNameTheFieldOnError) {
+  TaskConfig c;
+  ASSERT_TRUE(parse_task_config(minimal(), c));
+  ASSERT_EQ(c.engines.size(), 1u);  // default: Simbody alone
+  EXPECT_EQ(c.engines[0], sim::EngineKind::kSimbody);
+  EXPECT_EQ(c.validate_seeds, 10);
+  auto d = minimal();
+  d["engine"] = "mujoco";
+  ASSERT_TRUE(parse_task_config(d, c));
+  EXPECT_EQ(c.engines, std::vector<sim::EngineKind>{sim::EngineKind::kMujoco});
+  d = minimal();
+  d["engines"] = {"simbody", "mujoco"};
+  d["trials"] = 3;
+  d["validate"] = {{"seeds", 4}};
+  ASSERT_TRUE(parse_task_config(d, c));
+  EXPECT_EQ(c.world_count(), 6);
+  EXPECT_EQ(c.validate_seeds, 4);
+  TaskConfig back;
+  ASSERT_TRUE(parse_task_config(to_json(c), back));
+  EXPECT_EQ(back.engines, c.engines);
+  EXPECT_EQ(back.validate_seeds, 4);
+  EXPECT_EQ(to_json(back), to_json(c));
+  // World k: engine k / trials, seed trial_seed + k % trials (both engines see the same seeds).
+  const RobotTask task(c);
+  for (int k = 0; k < c.world_count(); ++k) {
+    const sim::WorldOptions w = task.world_options(k);
+    EXPECT_EQ(w.engine, k < 3 ? sim::EngineKind::kSimbody : sim::EngineKind::kMujoco) << k;
+    EXPECT_EQ(w.seed, c.trial_seed + static_cast<std::uint64_t>(k % 3)) << k;
+  }
+  d = minimal();
+  d["engine"] = "bullet";
+  EXPECT_EQ(error_of(d), "engine: must be \"simbody\" or \"mujoco\", got \"bullet\"");
+  d = minimal();
+  d["engines"] = {"simbody", "ode"};
+  EXPECT_EQ(error_of(d), "engines[1]: must be \"simbody\" or \"mujoco\", got \"ode\"");
+  d = minimal();
+  d["engines"] = {"mujoco", "mujoco"};
+  EXPECT_EQ(error_of(d), "engines[1]: 'mujoco' appears twice");
+  d = minimal();
+  d["engines"] = nlohmann::json::array();
+  EXPECT_EQ(error_of(d), "engines: must be a non-empty array of engine names");
+  d = minimal();
+  d["engine"] = "simbody";
+  d["engines"] = {"simbody"};
+  EXPECT_EQ(error_of(d), "engines: give either engine or engines, not both");
+  d = minimal();
+  d["validate"] = {{"seeds", 0}};
+  EXPECT_EQ(error_of(d), "validate.seeds: must be an integer in [1, 1000]");
+  d = minimal();
+  d["validate"] = {{"worlds", 2}};
+  EXPECT_EQ(error_of(d), "validate.worlds: unknown field");
+}
+
 TEST(TaskConfig, RoundTripsThroughJson) {
   TaskConfig a, b;
   ASSERT_TRUE(load_task_config(kConfigs + "walk.json", a));
