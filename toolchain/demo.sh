@@ -2,7 +2,8 @@
 # The main job from a fresh machine: installs the dependencies, builds the release preset and
 # runs a short walk optimisation in the simulator (optimiser/configs/walk-demo.json: the seed's
 # walk task with pop 12, 5 generations and a 25 s time limit; about a minute on 2 cores),
-# then prints the report and where report.html (the page to open) and the plots are.
+# validates Ind_O and the picks on unseen worlds (validation.json; 3 seeds per world), then
+# prints the report and where report.html (the page to open) and the plots are.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
