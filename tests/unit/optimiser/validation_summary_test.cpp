@@ -1,0 +1,116 @@
+// Validation summaries from known episode scores: the median, what counts as reached per task,
+// the gate (80 % reached, median within 25 % of the run's own value), gain kept only where
+// Ind_O passes, a failed world as a fall with its reason, an unavailable world.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "stride/optimiser/run/validation_summary.hpp"
+
+namespace stride::opt {
+namespace {
+
+using nlohmann::json;
+
+EpisodeOutcome walked(double time_s, double max_accel, bool reached) {
+  EpisodeOutcome e;
+  e.score.objectives = {time_s, max_accel};
+  e.score.time_to_goal_s = reached ? time_s : -1.0;
+  e.score.fell = !reached;
+  return e;
+}
+
+std::vector<EpisodeOutcome> seeds(int reached, double time_s, double accel, int fallen,
+                                  double fall_time_s, double fall_accel) {
+  std::vector<EpisodeOutcome> out;
+  for (int i = 0; i < reached; ++i) out.push_back(walked(time_s, accel, true));
+  for (int i = 0; i < fallen; ++i) out.push_back(walked(fall_time_s, fall_accel, false));
+  return out;
+}
+
+TEST(ValidationSummary, MedianReachedAndGateObjective) {
+  EXPECT_DOUBLE_EQ(median({3.0, 1.0, 2.0}), 2.0);
+  EXPECT_DOUBLE_EQ(median({4.0, 1.0, 3.0, 2.0}), 2.5);
+  EXPECT_TRUE(std::isnan(median({})));
+  TaskConfig walk, kick, omni;
+  walk.task = "walk";
+  kick.task = "kick";
+  omni.task = "walk-omni";
+  EpisodeScore s;
+  s.time_to_goal_s = 12.0;
+  EXPECT_TRUE(validation_reached(walk, s));
+  s.world_failure = "exploding state";
+  EXPECT_FALSE(validation_reached(walk, s));
+  s = {};
+  s.ball_distance_m = 0.49;
+  EXPECT_FALSE(validation_reached(kick, s));
+  s.ball_distance_m = 0.5;
+  EXPECT_TRUE(validation_reached(kick, s));
+  EXPECT_FALSE(validation_reached(omni, s));  // no segment measured
+  for (auto& seg : s.omni) seg.measured = true;
+  EXPECT_TRUE(validation_reached(omni, s));
+  EXPECT_EQ(gate_objective(walk), 0);
+  EXPECT_EQ(gate_objective(kick), 1);  // 1 / ball distance
+}
+
+TEST(ValidationSummary, GateAndGainKeptFollowTheMediansOfEachWorld) {
+  TaskConfig config;
+  config.task = "walk";
+  std::vector<ValidationIndividual> individuals(2);
+  individuals[0].name = "Ind_O";
+  individuals[0].run_objectives = {20.0, 20.0};
+  individuals[1].name = "fastest";
+  individuals[1].file = "front/000.json";
+  individuals[1].run_objectives = {10.0, 15.0};
+  std::vector<ValidationWorld> worlds(3);
+  worlds[0].name = "good";
+  worlds[1].name = "hard";
+  worlds[2].name = "engine mujoco";
+  for (auto& w : worlds)
+    for (std::uint64_t s = 0; s < 10; ++s) w.seeds.push_back(1001 + s);
+  std::vector<std::vector<std::vector<EpisodeOutcome>>> outcomes(2);
+  // good: Ind_O reaches 10/10 in 22 s (limit 25 s: pass); the pick 8/10 in 12 s, 2 falls
+  // (limit 12.5 s: pass). hard: Ind_O reaches 7/10 (fails the gate): no gain kept.
+  outcomes[0] = {seeds(10, 22.0, 21.0, 0, 0, 0), seeds(7, 24.0, 22.0, 3, 60.0, 30.0), {}};
+  outcomes[1] = {seeds(8, 12.0, 14.0, 2, 50.0, 30.0), seeds(10, 11.0, 14.0, 0, 0, 0), {}};
+  outcomes[1][0][9].score.world_failure = "exploding state: |u[3]| = 250 > 200";
+  // The third world could not be built (an engine missing from this build).
+  for (auto& ind : outcomes) {
+    ind[2].resize(10);
+    for (auto& e : ind[2]) e.setup_error = "MuJoCo is not in this build";
+  }
+  const json v = summarise_validation("run", config, individuals, worlds, outcomes);
+  const json& ind_o = v["individuals"][0]["worlds"];
+  const json& pick = v["individuals"][1]["worlds"];
+  EXPECT_TRUE(ind_o[0]["gate"]["passed"].get<bool>());
+  EXPECT_DOUBLE_EQ(ind_o[0]["gate"]["limit"].get<double>(), 25.0);
+  EXPECT_TRUE(ind_o[0]["gain_kept"].is_null());  // Ind_O has no gain of its own
+  EXPECT_EQ(pick[0]["reached"], 8);
+  EXPECT_EQ(pick[0]["falls"], 2);
+  EXPECT_DOUBLE_EQ(pick[0]["median_objectives"][0].get<double>(), 12.0);
+  EXPECT_DOUBLE_EQ(pick[0]["gate"]["limit"].get<double>(), 12.5);
+  EXPECT_TRUE(pick[0]["gate"]["passed"].get<bool>());
+  // (22 - 12) / (20 - 10) and (21 - 14) / (20 - 15).
+  EXPECT_DOUBLE_EQ(pick[0]["gain_kept"][0].get<double>(), 1.0);
+  EXPECT_DOUBLE_EQ(pick[0]["gain_kept"][1].get<double>(), 1.4);
+  ASSERT_EQ(pick[0]["failures"].size(), 1u);
+  EXPECT_EQ(pick[0]["failures"][0]["seed"], 1010);
+  EXPECT_EQ(pick[0]["failures"][0]["reason"], "exploding state: |u[3]| = 250 > 200");
+  EXPECT_FALSE(ind_o[1]["gate"]["passed"].get<bool>());  // 7 of 10
+  EXPECT_TRUE(pick[1]["gate"]["passed"].get<bool>());
+  EXPECT_TRUE(pick[1]["gain_kept"].is_null());  // Ind_O failed the gate there
+  EXPECT_EQ(pick[2]["unavailable"], "MuJoCo is not in this build");
+  EXPECT_EQ(v["worlds"][2]["unavailable"], "MuJoCo is not in this build");
+  EXPECT_FALSE(v["all_passed"].get<bool>());
+  ASSERT_EQ(v["table"].size(), 6u);
+  EXPECT_EQ(v["table"][3]["individual"], "fastest");
+  EXPECT_EQ(v["table"][3]["gate"], "pass");
+  EXPECT_DOUBLE_EQ(v["table"][3]["gain_kept_f2"].get<double>(), 1.4);
+  EXPECT_EQ(v["table"][5]["gate"], "unavailable");
+  const std::string text = validation_text(v);
+  EXPECT_NE(text.find("UNAVAILABLE, MuJoCo is not in this build"), std::string::npos) << text;
+  EXPECT_NE(text.find("fastest"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace stride::opt
