@@ -3,7 +3,6 @@
 #include "stride/optimiser/run/validation.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <cstdio>
 #include <memory>
 
@@ -52,7 +51,6 @@ class ValidationEpisodes final : public Problem {
     }
     return {};
   }
-  const std::vector<Episode>& episodes() const { return episodes_; }
 
  private:
   const RobotTask& task_;
