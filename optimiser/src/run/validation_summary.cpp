@@ -223,13 +223,13 @@ std::string validation_text(const json& result) {
                   w.contains("unavailable") ? w["unavailable"].get<std::string>().c_str() : "");
     out << line;
   }
-  std::snprintf(line, sizeof line, "%-22s %-20s %7s %5s %10s %10s %5s %8s %8s\n", "individual",
+  std::snprintf(line, sizeof line, "%-26s %-20s %7s %5s %10s %10s %5s %8s %8s\n", "individual",
                 "world", "reached", "falls", "median f1", "median f2", "gate", "kept f1",
                 "kept f2");
   out << line;
   for (const json& r : result.value("table", json::array())) {
     const std::string gate = r.value("gate", "");
-    std::snprintf(line, sizeof line, "%-22s %-20s %7s %5s %10s %10s %5s %8s %8s\n",
+    std::snprintf(line, sizeof line, "%-26s %-20s %7s %5s %10s %10s %5s %8s %8s\n",
                   r.value("individual", "").c_str(), r.value("world", "").c_str(),
                   r.contains("reached_fraction")
                       ? (fixed(r["reached_fraction"].get<double>() * 100.0, 0) + "%").c_str()
