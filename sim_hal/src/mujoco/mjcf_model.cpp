@@ -95,7 +95,7 @@ std::string write_mjcf(const EngineModel& model) {
   w.line(1, "<option timestep=\"" + num(model.step_s) + "\" gravity=\"0 0 " +
                 num(-model.gravity_mps2) +
                 "\" integrator=\"Euler\" cone=\"elliptic\" solver=\"Newton\" impratio=\"" +
-                num(kImpRatio) + "\" iterations=\"100\" tolerance=\"1e-10\"/>");
+                num(kImpRatio) + "\" iterations=\"100\" tolerance=\"1e-8\"/>");
   // Fixed buffers (2.2 allocates mjData from these): ample for 20 links, boxes and the ball.
   w.line(1, R"(<size njmax="2000" nconmax="400"/>)");
   w.line(1, "<worldbody>");
