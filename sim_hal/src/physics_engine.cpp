@@ -39,8 +39,8 @@ WorldStatus check_state(const double* q, std::size_t nq, const double* u, std::s
                         double max_speed, double time_s, std::string& reason) {
   for (std::size_t i = 0; i < nq; ++i)
     if (!std::isfinite(q[i])) {
-      reason = "non-finite coordinate q[" + std::to_string(i) + "] at t=" +
-               std::to_string(time_s) + " s";
+      reason = "non-finite coordinate q[" + std::to_string(i) + "] at t=" + std::to_string(time_s) +
+               " s";
       return WorldStatus::kNonFinite;
     }
   for (std::size_t i = 0; i < nu; ++i) {
@@ -50,8 +50,8 @@ WorldStatus check_state(const double* q, std::size_t nq, const double* u, std::s
       return WorldStatus::kNonFinite;
     }
     if (std::abs(u[i]) > max_speed) {
-      reason = "exploding state: |u[" + std::to_string(i) + "]| = " +
-               std::to_string(std::abs(u[i])) + " > " + std::to_string(max_speed) +
+      reason = "exploding state: |u[" + std::to_string(i) +
+               "]| = " + std::to_string(std::abs(u[i])) + " > " + std::to_string(max_speed) +
                " at t=" + std::to_string(time_s) + " s";
       return WorldStatus::kExploded;
     }

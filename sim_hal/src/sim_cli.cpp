@@ -5,6 +5,8 @@
 #include <memory>
 #include <system_error>
 
+#include "stride/sim_hal/physics_engine.hpp"
+
 namespace stride::sim {
 
 void declare_world_options(fw::CliArgs& args) {
@@ -15,6 +17,8 @@ void declare_world_options(fw::CliArgs& args) {
   args.option("urdf", "robot description (URDF) to simulate instead of the igus model", true);
   args.option("imu", "IMU model: ideal (true value plus white noise) or cm730 (chips and CM730)",
               true, "ideal");
+  args.option("engine", "physics engine: simbody (Stride's contact) or mujoco (MuJoCo's)", true,
+              "simbody");
   args.option("servo-law", "servo model: seed (Gazebo figures) or identified (MX, BAM M6)", true,
               "seed");
 }
@@ -55,6 +59,9 @@ Status read_world_options(const fw::CliArgs& args, WorldOptions& out) {
   } else if (imu != "ideal") {
     return Status::error("--imu: expected ideal or cm730, got '" + imu + "'");
   }
+  const std::string engine = args.get("engine", "simbody");
+  if (!parse_engine_kind(engine, out.engine))
+    return Status::error("--engine: expected simbody or mujoco, got '" + engine + "'");
   const std::string law = args.get("servo-law", "seed");
   if (law == "seed") {
     out.servo.law = ServoLaw::kSeed;

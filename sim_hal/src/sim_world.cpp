@@ -1,187 +1,60 @@
-// SimWorld: Simbody multibody system, servo/contact/IMU models and the fixed-step integrator.
+// SimWorld: servo and IMU models, randomisation and placement around a physics engine.
 #include "stride/sim_hal/sim_world.hpp"
-
-#include <Simbody.h>
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
-#include <stdexcept>
 
+#include "stride/sim_hal/collision_points.hpp"
 #include "stride/sim_hal/physics_engine.hpp"
 #include "stride/sim_hal/world_rng.hpp"
 
 namespace stride::sim {
 
-using SimTK::Real;
-using SimTK::SpatialVec;
-using SimTK::Stage;
-using SimTK::Transform;
-using SimTK::Vec3;
-
-namespace {
-
-Vec3 to_vec3(const Eigen::Vector3d& v) {
-  return {v.x(), v.y(), v.z()};
-}
-Eigen::Vector3d to_eigen(const Vec3& v) {
-  return {v[0], v[1], v[2]};
-}
-
-SimTK::Rotation to_rotation(const Eigen::Matrix3d& m) {
-  SimTK::Mat33 mat;
-  for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 3; ++c) mat(r, c) = m(r, c);
-  return SimTK::Rotation(mat, true);
-}
-
-Eigen::Isometry3d to_isometry(const Transform& x) {
-  Eigen::Isometry3d out = Eigen::Isometry3d::Identity();
-  for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 3; ++c) out.linear()(r, c) = x.R().asMat33()(r, c);
-  out.translation() = to_eigen(x.p());
-  return out;
-}
-
-/// Inertia about the body origin with reflected rotor inertia J about `axis` added. Simbody
-/// checks that an inertia is physically realisable (triangle inequality); a rotor inertia
-/// reflected through a gearbox is not, so the smallest perpendicular inertia that keeps the
-/// sum valid is added with it (zero for most links).
-SimTK::Inertia add_rotor_inertia(const SimTK::Inertia& body, const Vec3& axis, Real j) {
-  if (j <= 0.0) return body;
-  const SimTK::Mat33 aat = SimTK::outer(axis, axis);
-  const SimTK::Mat33 perp = SimTK::Mat33(1) - aat;
-  const SimTK::Mat33 base = body.toMat33();
-  for (Real p = 0.0;; p = p == 0.0 ? j / 64 : p * 2) {
-    const SimTK::Mat33 sum = base + j * aat + p * perp;
-    const SimTK::SymMat33 sym(sum(0, 0), sum(1, 0), sum(1, 1), sum(2, 0), sum(2, 1), sum(2, 2));
-    if (SimTK::Inertia::isValidInertiaMatrix(sym)) return SimTK::Inertia(sym);
-    if (p > 4 * j) return body;  // cannot happen for a valid body inertia
-  }
-}
-
-struct ContactPoint {
-  int link = -1;  ///< model link index; -1 for the ball
-  Vec3 station{0};
-  Real radius = 0.0;
-  int foot = 0;  ///< 0 none, 1 left, 2 right
-  bool touching = false;
-  Real anchor_x = 0.0, anchor_y = 0.0;
-};
-
-struct LinkShape {  ///< for ball-robot contact
-  int link = -1;
-  bool is_box = false;
-  Transform pose;  ///< shape frame in link frame
-  Vec3 half{0};    ///< box half extents
-  Real radius = 0.0;
-};
-
-}  // namespace
-
-// ----------------------------------------------------------------------------------------------
 struct SimWorld::Impl {
   WorldOptions options;
   RobotModel model;
   WorldRng rng;
-
-  // Simbody system (rebuilt by build()).
-  std::unique_ptr<SimTK::MultibodySystem> system;
-  std::unique_ptr<SimTK::SimbodyMatterSubsystem> matter;
-  std::vector<SimTK::MobilizedBody> bodies;  ///< per model link
-  SimTK::MobilizedBody ball;
-  bool has_ball = false;
-  SimTK::State state;
-  SimTK::Vector u_next, qdot;
-  std::vector<int> quaternion_q;  ///< first q index of each free body's quaternion
-  std::vector<int> joint_q, joint_u;
-  std::vector<int> body_index;  ///< per model link: its MobilizedBodyIndex
-  int ball_index = 0;           ///< per model joint: index into the matter's q and u
+  std::unique_ptr<PhysicsEngine> engine;
+  EngineModel engine_model;
+  std::vector<CollisionPoint> collision;  ///< for placing the robot on the grass
 
   // Per model joint.
   std::vector<int> joint_servo;  ///< servo index or -1
-  std::vector<Real> joint_tau;
+  std::vector<double> joint_tau;
   // Per servo.
   std::array<int, hal::kServoCount> servo_joint{};
   std::array<ServoModel, hal::kServoCount> servos{};
   std::array<MxServo, hal::kServoCount> mx_servos{};  ///< ServoLaw::kIdentified
   bool identified = false;
   /// Identified law: last step's joint torque, for the external torque estimate.
-  std::array<Real, hal::kServoCount> last_torque{};
+  std::array<double, hal::kServoCount> last_torque{};
   std::array<fw::ServoModel, hal::kServoCount> servo_models{};
   std::array<hal::ServoCommand, hal::kServoCount> written{};
   std::array<hal::ServoCommand, hal::kServoCount> delayed{};
   bool torque_enable = true;
-
-  // Contact.
-  std::vector<ContactPoint> points;
-  ContactPoint ball_point;  ///< the ball against the field
-  std::vector<LinkShape> shapes;
-  std::vector<SpatialVec> body_force;  ///< per model link, accumulated each step
-  std::vector<Real> link_mass;         ///< after randomisation [kg]
-  std::vector<Vec3> link_com;          ///< link frame [m]
-  std::vector<Real> link_reach;        ///< farthest contact point from the link origin [m]
-  std::vector<Transform> link_x;       ///< per step: link poses
-  std::vector<SpatialVec> link_v;      ///< per step: link velocities
-  std::vector<char> link_near;         ///< per step: link may touch the field
-  SpatialVec ball_force{Vec3(0), Vec3(0)};
   int left_foot = -1, right_foot = -1;
-  FootContact left_contact, right_contact;
-  int other_contacts = 0;
 
   // Randomised per reset.
-  Real friction = 1.0;
-  std::vector<Real> mass_scale;
-  std::array<Real, hal::kServoCount> strength{};
+  std::array<double, hal::kServoCount> strength{};
   bool latency = false;
   Eigen::Vector3d accel_bias = Eigen::Vector3d::Zero(), gyro_bias = Eigen::Vector3d::Zero();
 
   // Time and status.
-  Real h = 0.002;
+  double h = 0.002;
   int steps_per_period = 5;
-  std::int64_t steps = 0;
   std::int64_t periods = 0;
   WorldStatus status = WorldStatus::kRunning;
   std::string reason;
-  Vec3 torso_accel{0};  ///< acceleration of the torso origin at the last step [m/s^2]
-  ImuReading imu;
-  ImuModel imu_model;  ///< used unless options.imu.chain is ideal
-  bool imu_chain = false;
+  ImuSampler imu;
 
   Status configure();
-  void build();
-  void compute_forces();
-  void ground_contact(ContactPoint& point, const Transform& x, const SpatialVec& v,
-                      SpatialVec& out_force);
-  void ball_robot_contact();
+  double armature(std::size_t servo) const;
+  void servo_torques();
   bool step_once();
-  void sample_imu();
-  void feed_imu();
-  void fail(WorldStatus why, std::string text) {
-    status = why;
-    reason = std::move(text);
+  TorsoMotion torso_motion() const {
+    return {engine->link_pose(0).linear(), engine->torso_angular_velocity(),
+            engine->torso_acceleration()};
   }
-  Real grass_top() const { return options.contact.grass_thickness_m; }
-};
-
-// A Force that applies what Impl::compute_forces() computed for this step.
-class AppliedForces final : public SimTK::Force::Custom::Implementation {
- public:
-  explicit AppliedForces(const SimWorld::Impl* world) : world_(world) {}
-  void calcForce(const SimTK::State& state, SimTK::Vector_<SpatialVec>& body_forces,
-                 SimTK::Vector_<Vec3>&, SimTK::Vector& mobility_forces) const override {
-    const SimWorld::Impl& w = *world_;
-    (void)state;
-    for (std::size_t j = 0; j < w.joint_u.size(); ++j)
-      mobility_forces[w.joint_u[j]] += w.joint_tau[j];
-    for (std::size_t l = 0; l < w.body_index.size(); ++l)
-      body_forces[w.body_index[l]] += w.body_force[l];
-    if (w.has_ball) body_forces[w.ball_index] += w.ball_force;
-  }
-  Real calcPotentialEnergy(const SimTK::State&) const override { return 0.0; }
-
- private:
-  const SimWorld::Impl* world_;
 };
 
 Status SimWorld::Impl::configure() {
@@ -198,7 +71,11 @@ Status SimWorld::Impl::configure() {
       !(o.contact.tangential_stiffness_n_m > 0.0) || !(o.contact.grass_damping_n_s_m >= 0.0) ||
       !(o.contact.ground_damping_n_s_m >= 0.0) || !(o.contact.tangential_damping_n_s_m >= 0.0))
     return Status::error("contact: thickness, damping and friction must be >= 0, stiffness > 0");
-  h = static_cast<Real>(o.physics_step_ns) * 1e-9;
+  engine = make_physics_engine(o.engine);
+  if (!engine)
+    return Status::error(std::string("engine '") + to_string(o.engine) +
+                         "' is not available in this build");
+  h = static_cast<double>(o.physics_step_ns) * 1e-9;
   steps_per_period = static_cast<int>(o.control_period_ns / o.physics_step_ns);
   if (o.model) {
     model = *o.model;
@@ -221,218 +98,37 @@ Status SimWorld::Impl::configure() {
   }
   left_foot = model.link_index("left_foot_link");
   right_foot = model.link_index("right_foot_link");
-  // Contact points: spheres are points with a radius, boxes their eight corners.
-  shapes.clear();
-  points.clear();
-  for (std::size_t l = 0; l < model.links().size(); ++l) {
-    const LinkSpec& link = model.links()[l];
-    const int foot = static_cast<int>(l) == left_foot    ? 1
-                     : static_cast<int>(l) == right_foot ? 2
-                                                         : 0;
-    for (const CollisionSphere& s : link.spheres) {
-      points.push_back({static_cast<int>(l), to_vec3(s.center), s.radius, foot});
-      shapes.push_back(
-          {static_cast<int>(l), false, Transform(Vec3(to_vec3(s.center))), Vec3(0), s.radius});
-    }
-    for (const CollisionBox& b : link.boxes) {
-      const Transform pose(to_rotation(b.pose.linear()), to_vec3(b.pose.translation()));
-      const Vec3 half = to_vec3(b.size) / 2;
-      for (int c = 0; c < 8; ++c) {
-        const Vec3 corner((c & 1 ? 1 : -1) * half[0], (c & 2 ? 1 : -1) * half[1],
-                          (c & 4 ? 1 : -1) * half[2]);
-        points.push_back({static_cast<int>(l), pose * corner, 0.0, foot});
-      }
-      shapes.push_back({static_cast<int>(l), true, pose, half, 0.0});
-    }
-  }
-  body_force.assign(model.links().size(), SpatialVec(Vec3(0), Vec3(0)));
-  link_reach.assign(model.links().size(), 0.0);
-  for (const ContactPoint& p : points) {
-    const auto l = static_cast<std::size_t>(p.link);
-    link_reach[l] = std::max(link_reach[l], p.station.norm() + p.radius + 1e-3);
-  }
-  link_x.assign(model.links().size(), Transform());
-  link_v.assign(model.links().size(), SpatialVec(Vec3(0), Vec3(0)));
-  link_near.assign(model.links().size(), 0);
-  mass_scale.assign(model.links().size(), 1.0);
+  collision = collision_points(model);
+  EngineModel& em = engine_model;
+  em.robot = &model;
+  em.link_mass_scale.assign(model.links().size(), 1.0);
+  em.joint_armature.assign(model.joints().size(), 0.0);
+  for (std::size_t i = 0; i < hal::kServoCount; ++i)
+    em.joint_armature[static_cast<std::size_t>(servo_joint[i])] = armature(i);
+  em.left_foot = left_foot;
+  em.right_foot = right_foot;
+  em.contact = o.contact;
+  em.ball = o.ball;
+  em.gravity_mps2 = o.gravity_mps2;
+  em.step_s = h;
+  em.max_speed = o.max_speed;
   strength.fill(1.0);
   return Status::ok();
 }
 
-void SimWorld::Impl::build() {
-  bodies.clear();
-  ball = SimTK::MobilizedBody();
-  matter.reset();
-  system = std::make_unique<SimTK::MultibodySystem>();
-  matter = std::make_unique<SimTK::SimbodyMatterSubsystem>(*system);
-  SimTK::GeneralForceSubsystem forces(*system);
-  SimTK::Force::Custom(forces, new AppliedForces(this));
-  bodies.clear();
-  link_mass.assign(model.links().size(), 0.0);
-  link_com.assign(model.links().size(), Vec3(0));
-  for (std::size_t l = 0; l < model.links().size(); ++l) {
-    const LinkSpec& link = model.links()[l];
-    const Real scale = mass_scale[l];
-    link_mass[l] = scale * link.mass;
-    link_com[l] = to_vec3(link.com);
-    SimTK::Mat33 inertia;
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) inertia(r, c) = scale * link.inertia(r, c);
-    const Real mass = scale * link.mass;
-    const Vec3 com = to_vec3(link.com);
-    SimTK::Inertia about_origin = SimTK::Inertia(inertia).shiftFromMassCenter(com, mass);
-    if (link.parent_joint < 0) {
-      SimTK::Body::Rigid body(SimTK::MassProperties(mass, com, about_origin));
-      bodies.push_back(
-          SimTK::MobilizedBody::Free(matter->Ground(), Transform(), body, Transform()));
-      continue;
-    }
-    const JointSpec& joint = model.joints()[static_cast<std::size_t>(link.parent_joint)];
-    const Vec3 axis = to_vec3(joint.axis);
-    const int servo = joint_servo[static_cast<std::size_t>(link.parent_joint)];
-    if (servo >= 0) {
-      const fw::ServoModel servo_model = servo_models[static_cast<std::size_t>(servo)];
-      const MotorCurve curve = motor_curve(servo_model, options.battery_voltage_v);
-      const Real reflected =
-          options.servo.law == ServoLaw::kIdentified
-              ? mx_servo_params(servo_model, options.battery_voltage_v,
-                                options.servo.friction_model)
-                    .armature_kg_m2
-              : options.servo.rotor_inertia_kg_m2 * curve.gear_ratio * curve.gear_ratio;
-      about_origin = add_rotor_inertia(about_origin, axis, reflected);
-    }
-    SimTK::Body::Rigid body(SimTK::MassProperties(mass, com, about_origin));
-    const SimTK::Rotation z_to_axis(SimTK::UnitVec3(axis), SimTK::ZAxis);
-    const Transform inboard(to_rotation(joint.origin.linear()) * z_to_axis,
-                            to_vec3(joint.origin.translation()));
-    const Transform outboard(z_to_axis, Vec3(0));
-    bodies.push_back(SimTK::MobilizedBody::Pin(bodies[static_cast<std::size_t>(joint.parent_link)],
-                                               inboard, body, outboard));
-  }
-  has_ball = options.ball.present;
-  if (has_ball) {
-    const BallOptions& b = options.ball;
-    SimTK::Body::Rigid body(
-        SimTK::MassProperties(b.mass_kg, Vec3(0), SimTK::Inertia(b.inertia_kg_m2)));
-    ball = SimTK::MobilizedBody::Free(matter->Ground(), Transform(), body, Transform());
-  }
-  system->realizeTopology();
-  state = system->getDefaultState();
-  system->realizeModel(state);
-  joint_q.clear();
-  joint_u.clear();
-  body_index.clear();
-  for (const SimTK::MobilizedBody& b : bodies)
-    body_index.push_back(static_cast<int>(b.getMobilizedBodyIndex()));
-  if (has_ball) ball_index = static_cast<int>(ball.getMobilizedBodyIndex());
-  for (const JointSpec& j : model.joints()) {
-    const SimTK::MobilizedBody& mb = bodies[static_cast<std::size_t>(j.child_link)];
-    joint_q.push_back(static_cast<int>(mb.getFirstQIndex(state)));
-    joint_u.push_back(static_cast<int>(mb.getFirstUIndex(state)));
-  }
-  quaternion_q.clear();
-  quaternion_q.push_back(static_cast<int>(bodies[0].getFirstQIndex(state)));
-  if (has_ball) quaternion_q.push_back(static_cast<int>(ball.getFirstQIndex(state)));
-  u_next.resize(state.getNU());
-  qdot.resize(state.getNQ());
+/// Rotor inertia reflected through the gearbox about servo `i`'s joint [kg m^2].
+double SimWorld::Impl::armature(std::size_t i) const {
+  if (options.servo.law == ServoLaw::kIdentified)
+    return mx_servo_params(servo_models[i], options.battery_voltage_v, options.servo.friction_model)
+        .armature_kg_m2;
+  const MotorCurve curve = motor_curve(servo_models[i], options.battery_voltage_v);
+  return options.servo.rotor_inertia_kg_m2 * curve.gear_ratio * curve.gear_ratio;
 }
 
-void SimWorld::Impl::ground_contact(ContactPoint& point, const Transform& x, const SpatialVec& v,
-                                    SpatialVec& out_force) {
-  const ContactOptions& c = options.contact;
-  const Vec3 centre = x * point.station;
-  const Vec3 at(centre[0], centre[1], centre[2] - point.radius);  // lowest point of the sphere
-  const Real depth = grass_top() - at[2];
-  if (depth <= 0.0) {
-    point.touching = false;
-    return;
-  }
-  const Vec3 r = at - x.p();
-  const Vec3 vel = v[1] + (v[0] % r);
-  const Real thick = c.grass_thickness_m;
-  Real fn = c.grass_stiffness_n_m * std::min(depth, thick) - c.grass_damping_n_s_m * vel[2];
-  if (depth > thick)
-    fn += c.ground_stiffness_n_m * (depth - thick) - c.ground_damping_n_s_m * vel[2];
-  fn = std::max<Real>(0.0, fn);
-  if (!point.touching) {
-    point.touching = true;
-    point.anchor_x = at[0];
-    point.anchor_y = at[1];
-  }
-  Real fx =
-      -c.tangential_stiffness_n_m * (at[0] - point.anchor_x) - c.tangential_damping_n_s_m * vel[0];
-  Real fy =
-      -c.tangential_stiffness_n_m * (at[1] - point.anchor_y) - c.tangential_damping_n_s_m * vel[1];
-  const Real ft = std::sqrt(fx * fx + fy * fy);
-  const Real max_ft = friction * fn;
-  if (ft > max_ft) {  // sliding: scale to the cone and drag the anchor along
-    const Real s = ft > 0 ? max_ft / ft : 0.0;
-    fx *= s;
-    fy *= s;
-    point.anchor_x = at[0] + fx / c.tangential_stiffness_n_m;
-    point.anchor_y = at[1] + fy / c.tangential_stiffness_n_m;
-  }
-  const Vec3 force(fx, fy, fn);
-  out_force[0] += r % force;
-  out_force[1] += force;
-  if (point.foot == 1) {
-    ++left_contact.points_in_contact;
-    left_contact.force += to_eigen(force);
-  } else if (point.foot == 2) {
-    ++right_contact.points_in_contact;
-    right_contact.force += to_eigen(force);
-  } else if (point.link >= 0) {
-    ++other_contacts;
-  }
-}
-
-void SimWorld::Impl::ball_robot_contact() {
-  const ContactOptions& c = options.contact;
-  const Real radius = options.ball.radius_m;
-  const Transform& xb = ball.getBodyTransform(state);
-  if ((xb.p() - link_x[0].p()).normSqr() > 1.2 * 1.2) return;  // far from the robot
-  const SpatialVec& vb = ball.getBodyVelocity(state);
-  for (const LinkShape& shape : shapes) {
-    const auto l = static_cast<std::size_t>(shape.link);
-    const Transform& xl = link_x[l];
-    if ((xb.p() - xl.p()).normSqr() > 0.5 * 0.5) continue;
-    const Transform x_shape = xl * shape.pose;
-    const Vec3 local = ~x_shape * xb.p();  // ball centre in the shape frame
-    Vec3 closest = local;
-    Real reach = radius;
-    if (shape.is_box) {
-      for (int k = 0; k < 3; ++k) closest[k] = std::clamp(local[k], -shape.half[k], shape.half[k]);
-    } else {
-      closest = Vec3(0);
-      reach += shape.radius;
-    }
-    Vec3 gap = local - closest;
-    Real dist = gap.norm();
-    if (dist >= reach) continue;
-    if (dist < 1e-9) continue;  // centre inside the box: no defined normal, skip
-    const Vec3 normal = x_shape.R() * (gap / dist);  // from link to ball, world frame
-    const Vec3 at = x_shape * closest + (shape.is_box ? Vec3(0) : normal * shape.radius);
-    const Vec3 v_ball = vb[1] + (vb[0] % (at - xb.p()));
-    const SpatialVec& vl = link_v[l];
-    const Vec3 v_link = vl[1] + (vl[0] % (at - xl.p()));
-    const Real approach = ~(v_ball - v_link) * normal;
-    const Real fn = std::max<Real>(
-        0.0, c.ball_robot_stiffness_n_m * (reach - dist) - c.ball_robot_damping_n_s_m * approach);
-    const Vec3 force = fn * normal;  // on the ball
-    ball_force[0] += (at - xb.p()) % force;
-    ball_force[1] += force;
-    body_force[l][0] -= (at - xl.p()) % force;
-    body_force[l][1] -= force;
-  }
-}
-
-void SimWorld::Impl::compute_forces() {
-  // Servo and passive joint torques.
-  const SimTK::Vector& q_all = matter->getQ(state);
-  const SimTK::Vector& u_all = matter->getU(state);
-  for (std::size_t j = 0; j < model.joints().size(); ++j) {
-    const Real q = q_all[joint_q[j]];
-    const Real w = u_all[joint_u[j]];
+void SimWorld::Impl::servo_torques() {
+  for (std::size_t j = 0; j < joint_tau.size(); ++j) {
+    const double q = engine->joint_angle(j);
+    const double w = engine->joint_speed(j);
     const int servo = joint_servo[j];
     if (servo >= 0 && identified) {
       // External torque on the joint: quasi-static, what balanced the servo's torque over the
@@ -450,134 +146,21 @@ void SimWorld::Impl::compute_forces() {
           -spec.damping * w - std::copysign(std::min(spec.friction, 1e-3 * std::abs(w) / h), w);
     }
   }
-  // Contact.
-  left_contact = {};
-  right_contact = {};
-  other_contacts = 0;
-  // Body kinematics fetched once per link; links far above the grass are skipped whole.
-  for (std::size_t l = 0; l < bodies.size(); ++l) {
-    link_x[l] = bodies[l].getBodyTransform(state);
-    link_v[l] = bodies[l].getBodyVelocity(state);
-    link_near[l] = link_x[l].p()[2] - link_reach[l] <= grass_top();
-  }
-  // Gravity at each centre of mass (applied here rather than by Force::Gravity, whose cache
-  // crashed on this Simbody build when driven by the fixed-step loop).
-  const Real g = options.gravity_mps2;
-  for (std::size_t l = 0; l < body_force.size(); ++l) {
-    const Vec3 weight(0, 0, -g * link_mass[l]);
-    const Vec3 r = link_x[l].R() * link_com[l];
-    body_force[l] = SpatialVec(r % weight, weight);
-  }
-  ball_force = SpatialVec(Vec3(0), Vec3(0, 0, has_ball ? -g * options.ball.mass_kg : 0.0));
-  for (ContactPoint& point : points) {
-    const auto l = static_cast<std::size_t>(point.link);
-    if (!link_near[l]) {
-      point.touching = false;
-      continue;
-    }
-    ground_contact(point, link_x[l], link_v[l], body_force[l]);
-  }
-  if (has_ball) {
-    const SpatialVec& vb = ball.getBodyVelocity(state);
-    ground_contact(ball_point, ball.getBodyTransform(state), vb, ball_force);
-    ball_force[0] -= options.ball.rolling_damping * vb[0];
-    ball_robot_contact();
-  }
 }
 
 bool SimWorld::Impl::step_once() {
   if (status != WorldStatus::kRunning) return false;
-  try {
-    system->realize(state, Stage::Velocity);
-    compute_forces();
-    system->realize(state, Stage::Acceleration);
-    torso_accel = bodies[0].getBodyOriginAcceleration(state);
-    if (imu_chain) feed_imu();
-    // Semi-explicit Euler: u' = u + h udot, q' = q + h N(q) u'. The loops run over the state's
-    // contiguous storage (Simbody's element access is a virtual call per element, and `h *
-    // udot` a temporary vector); the arithmetic is the same, element by element.
-    const SimTK::Vector& udot = matter->getUDot(state);
-    const SimTK::Vector& u = matter->getU(state);
-    if (!udot.hasContiguousData() || !u.hasContiguousData() || !u_next.hasContiguousData() ||
-        !qdot.hasContiguousData() || !matter->getQ(state).hasContiguousData())
-      throw std::logic_error("state vectors are not contiguous");
-    const Real* udot_data = udot.getContiguousScalarData();
-    const Real* u_data = u.getContiguousScalarData();
-    Real* u_next_data = u_next.updContiguousScalarData();
-    for (int i = 0; i < u_next.size(); ++i) u_next_data[i] = u_data[i] + h * udot_data[i];
-    matter->multiplyByN(state, false, u_next, qdot);
-    Real* q = matter->updQ(state).updContiguousScalarData();
-    const Real* qdot_data = qdot.getContiguousScalarData();
-    for (int i = 0; i < qdot.size(); ++i) q[i] += h * qdot_data[i];
-    for (int first : quaternion_q) {  // keep the free bodies' quaternions unit length
-      Real norm = 0.0;
-      for (int k = 0; k < 4; ++k) norm += q[first + k] * q[first + k];
-      norm = std::sqrt(norm);
-      for (int k = 0; k < 4; ++k) q[first + k] /= norm;
-    }
-    matter->updU(state) = u_next;
-    state.updTime() = static_cast<Real>(steps + 1) * h;  // no round-off drift
-  } catch (const std::exception& e) {
-    std::string what = e.what();
-    std::replace(what.begin(), what.end(), '\n', ' ');
-    fail(WorldStatus::kIntegratorFailure,
-         "Simbody failed at t=" + std::to_string(state.getTime()) + " s: " + what.substr(0, 200));
-    return false;
-  }
-  ++steps;
-  const SimTK::Vector& q_all = matter->getQ(state);
-  const SimTK::Vector& u_all = matter->getU(state);
-  const Real* q = q_all.getContiguousScalarData();
-  const Real* u = u_all.getContiguousScalarData();
-  for (int i = 0; i < q_all.size(); ++i)
-    if (!std::isfinite(q[i])) {
-      fail(WorldStatus::kNonFinite, "non-finite coordinate q[" + std::to_string(i) +
-                                        "] at t=" + std::to_string(state.getTime()) + " s");
-      return false;
-    }
-  for (int i = 0; i < u_all.size(); ++i) {
-    if (!std::isfinite(u[i])) {
-      fail(WorldStatus::kNonFinite, "non-finite speed u[" + std::to_string(i) +
-                                        "] at t=" + std::to_string(state.getTime()) + " s");
-      return false;
-    }
-    if (std::abs(u[i]) > options.max_speed) {
-      fail(WorldStatus::kExploded, "exploding state: |u[" + std::to_string(i) +
-                                       "]| = " + std::to_string(std::abs(u[i])) + " > " +
-                                       std::to_string(options.max_speed) +
-                                       " at t=" + std::to_string(state.getTime()) + " s");
-      return false;
-    }
+  servo_torques();
+  // The chain reads the torso at the step's start and its acceleration over the step.
+  TorsoMotion start;
+  if (imu.needs_steps()) start = torso_motion();
+  status = engine->step(joint_tau, reason);
+  if (status != WorldStatus::kRunning) return false;
+  if (imu.needs_steps()) {
+    start.linear_acceleration = engine->torso_acceleration();
+    imu.feed(start, h, rng);
   }
   return true;
-}
-
-/// True specific force and rate in the torso frame, this step, into the IMU chain.
-void SimWorld::Impl::feed_imu() {
-  const SimTK::Rotation& r = bodies[0].getBodyTransform(state).R();
-  const Vec3 accel_b = ~r * (torso_accel + Vec3(0, 0, options.gravity_mps2));
-  const Vec3 gyro_b = ~r * bodies[0].getBodyAngularVelocity(state);
-  imu_model.step(to_eigen(accel_b), to_eigen(gyro_b), h, rng);
-}
-
-void SimWorld::Impl::sample_imu() {
-  if (imu_chain) {
-    imu.accel = imu_model.accel();
-    imu.gyro = imu_model.gyro();
-    return;
-  }
-  // Always six draws per sample, so the random stream does not depend on the options.
-  Eigen::Vector3d accel_noise, gyro_noise;
-  for (int k = 0; k < 3; ++k) accel_noise[k] = rng.normal();
-  for (int k = 0; k < 3; ++k) gyro_noise[k] = rng.normal();
-  if (status != WorldStatus::kRunning) return;
-  system->realize(state, Stage::Velocity);
-  const Transform& x = bodies[0].getBodyTransform(state);
-  const Vec3 specific_force_g = torso_accel + Vec3(0, 0, options.gravity_mps2);
-  const Vec3 accel_b = ~x.R() * specific_force_g;
-  const Vec3 gyro_b = ~x.R() * bodies[0].getBodyAngularVelocity(state);
-  imu.accel = to_eigen(accel_b) + accel_bias + options.imu.accel_noise_std * accel_noise;
-  imu.gyro = to_eigen(gyro_b) + gyro_bias + options.imu.gyro_noise_std * gyro_noise;
 }
 
 // ----------------------------------------------------------------------------------------------
@@ -589,7 +172,7 @@ Status SimWorld::create(const WorldOptions& options, std::unique_ptr<SimWorld>& 
   impl->options = options;
   impl->rng.reseed(options.seed);
   if (Status s = impl->configure(); !s) return s;
-  // reset() builds the Simbody system (with the masses it draws) and reports a failure.
+  // reset() builds the engine (with the masses it draws) and reports a failure.
   std::unique_ptr<SimWorld> world(new SimWorld(std::move(impl)));
   if (Status s = world->reset(ResetSpec::standing()); !s) return s;
   out = std::move(world);
@@ -599,6 +182,46 @@ Status SimWorld::create(const WorldOptions& options, std::unique_ptr<SimWorld>& 
 void SimWorld::reseed(std::uint64_t seed) {
   impl_->rng.reseed(seed);
 }
+
+namespace {
+
+/// Places the robot for a reset on `engine`: the given orientation, tilted so that the mean
+/// sole normal points up if asked, lowered until the lowest collision point rests on the grass
+/// top unless a height is given. The feet and points are read from the engine itself, so the
+/// placement is exact in the engine's own kinematics.
+Status place_robot(PhysicsEngine& engine, const std::vector<CollisionPoint>& points,
+                   const ResetSpec& spec, int left_foot, int right_foot, double grass_top,
+                   EngineStart& start) {
+  start.torso_orientation = spec.torso_orientation.normalized();
+  start.torso_position = Eigen::Vector3d(spec.torso_position.x(), spec.torso_position.y(), 0.0);
+  start.tilt_angle = 0.0;
+  if (spec.level_feet && left_foot >= 0 && right_foot >= 0) {
+    if (Status s = engine.start(start); !s) return s;
+    const Eigen::Vector3d up =
+        engine.link_pose(static_cast<std::size_t>(left_foot)).linear().col(2) +
+        engine.link_pose(static_cast<std::size_t>(right_foot)).linear().col(2);
+    const Eigen::Vector3d n = up / up.norm();
+    const Eigen::Vector3d axis = n.cross(Eigen::Vector3d::UnitZ());
+    if (axis.norm() > 1e-12) {
+      start.tilt_axis = axis;
+      start.tilt_angle = std::atan2(axis.norm(), n.z());
+    }
+  }
+  if (std::isfinite(spec.torso_position.z())) {
+    start.torso_position.z() = spec.torso_position.z();
+    return engine.start(start);
+  }
+  if (Status s = engine.start(start); !s) return s;
+  double lowest = std::numeric_limits<double>::infinity();
+  for (const CollisionPoint& p : points) {
+    const Eigen::Isometry3d x = engine.link_pose(static_cast<std::size_t>(p.link));
+    lowest = std::min(lowest, (x * p.station).z() - p.radius);
+  }
+  start.torso_position.z() = grass_top - lowest;
+  return engine.start(start);
+}
+
+}  // namespace
 
 Status SimWorld::reset(const ResetSpec& spec) {
   Impl& w = *impl_;
@@ -610,19 +233,16 @@ Status SimWorld::reset(const ResetSpec& spec) {
     return Status::error("reset: non-finite torso or ball pose");
   // Randomisation: a fixed number of draws whatever the ranges.
   const Randomisation& r = w.options.randomise;
-  w.friction = w.options.contact.friction * (1.0 + r.friction_range * w.rng.uniform(-1.0, 1.0));
-  for (Real& s : w.mass_scale) s = 1.0 + r.mass_range * w.rng.uniform(-1.0, 1.0);
-  for (Real& s : w.strength) s = 1.0 + r.strength_range * w.rng.uniform(-1.0, 1.0);
+  EngineModel& em = w.engine_model;
+  em.friction = w.options.contact.friction * (1.0 + r.friction_range * w.rng.uniform(-1.0, 1.0));
+  for (double& s : em.link_mass_scale) s = 1.0 + r.mass_range * w.rng.uniform(-1.0, 1.0);
+  for (double& s : w.strength) s = 1.0 + r.strength_range * w.rng.uniform(-1.0, 1.0);
   w.latency = w.rng.uniform() < r.latency_probability;
   for (int k = 0; k < 3; ++k)
     w.accel_bias[k] = w.options.imu.accel_bias[k] + w.options.imu.accel_bias_std * w.rng.normal();
   for (int k = 0; k < 3; ++k)
     w.gyro_bias[k] = w.options.imu.gyro_bias[k] + w.options.imu.gyro_bias_std * w.rng.normal();
-  try {
-    w.build();
-  } catch (const std::exception& e) {
-    return Status::error(std::string("reset: building the Simbody system failed: ") + e.what());
-  }
+  if (Status s = w.engine->build(em); !s) return Status::error("reset: " + s.message());
   // Servo parameters.
   for (std::size_t i = 0; i < hal::kServoCount; ++i) {
     const MotorCurve curve = motor_curve(w.servo_models[i], w.options.battery_voltage_v);
@@ -662,64 +282,25 @@ Status SimWorld::reset(const ResetSpec& spec) {
   w.identified = w.options.servo.law == ServoLaw::kIdentified;
   w.torque_enable = true;
   // Pose.
-  SimTK::State& s = w.state;
-  for (std::size_t i = 0; i < hal::kServoCount; ++i) {
-    const auto link = static_cast<std::size_t>(
-        w.model.joints()[static_cast<std::size_t>(w.servo_joint[i])].child_link);
-    w.bodies[link].setOneQ(s, 0, spec.joint_angles[i]);
-  }
-  const Eigen::Quaterniond qt = spec.torso_orientation.normalized();
-  SimTK::Rotation rot(SimTK::Quaternion(qt.w(), qt.x(), qt.y(), qt.z()));
-  Vec3 torso(spec.torso_position.x(), spec.torso_position.y(), 0.0);
-  w.bodies[0].setQToFitTransform(s, Transform(rot, torso));
-  w.system->realize(s, Stage::Position);
-  if (spec.level_feet && w.left_foot >= 0 && w.right_foot >= 0) {
-    const Vec3 up = w.bodies[static_cast<std::size_t>(w.left_foot)].getBodyRotation(s).z() +
-                    w.bodies[static_cast<std::size_t>(w.right_foot)].getBodyRotation(s).z();
-    const SimTK::UnitVec3 n(up);
-    const Vec3 axis = n % Vec3(0, 0, 1);
-    const Real angle = std::atan2(axis.norm(), n[2]);
-    if (axis.norm() > 1e-12) {
-      rot = SimTK::Rotation(angle, SimTK::UnitVec3(axis)) * rot;
-      w.bodies[0].setQToFitTransform(s, Transform(rot, torso));
-      w.system->realize(s, Stage::Position);
-    }
-  }
-  if (std::isfinite(spec.torso_position.z())) {
-    torso[2] = spec.torso_position.z();
-  } else {
-    Real lowest = std::numeric_limits<Real>::infinity();
-    for (const ContactPoint& p : w.points) {
-      const Vec3 at = w.bodies[static_cast<std::size_t>(p.link)].getBodyTransform(s) * p.station;
-      lowest = std::min(lowest, at[2] - p.radius);
-    }
-    torso[2] = w.grass_top() - lowest;
-  }
-  w.bodies[0].setQToFitTransform(s, Transform(rot, torso));
-  if (w.has_ball) {
-    const Real z = std::isfinite(spec.ball_position.z()) ? spec.ball_position.z()
-                                                         : w.grass_top() + w.options.ball.radius_m;
-    w.ball.setQToFitTransform(s,
-                              Transform(Vec3(spec.ball_position.x(), spec.ball_position.y(), z)));
-    w.ball.setUToFitLinearVelocity(s, to_vec3(spec.ball_velocity));
-  }
-  for (ContactPoint& p : w.points) p.touching = false;
-  w.ball_point = ContactPoint{-1, Vec3(0), w.options.ball.radius_m, 0};
-  s.updTime() = 0.0;
-  w.steps = 0;
+  EngineStart start;
+  start.joint_angles.assign(w.model.joints().size(), 0.0);
+  for (std::size_t i = 0; i < hal::kServoCount; ++i)
+    start.joint_angles[static_cast<std::size_t>(w.servo_joint[i])] = spec.joint_angles[i];
+  const double grass_top = w.options.contact.grass_thickness_m;
+  start.ball_position = spec.ball_position;
+  if (!std::isfinite(start.ball_position.z()))
+    start.ball_position.z() = grass_top + w.options.ball.radius_m;
+  start.ball_velocity = spec.ball_velocity;
+  if (Status s =
+          place_robot(*w.engine, w.collision, spec, w.left_foot, w.right_foot, grass_top, start);
+      !s)
+    return Status::error("reset: " + s.message());
   w.periods = 0;
   w.status = WorldStatus::kRunning;
   w.reason.clear();
-  w.torso_accel = Vec3(0);
-  w.imu_chain = !w.options.imu.chain.is_ideal();
-  if (w.imu_chain) {
-    w.system->realize(w.state, Stage::Velocity);
-    const SimTK::Rotation& torso_r = w.bodies[0].getBodyTransform(w.state).R();
-    w.imu_model.configure(w.options.imu.chain);
-    w.imu_model.reset(to_eigen(~torso_r * Vec3(0, 0, w.options.gravity_mps2)),
-                      Eigen::Vector3d::Zero(), w.accel_bias, w.gyro_bias);
-  }
-  w.sample_imu();
+  w.imu.reset(w.options.imu, w.options.gravity_mps2, w.accel_bias, w.gyro_bias,
+              w.engine->link_pose(0).linear());
+  w.imu.sample(w.torso_motion(), w.rng);
   return Status::ok();
 }
 
@@ -735,14 +316,13 @@ hal::ServoState SimWorld::servo_state(std::size_t index) const {
   hal::ServoState out;
   if (index >= hal::kServoCount) return out;
   const Impl& w = *impl_;
-  const SimTK::MobilizedBody& mb = w.bodies[static_cast<std::size_t>(
-      w.model.joints()[static_cast<std::size_t>(w.servo_joint[index])].child_link)];
+  const auto joint = static_cast<std::size_t>(w.servo_joint[index]);
   const ServoModel& servo = w.servos[index];
   const MxServo& mx = w.mx_servos[index];
   const hal::ServoCommand& cmd = w.written[index];
   constexpr double kSpeedUnit = 0.114 * 2.0 * M_PI / 60.0;  // present speed register unit
-  out.position_rad = quantise_encoder(mb.getOneQ(w.state, 0));
-  out.speed_rad_s = std::round(mb.getOneU(w.state, 0) / kSpeedUnit) * kSpeedUnit;
+  out.position_rad = quantise_encoder(w.engine->joint_angle(joint));
+  out.speed_rad_s = std::round(w.engine->joint_speed(joint) / kSpeedUnit) * kSpeedUnit;
   out.load = w.identified ? mx.load() : servo.load();
   out.voltage_v = w.options.battery_voltage_v;
   out.temperature_c = std::round(w.identified ? mx.temperature_c() : servo.temperature_c());
@@ -758,7 +338,7 @@ hal::ServoState SimWorld::servo_state(std::size_t index) const {
 }
 
 const ImuReading& SimWorld::imu() const {
-  return impl_->imu;
+  return impl_->imu.reading();
 }
 
 bool SimWorld::step() {
@@ -779,7 +359,11 @@ bool SimWorld::advance_period() {
   for (int k = 0; k < w.steps_per_period; ++k)
     if (!w.step_once()) break;
   ++w.periods;
-  w.sample_imu();
+  if (w.status == WorldStatus::kRunning) {
+    w.imu.sample(w.torso_motion(), w.rng);
+  } else {
+    w.imu.skip(w.rng);
+  }
   return w.status == WorldStatus::kRunning;
 }
 
@@ -790,7 +374,7 @@ const std::string& SimWorld::failure_reason() const {
   return impl_->reason;
 }
 double SimWorld::time_s() const {
-  return impl_->state.getTime();
+  return impl_->engine->time_s();
 }
 std::int64_t SimWorld::period_count() const {
   return impl_->periods;
@@ -806,55 +390,36 @@ double SimWorld::battery_voltage() const {
 }
 
 GroundTruth SimWorld::ground_truth() const {
-  Impl& w = *impl_;
+  const Impl& w = *impl_;
+  const PhysicsEngine& e = *w.engine;
   GroundTruth g;
-  g.time_s = w.state.getTime();
-  g.left_contact = w.left_contact;
-  g.right_contact = w.right_contact;
-  g.other_contacts = w.other_contacts;
+  g.time_s = e.time_s();
+  const ContactReport contacts = e.contacts();
+  g.left_contact = contacts.left;
+  g.right_contact = contacts.right;
+  g.other_contacts = contacts.other_contacts;
   if (w.status == WorldStatus::kNonFinite) return g;
-  w.system->realize(w.state, Stage::Velocity);
-  g.torso = to_isometry(w.bodies[0].getBodyTransform(w.state));
-  g.torso_linear_velocity = to_eigen(w.bodies[0].getBodyOriginVelocity(w.state));
-  g.torso_angular_velocity = to_eigen(w.bodies[0].getBodyAngularVelocity(w.state));
-  g.torso_linear_acceleration = to_eigen(w.torso_accel);
-  g.center_of_mass = to_eigen(w.matter->calcSystemMassCenterLocationInGround(w.state));
-  if (w.has_ball) {
-    // calcSystemMassCenter includes the ball: take the robot alone.
-    const Real mb = w.options.ball.mass_kg;
-    Real mt = 0.0;
-    for (std::size_t l = 0; l < w.model.links().size(); ++l)
-      mt += w.mass_scale[l] * w.model.links()[l].mass;
-    const Vec3 ball_p = w.ball.getBodyOriginLocation(w.state);
-    g.center_of_mass = (g.center_of_mass * (mt + mb) - to_eigen(ball_p) * mb) / mt;
-    g.ball_position = to_eigen(ball_p);
-    g.ball_velocity = to_eigen(w.ball.getBodyOriginVelocity(w.state));
-  }
-  if (w.left_foot >= 0)
-    g.left_foot =
-        to_isometry(w.bodies[static_cast<std::size_t>(w.left_foot)].getBodyTransform(w.state));
-  if (w.right_foot >= 0)
-    g.right_foot =
-        to_isometry(w.bodies[static_cast<std::size_t>(w.right_foot)].getBodyTransform(w.state));
+  g.torso = e.link_pose(0);
+  g.torso_linear_velocity = e.torso_velocity();
+  g.torso_angular_velocity = e.torso_angular_velocity();
+  g.torso_linear_acceleration = e.torso_acceleration();
+  g.center_of_mass = e.robot_center_of_mass();
+  g.ball_position = e.ball_position();
+  g.ball_velocity = e.ball_velocity();
+  if (w.left_foot >= 0) g.left_foot = e.link_pose(static_cast<std::size_t>(w.left_foot));
+  if (w.right_foot >= 0) g.right_foot = e.link_pose(static_cast<std::size_t>(w.right_foot));
   return g;
 }
 
 Eigen::Isometry3d SimWorld::torso_pose() const {
-  Impl& w = *impl_;
+  const Impl& w = *impl_;
   if (w.status == WorldStatus::kNonFinite) return Eigen::Isometry3d::Identity();
-  w.system->realize(w.state, Stage::Position);
-  return to_isometry(w.bodies[0].getBodyTransform(w.state));
+  return w.engine->link_pose(0);
 }
 
 std::uint64_t SimWorld::state_hash() const {
   const Impl& w = *impl_;
-  std::uint64_t hash = 0xcbf29ce484222325ULL;
-  const Real t = w.state.getTime();
-  hash = fnv1a(hash, &t, sizeof t);
-  const SimTK::Vector& q = w.matter->getQ(w.state);
-  const SimTK::Vector& u = w.matter->getU(w.state);
-  for (int i = 0; i < q.size(); ++i) hash = fnv1a(hash, &q[i], sizeof(Real));
-  for (int i = 0; i < u.size(); ++i) hash = fnv1a(hash, &u[i], sizeof(Real));
+  std::uint64_t hash = w.engine->hash(0xcbf29ce484222325ULL);
   for (std::size_t i = 0; i < hal::kServoCount; ++i) {
     const double sp = w.identified ? w.mx_servos[i].setpoint() : w.servos[i].setpoint();
     hash = fnv1a(hash, &sp, sizeof sp);
@@ -863,49 +428,32 @@ std::uint64_t SimWorld::state_hash() const {
       hash = fnv1a(hash, &gap, sizeof gap);
     }
   }
-  std::vector<const ContactPoint*> all;
-  for (const ContactPoint& p : w.points) all.push_back(&p);
-  all.push_back(&w.ball_point);
-  for (const ContactPoint* pp : all) {
-    const ContactPoint& p = *pp;
-    const unsigned char touching = p.touching ? 1 : 0;
-    hash = fnv1a(hash, &touching, 1);
-    hash = fnv1a(hash, &p.anchor_x, sizeof(Real));
-    hash = fnv1a(hash, &p.anchor_y, sizeof(Real));
-  }
   return hash;
 }
 
 std::vector<Eigen::Isometry3d> SimWorld::link_poses() const {
-  Impl& w = *impl_;
+  const Impl& w = *impl_;
   std::vector<Eigen::Isometry3d> out;
   if (w.status == WorldStatus::kNonFinite) return out;
-  w.system->realize(w.state, Stage::Position);
-  for (const SimTK::MobilizedBody& b : w.bodies)
-    out.push_back(to_isometry(b.getBodyTransform(w.state)));
+  for (std::size_t l = 0; l < w.model.links().size(); ++l) out.push_back(w.engine->link_pose(l));
   return out;
 }
 
 std::vector<double> SimWorld::joint_angles() const {
   const Impl& w = *impl_;
   std::vector<double> out;
-  for (const JointSpec& j : w.model.joints())
-    out.push_back(w.bodies[static_cast<std::size_t>(j.child_link)].getOneQ(w.state, 0));
+  for (std::size_t j = 0; j < w.model.joints().size(); ++j) out.push_back(w.engine->joint_angle(j));
   return out;
 }
 
 double SimWorld::servo_joint_angle(std::size_t index) const {
   const Impl& w = *impl_;
   if (index >= hal::kServoCount) return 0.0;
-  const auto link = static_cast<std::size_t>(
-      w.model.joints()[static_cast<std::size_t>(w.servo_joint[index])].child_link);
-  return w.bodies[link].getOneQ(w.state, 0);
+  return w.engine->joint_angle(static_cast<std::size_t>(w.servo_joint[index]));
 }
 
 void SimWorld::set_joint_speed(std::size_t joint, double speed) {
-  Impl& w = *impl_;
-  if (joint >= w.model.joints().size()) return;
-  w.bodies[static_cast<std::size_t>(w.model.joints()[joint].child_link)].setOneU(w.state, 0, speed);
+  impl_->engine->set_joint_speed(joint, speed);
 }
 
 const char* to_string(WorldStatus status) {

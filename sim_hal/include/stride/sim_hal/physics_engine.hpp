@@ -53,10 +53,16 @@ struct EngineModel {
   double max_speed = 200.0;
 };
 
-/// Initial state for start(): everything at rest except the ball's velocity.
+/// Initial state for start(): everything at rest except the ball's velocity. The torso's
+/// orientation is the rotation `tilt_angle` about the world axis `tilt_axis` applied after
+/// `torso_orientation` (SimWorld levels the feet with the tilt); engines compose it in their
+/// own arithmetic, so that a placement is the same bits as the engine's own kinematics.
 struct EngineStart {
-  std::vector<double> joint_angles;  ///< per model joint [rad]
-  Eigen::Isometry3d torso = Eigen::Isometry3d::Identity();  ///< root link frame in the world
+  std::vector<double> joint_angles;                          ///< per model joint [rad]
+  Eigen::Vector3d torso_position = Eigen::Vector3d::Zero();  ///< root link origin [m]
+  Eigen::Quaterniond torso_orientation = Eigen::Quaterniond::Identity();
+  Eigen::Vector3d tilt_axis = Eigen::Vector3d::UnitZ();     ///< unit, world frame
+  double tilt_angle = 0.0;                                  ///< [rad]
   Eigen::Vector3d ball_position = Eigen::Vector3d::Zero();  ///< ball centre [m]
   Eigen::Vector3d ball_velocity = Eigen::Vector3d::Zero();  ///< [m/s]
 };

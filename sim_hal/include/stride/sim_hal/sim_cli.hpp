@@ -7,7 +7,7 @@
 
 namespace stride::sim {
 
-/// Declares --seed, --noise on|off, --physics-step-us.
+/// Declares --seed, --noise on|off, --physics-step-us, --urdf, --imu, --servo-law, --engine.
 void declare_world_options(fw::CliArgs& args);
 /// Reads them into `out` (whose control period the caller sets). The error names the option.
 Status read_world_options(const fw::CliArgs& args, WorldOptions& out);

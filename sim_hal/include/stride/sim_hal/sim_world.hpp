@@ -1,19 +1,19 @@
-// SimWorld: the Simbody simulation of the igus robot on a grass field with a ball.
+// SimWorld: the simulated igus robot on a grass field with a ball, on a physics engine.
 //
-// Built from a URDF (RobotModel): a free-floating root link, one Pin mobilizer per revolute
-// joint, the joint's servo model (ServoModel) on the servo-driven joints, rotor inertia
-// J_rotor N^2 added about each driven joint axis, compliant contact of collision points (the
-// foot studs, box corners, sphere bottoms) against a soft grass layer over solid ground, and a
-// free ball. Integration is a fixed-step semi-explicit Euler scheme (u += h udot; q += h N u)
-// that SimWorld runs itself, so one step costs exactly one Simbody realization to
-// Stage::Acceleration.
+// Built from a URDF (RobotModel). What does not depend on the engine lives here: the servo
+// models (ServoModel, the seed's law, or MxServo, the identified MX servo) turn each joint's
+// angle and speed into a torque every physics step; the IMU (ImuSampler) reads the torso's
+// motion; the seeded randomisation (friction, masses, servo strength, command latency, IMU
+// bias) is drawn at every reset; the robot is placed by forward kinematics. The engine
+// (physics_engine.hpp, chosen by WorldOptions::engine) owns bodies, contact and the step:
+// Simbody with Stride's compliant grass contact, or MuJoCo with its own soft contact.
 //
 // Driving it from outside (SimRobot, the virtual Dynamixel bus, evaluators):
 //   set_servo_command(i, cmd)  -- registers in: goal, moving speed, P gain, torque limit/enable
 //   advance_period()           -- one control period of physics, then the sensors are sampled
 //   servo_state(i), imu()      -- registers out: present position/speed/load/temperature, IMU
 // Every random draw (randomisation at reset, sensor noise) comes from the world's WorldRng.
-// Simbody never appears in this header.
+// No engine header appears here.
 #pragma once
 
 #include <Eigen/Core>
@@ -30,6 +30,7 @@
 #include "stride/hal/sensor_frame.hpp"
 #include "stride/hal/status.hpp"
 #include "stride/sim_hal/imu_model.hpp"
+#include "stride/sim_hal/imu_sampler.hpp"
 #include "stride/sim_hal/mx_servo.hpp"
 #include "stride/sim_hal/robot_model.hpp"
 #include "stride/sim_hal/servo_model.hpp"
@@ -74,15 +75,9 @@ struct GroundTruth {
   Eigen::Vector3d ball_velocity = Eigen::Vector3d::Zero();
 };
 
-/// IMU reading in the torso frame.
-struct ImuReading {
-  Eigen::Vector3d accel = Eigen::Vector3d::Zero();  ///< specific force [m/s^2]
-  Eigen::Vector3d gyro = Eigen::Vector3d::Zero();   ///< angular rate [rad/s]
-};
-
 class SimWorld {
  public:
-  /// Loads the URDF, builds the Simbody system and resets to ResetSpec::standing().
+  /// Loads the URDF, builds the engine and resets to ResetSpec::standing().
   static Status create(const WorldOptions& options, std::unique_ptr<SimWorld>& out);
   ~SimWorld();
   SimWorld(const SimWorld&) = delete;

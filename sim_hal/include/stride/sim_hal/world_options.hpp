@@ -117,7 +117,7 @@ enum class WorldStatus : std::uint8_t {
   kRunning = 0,
   kNonFinite,          ///< NaN or infinity in the state
   kExploded,           ///< a speed above WorldOptions::max_speed
-  kIntegratorFailure,  ///< Simbody threw during a step
+  kIntegratorFailure,  ///< the engine failed during a step
 };
 const char* to_string(WorldStatus status);
 
