@@ -164,8 +164,10 @@ Status MujocoEngine::start(const EngineStart& start) {
   mj_resetData(m_.get(), d_.get());
   for (std::size_t j = 0; j < joint_qpos_.size(); ++j)
     d_->qpos[joint_qpos_[j]] = start.joint_angles[j];
-  const Eigen::Vector3d p = start.torso.translation();
-  const Eigen::Quaterniond q(start.torso.linear());
+  const Eigen::Vector3d& p = start.torso_position;
+  Eigen::Quaterniond q = start.torso_orientation.normalized();
+  if (start.tilt_angle != 0.0)
+    q = Eigen::Quaterniond(Eigen::AngleAxisd(start.tilt_angle, start.tilt_axis.normalized())) * q;
   mjtNum* root = d_->qpos + root_qpos_;
   root[0] = p.x();
   root[1] = p.y();

@@ -12,10 +12,9 @@
 
 namespace stride::sim::engine_test {
 
-/// An engine under test: its name (for test names) and how to make one.
+/// An engine under test (make_physics_engine's kind).
 struct EngineCase {
-  const char* name;
-  std::unique_ptr<PhysicsEngine> (*make)();
+  EngineKind kind;
 };
 
 /// A 1 kg, 0.1 m cube with a collision box.

@@ -86,10 +86,16 @@ TEST(MujocoEngine, LinkPosesFollowTheUrdfJointFrames) {
   start.joint_angles.assign(robot.joints().size(), 0.0);
   for (std::size_t j = 0; j < robot.joints().size(); ++j)
     start.joint_angles[j] = 0.1 * std::sin(static_cast<double>(j));
-  start.torso.translation() = Eigen::Vector3d(0.1, 0.2, 1.0);
-  start.torso.linear() = Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  start.torso_position = Eigen::Vector3d(0.1, 0.2, 1.0);
+  start.torso_orientation = Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ());
+  start.tilt_axis = Eigen::Vector3d(1, 1, 0).normalized();
+  start.tilt_angle = 0.2;
   ASSERT_TRUE(engine->start(start));
-  std::vector<Eigen::Isometry3d> pose(robot.links().size(), start.torso);
+  Eigen::Isometry3d torso = Eigen::Isometry3d::Identity();
+  torso.translation() = start.torso_position;
+  torso.linear() =
+      (Eigen::AngleAxisd(0.2, start.tilt_axis) * start.torso_orientation).toRotationMatrix();
+  std::vector<Eigen::Isometry3d> pose(robot.links().size(), torso);
   for (std::size_t j = 0; j < robot.joints().size(); ++j) {
     const JointSpec& joint = robot.joints()[j];
     pose[static_cast<std::size_t>(joint.child_link)] =
@@ -159,7 +165,8 @@ TEST(MujocoEngine, TheIgusRobotStandsAsDeepInTheGrassAsOnSimbody) {
   ASSERT_TRUE(engine->build(model));
   EngineStart start;
   start.joint_angles = angles;
-  start.torso = initial[0];
+  start.torso_position = initial[0].translation();
+  start.torso_orientation = Eigen::Quaterniond(initial[0].linear());
   ASSERT_TRUE(engine->start(start));
   std::vector<double> torque(robot.joints().size(), 0.0);
   std::string reason;
@@ -196,6 +203,42 @@ TEST(MujocoEngine, TheIgusRobotStandsAsDeepInTheGrassAsOnSimbody) {
   EXPECT_NEAR(engine->torso_acceleration().norm(), 0.0, 0.05);
 }
 
+TEST(MujocoEngine, SimWorldStandsOnMujocoAsDeepAsOnSimbodyWithItsServos) {
+  // The same world (servos, randomisation, placement) on both engines, the Stand pose held.
+  double sink[2][2] = {};
+  for (EngineKind kind : {EngineKind::kSimbody, EngineKind::kMujoco}) {
+    WorldOptions options;
+    options.engine = kind;
+    std::unique_ptr<SimWorld> world;
+    const Status s = SimWorld::create(options, world);
+    ASSERT_TRUE(s) << s.message();
+    for (std::size_t i = 0; i < hal::kServoCount; ++i) {
+      hal::ServoCommand c;
+      c.position_rad = igus_stand_pose()[i];
+      c.p_gain = 32;
+      c.torque_enable = true;
+      world->set_servo_command(i, c);
+    }
+    for (int k = 0; k < 500; ++k) ASSERT_TRUE(world->advance_period()) << to_string(kind);
+    const GroundTruth g = world->ground_truth();
+    const RobotModel& robot = world->model();
+    const double top = options.contact.grass_thickness_m;
+    const auto e = static_cast<std::size_t>(kind);
+    sink[e][0] = top - stud_tip(robot, robot.link_index("left_foot_link"), g.left_foot);
+    sink[e][1] = top - stud_tip(robot, robot.link_index("right_foot_link"), g.right_foot);
+    EXPECT_GT(g.torso.linear()(2, 2), 0.95) << to_string(kind);
+    EXPECT_LT(g.torso_linear_velocity.norm(), 0.01) << to_string(kind);
+    EXPECT_EQ(g.left_contact.points_in_contact, 4) << to_string(kind);
+    EXPECT_EQ(g.right_contact.points_in_contact, 4) << to_string(kind);
+    const double weight = robot.total_mass() * options.gravity_mps2;
+    EXPECT_NEAR(g.left_contact.force.z() + g.right_contact.force.z(), weight, 0.05 * weight);
+  }
+  std::printf("SimWorld, 5 s standing, sink [mm]: Simbody %.2f / %.2f, MuJoCo %.2f / %.2f\n",
+              1e3 * sink[0][0], 1e3 * sink[0][1], 1e3 * sink[1][0], 1e3 * sink[1][1]);
+  EXPECT_NEAR(sink[1][0], sink[0][0], 0.002);
+  EXPECT_NEAR(sink[1][1], sink[0][1], 0.002);
+}
+
 /// The igus robot dropped from 5 cm with its joints limp but one torque pulse, and a ball.
 std::uint64_t drop_hash(const RobotModel& robot, double pulse) {
   auto engine = make_mujoco_engine();
@@ -204,7 +247,7 @@ std::uint64_t drop_hash(const RobotModel& robot, double pulse) {
   EXPECT_TRUE(engine->build(model));
   EngineStart start;
   start.joint_angles.assign(robot.joints().size(), 0.0);
-  start.torso.translation() = Eigen::Vector3d(0, 0, 0.5);
+  start.torso_position = Eigen::Vector3d(0, 0, 0.5);
   start.ball_position = Eigen::Vector3d(0.2, 0.0, 0.2);
   start.ball_velocity = Eigen::Vector3d(-1.0, 0.0, 0.0);
   EXPECT_TRUE(engine->start(start));
@@ -234,7 +277,7 @@ TEST(MujocoEngine, AnExplodingStateEndsTheStepWithAReason) {
   ASSERT_TRUE(engine->build(igus_model(robot)));
   EngineStart start;
   start.joint_angles.assign(robot.joints().size(), 0.0);
-  start.torso.translation() = Eigen::Vector3d(0, 0, 0.5);
+  start.torso_position = Eigen::Vector3d(0, 0, 0.5);
   ASSERT_TRUE(engine->start(start));
   engine->set_joint_speed(2, 500.0);
   std::string reason;
