@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -103,7 +104,8 @@ Status MujocoEngine::build(const EngineModel& model) {
       !(model.ball.radius_m > 0.0 && model.ball.mass_kg > 0.0 && model.ball.inertia_kg_m2 > 0.0))
     return Status::error("MuJoCo engine: the ball needs a positive radius, mass and inertia");
   model_ = model;
-  mju_user_warning = quiet_warning;
+  static std::once_flag quiet;  // a global of MuJoCo: set once, whatever the threads
+  std::call_once(quiet, [] { mju_user_warning = quiet_warning; });
   d_.reset();
   m_.reset();
 
@@ -115,7 +117,12 @@ Status MujocoEngine::build(const EngineModel& model) {
     return Status::error("MuJoCo engine: no room for the model in the virtual file system");
   std::memcpy(vfs->filedata[mj_findFileVFS(vfs.get(), file)], xml.data(), xml.size());
   char error[1000] = "";
-  m_.reset(mj_loadXML(file, vfs.get(), error, sizeof error));
+  {
+    // mj_loadXML keeps the last model in a global (for mj_saveLastXML): one load at a time.
+    static std::mutex loading;
+    const std::lock_guard<std::mutex> lock(loading);
+    m_.reset(mj_loadXML(file, vfs.get(), error, sizeof error));
+  }
   if (!m_) {
     std::string text = error;
     for (char& c : text)
