@@ -14,7 +14,7 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config ccache git
   libeigen3-dev nlohmann-json3-dev libserialport-dev libedit-dev
-  libsimbody-dev libmujoco-dev liburdfdom-dev liburdfdom-headers-dev
+  libsimbody-dev libmujoco-dev libqhull-dev liburdfdom-dev liburdfdom-headers-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libopenmpi-dev openmpi-bin
   clang libclang-rt-14-dev clang-format

@@ -1,4 +1,5 @@
 // make_physics_engine: the engines this build has, by kind.
+#include "mujoco/mujoco_engine.hpp"
 #include "simbody/simbody_engine.hpp"
 #include "stride/sim_hal/physics_engine.hpp"
 
@@ -9,7 +10,7 @@ std::unique_ptr<PhysicsEngine> make_physics_engine(EngineKind kind) {
     case EngineKind::kSimbody:
       return simbody::make_simbody_engine();
     case EngineKind::kMujoco:
-      return nullptr;  // not in this build yet
+      return make_mujoco_engine();
   }
   return nullptr;
 }

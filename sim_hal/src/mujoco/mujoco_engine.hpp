@@ -1,0 +1,32 @@
+// The MuJoCo 2.2 physics engine behind PhysicsEngine (private to sim_hal; the engine factory
+// and the tests use it).
+//
+// build() writes the episode's MJCF (mjcf_model.hpp), loads it through MuJoCo's virtual file
+// system, sets the soft-contact parameters (contact_params.hpp) and allocates mjData once.
+// step() puts the joint torques into qfrc_applied (and the ball's rolling damping), runs one
+// mj_step (Euler: v' = v + h a, q' = q + h v', as Simbody's fixed-step loop), then recomputes
+// the link poses for the new positions. Single-threaded and deterministic: the state hash
+// covers time, qpos, qvel, qacc_warmstart (the solver's warm start, which shapes the next
+// step) and act. torso_acceleration() is the change of the root origin's velocity over the
+// last step divided by the step (MuJoCo's qacc of the free joint's translation, world frame).
+// contacts() reads the contacts MuJoCo found at the start of the last step, with their forces
+// (mj_contactForce, rotated to the world frame). MuJoCo's warnings (a bad qpos/qvel/qacc,
+// after which it resets the state itself) end the step with a reason; build() silences
+// MuJoCo's global warning handler, which would otherwise write MUJOCO_LOG.TXT.
+#pragma once
+
+#include <mujoco/mujoco.h>
+
+#include <memory>
+
+#include "stride/sim_hal/physics_engine.hpp"
+
+namespace stride::sim {
+
+std::unique_ptr<PhysicsEngine> make_mujoco_engine();
+
+/// The compiled model of a built MuJoCo engine (null before build() or for another engine):
+/// for tests that read masses, inertias and joint axes back.
+const mjModel* mujoco_model_of(const PhysicsEngine& engine);
+
+}  // namespace stride::sim
