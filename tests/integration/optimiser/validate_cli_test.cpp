@@ -92,10 +92,7 @@ TEST(ValidateCli, TinyWalkRunValidatesTheSameForAnyThreadCountAndReportShowsIt) 
   EXPECT_EQ(worlds[3]["physics_step_us"], 1000);
   for (const json& w : worlds) {
     EXPECT_EQ(w["seeds"], json({1001, 1002, 1003})) << w["name"];  // trial_seed 1 + 1000 + i
-    // Only the other engine may be missing from a build (MuJoCo, until it is wired in).
-    if (w["name"] != "engine mujoco") {
-      EXPECT_FALSE(w.contains("unavailable")) << w["name"];
-    }
+    EXPECT_FALSE(w.contains("unavailable")) << w["name"];
   }
   // Ind_O first, then the picks of `stride report`.
   const json& individuals = v["individuals"];
@@ -112,13 +109,6 @@ TEST(ValidateCli, TinyWalkRunValidatesTheSameForAnyThreadCountAndReportShowsIt) 
       const json& cell = ind["worlds"][w];
       SCOPED_TRACE(ind["name"].get<std::string>() + " / " + cell["world"].get<std::string>());
       EXPECT_EQ(cell["world"], worlds[w]["name"]);
-      if (worlds[w].contains("unavailable")) {
-        EXPECT_EQ(cell["unavailable"], worlds[w]["unavailable"]);
-        EXPECT_NE(cell["unavailable"].get<std::string>().find("mujoco"), std::string::npos);
-        EXPECT_EQ(v["table"][i * worlds.size() + w]["gate"], "unavailable");
-        all_passed = false;
-        continue;
-      }
       EXPECT_EQ(cell["seeds"], 3);
       const int reached = cell["reached"], falls = cell["falls"];
       EXPECT_LE(reached + falls, 3);
