@@ -32,6 +32,14 @@ sim::WorldOptions world_for_trial(const TaskConfig& config, int world) {
     w.randomise.strength_range = config.randomisation.strength_range;
   }
   if (config.task != "kick") w.ball.present = false;
+  if (!config.urdf.empty()) w.urdf = config.urdf;
+  w.servo.law = config.servo_law;
+  if (config.imu_cm730) {
+    const bool noisy = w.imu.accel_noise_std > 0.0;
+    w.imu.chain = sim::ImuChain{};
+    w.imu.chain.noise = noisy;
+  }
+  w.physics_step_ns = config.physics_step_us * 1000;
   return w;
 }
 
@@ -44,7 +52,8 @@ RobotTask::RobotTask(TaskConfig config) : config_(std::move(config)) {
   auto files = std::make_shared<fw::FirmwareFiles>();
   if (fw::FirmwareFiles::load({}, *files)) firmware_files_ = std::move(files);
   auto model = std::make_shared<sim::RobotModel>();
-  if (sim::RobotModel::load_file(sim::WorldOptions{}.urdf, *model)) robot_model_ = std::move(model);
+  const std::filesystem::path urdf = config_.urdf.empty() ? sim::WorldOptions{}.urdf : config_.urdf;
+  if (sim::RobotModel::load_file(urdf, *model)) robot_model_ = std::move(model);
 }
 
 Genome RobotTask::start_genome() const {
@@ -88,7 +97,8 @@ Status RobotTask::run_world(const Genome& genome, sim::WorldOptions options, Epi
   const bool omni = config_.task == "walk-omni";
   using Clock = std::chrono::steady_clock;
   const auto setup_start = Clock::now();
-  if (options.urdf == sim::WorldOptions{}.urdf) options.model = robot_model_;
+  if (options.urdf == (config_.urdf.empty() ? sim::WorldOptions{}.urdf : config_.urdf))
+    options.model = robot_model_;
   std::unique_ptr<fw::Firmware> firmware;
   if (Status s = firmware_files_ ? fw::Firmware::create({}, *firmware_files_, firmware)
                                  : fw::Firmware::create({}, firmware);

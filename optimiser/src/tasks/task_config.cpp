@@ -3,6 +3,9 @@
 
 #include <cmath>
 #include <fstream>
+#include <system_error>
+
+#include "stride/sim_hal/robot_model.hpp"
 
 namespace stride::opt {
 
@@ -77,12 +80,52 @@ const char* const kKnownFields[] = {"task",
                                     "randomisation",
                                     "engine",
                                     "engines",
+                                    "urdf",
+                                    "servo_law",
+                                    "imu",
+                                    "physics_step_us",
                                     "validate",
                                     "hypervolume_ideal",
                                     "hypervolume_nadir",
                                     "_comment"};
 
 // `engine` ("simbody" | "mujoco") or `engines` (a list of distinct engines), not both.
+// The simulated robot: `urdf` (parsed here, so that a broken file is named at load time),
+// `servo_law`, `imu`, `physics_step_us`.
+Status parse_robot(const nlohmann::json& doc, TaskConfig& c) {
+  if (doc.contains("urdf")) {
+    const auto& u = doc.at("urdf");
+    if (!u.is_string() || u.get<std::string>().empty())
+      return Status::error("urdf: must be the path of a robot description (URDF)");
+    c.urdf = u.get<std::string>();
+    std::error_code error;
+    if (!std::filesystem::is_regular_file(c.urdf, error))
+      return Status::error("urdf: no such file '" + c.urdf.string() + "'");
+    sim::RobotModel model;
+    if (Status s = sim::RobotModel::load_file(c.urdf, model); !s)
+      return Status::error("urdf: " + s.message());
+  }
+  if (doc.contains("servo_law")) {
+    const auto& l = doc.at("servo_law");
+    if (!l.is_string() || (l != "seed" && l != "identified"))
+      return Status::error("servo_law: must be \"seed\" or \"identified\", got " + l.dump());
+    c.servo_law = l == "identified" ? sim::ServoLaw::kIdentified : sim::ServoLaw::kSeed;
+  }
+  if (doc.contains("imu")) {
+    const auto& i = doc.at("imu");
+    if (!i.is_string() || (i != "ideal" && i != "cm730"))
+      return Status::error("imu: must be \"ideal\" or \"cm730\", got " + i.dump());
+    c.imu_cm730 = i == "cm730";
+  }
+  std::int64_t step = c.physics_step_us;
+  if (Status s = integer(doc, "physics_step_us", 1, 10000, step, false); !s) return s;
+  if (10000 % step != 0)
+    return Status::error("physics_step_us: must divide the 10000 us control period, got " +
+                         std::to_string(step));
+  c.physics_step_us = step;
+  return {};
+}
+
 Status parse_engines(const nlohmann::json& doc, std::vector<sim::EngineKind>& out) {
   const char* const allowed = "must be \"simbody\" or \"mujoco\"";
   if (doc.contains("engine") && doc.contains("engines"))
@@ -234,6 +277,7 @@ Status parse_task_config(const nlohmann::json& doc, TaskConfig& out) {
     }
   }
   if (Status s = parse_engines(doc, c.engines); !s) return s;
+  if (Status s = parse_robot(doc, c); !s) return s;
   if (doc.contains("validate")) {
     const auto& val = doc.at("validate");
     if (!val.is_object()) return Status::error("validate: must be an object");
@@ -263,6 +307,13 @@ Status load_task_config(const std::filesystem::path& path, TaskConfig& out) {
   if (!in) return Status::error(path.string() + ": cannot open");
   nlohmann::json doc = nlohmann::json::parse(in, nullptr, false);
   if (doc.is_discarded()) return Status::error(path.string() + ": not valid JSON");
+  // A relative robot description is relative to the config file.
+  if (doc.is_object() && doc.contains("urdf") && doc.at("urdf").is_string()) {
+    const std::filesystem::path urdf = doc.at("urdf").get<std::string>();
+    if (urdf.is_relative() && !urdf.empty())
+      doc["urdf"] =
+          (std::filesystem::absolute(path).parent_path() / urdf).lexically_normal().string();
+  }
   if (Status s = parse_task_config(doc, out); !s)
     return Status::error(path.string() + ": " + s.message());
   return {};
@@ -301,6 +352,10 @@ nlohmann::json to_json(const TaskConfig& c) {
   for (sim::EngineKind e : c.engines) engines.push_back(sim::to_string(e));
   j["engines"] = engines;
   j["validate"] = {{"seeds", c.validate_seeds}};
+  if (!c.urdf.empty()) j["urdf"] = std::filesystem::absolute(c.urdf).string();
+  j["servo_law"] = c.servo_law == sim::ServoLaw::kIdentified ? "identified" : "seed";
+  j["imu"] = c.imu_cm730 ? "cm730" : "ideal";
+  j["physics_step_us"] = c.physics_step_us;
   auto limit = [](double v) { return v < 0.0 ? nlohmann::json(nullptr) : nlohmann::json(v); };
   j["max_drift_ratio"] = limit(c.max_drift_ratio);
   j["max_heading_change_deg"] = limit(c.max_heading_change_deg);

@@ -2,6 +2,8 @@
 // helpers (non-dominated filter, knee point) and the progress line.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
 #include "stride/optimiser/run/progress.hpp"
 #include "stride/optimiser/run/run_report.hpp"
 #include "stride/optimiser/tasks/robot_task.hpp"
@@ -228,6 +230,55 @@ TEST(TaskConfig, EnginesAndValidateSeedsParseRoundTripAndNameTheFieldOnError) {
   d = minimal();
   d["validate"] = {{"worlds", 2}};
   EXPECT_EQ(error_of(d), "validate.worlds: unknown field");
+}
+
+// The simulated robot (issue 20): another URDF (relative to the config file), the servo law,
+// the IMU and the physics step reach every trial's world and survive run.json.
+TEST(TaskConfig, RobotFieldsReachTheWorldsAndNameTheFieldOnError) {
+  TaskConfig c;
+  ASSERT_TRUE(parse_task_config(minimal(), c));
+  EXPECT_TRUE(c.urdf.empty());
+  EXPECT_EQ(RobotTask(c).world_options(0).servo.law, sim::ServoLaw::kSeed);
+  EXPECT_TRUE(RobotTask(c).world_options(0).imu.chain.is_ideal());
+  EXPECT_EQ(RobotTask(c).world_options(0).physics_step_ns, 2'000'000);
+  test::TempDir tmp;
+  std::filesystem::create_directories(tmp.path() / "robots");
+  std::filesystem::copy_file(sim::RobotModel::igus_path(), tmp.path() / "robots" / "mine.urdf");
+  auto d = minimal();
+  d["urdf"] = "robots/mine.urdf";  // relative to the config file
+  d["servo_law"] = "identified";
+  d["imu"] = "cm730";
+  d["physics_step_us"] = 500;
+  d["trials"] = 2;
+  tmp.write("config.json", d.dump());
+  ASSERT_TRUE(load_task_config(tmp.path() / "config.json", c));
+  EXPECT_EQ(c.urdf, tmp.path() / "robots" / "mine.urdf");
+  const RobotTask task(c);
+  for (int k = 0; k < 2; ++k) {
+    const sim::WorldOptions w = task.world_options(k);
+    EXPECT_EQ(w.urdf, c.urdf);
+    EXPECT_EQ(w.servo.law, sim::ServoLaw::kIdentified);
+    EXPECT_FALSE(w.imu.chain.is_ideal());
+    EXPECT_TRUE(w.imu.chain.noise);  // trials randomise with IMU noise on
+    EXPECT_EQ(w.physics_step_ns, 500'000);
+  }
+  TaskConfig back;
+  ASSERT_TRUE(parse_task_config(to_json(c), back));
+  EXPECT_EQ(to_json(back), to_json(c));
+  d = minimal();
+  d["urdf"] = (tmp.path() / "none.urdf").string();
+  EXPECT_EQ(error_of(d), "urdf: no such file '" + (tmp.path() / "none.urdf").string() + "'");
+  d["urdf"] = tmp.write("broken.urdf", "<robot name='x'><link name='a'/>").string();
+  EXPECT_EQ(error_of(d).rfind("urdf: ", 0), 0u) << error_of(d);
+  d = minimal();
+  d["servo_law"] = "gazebo";
+  EXPECT_EQ(error_of(d), "servo_law: must be \"seed\" or \"identified\", got \"gazebo\"");
+  d = minimal();
+  d["imu"] = 3;
+  EXPECT_EQ(error_of(d), "imu: must be \"ideal\" or \"cm730\", got 3");
+  d = minimal();
+  d["physics_step_us"] = 3000;
+  EXPECT_EQ(error_of(d), "physics_step_us: must divide the 10000 us control period, got 3000");
 }
 
 TEST(TaskConfig, RoundTripsThroughJson) {

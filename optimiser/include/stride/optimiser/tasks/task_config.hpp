@@ -80,6 +80,14 @@ struct TaskConfig {
   /// k % trials, so both engines see the same seeds).
   std::vector<sim::EngineKind> engines{sim::EngineKind::kSimbody};
   int world_count() const { return trials * static_cast<int>(engines.size()); }
+  // The simulated robot (issue 20): another robot description (config `urdf`, a path relative
+  // to the config file; empty: the igus model), the servo law (`servo_law`: "seed" or
+  // "identified"), the IMU (`imu`: "ideal" or "cm730") and the physics step
+  // (`physics_step_us`, dividing the 10 ms control period).
+  std::filesystem::path urdf;
+  sim::ServoLaw servo_law = sim::ServoLaw::kSeed;
+  bool imu_cm730 = false;
+  std::int64_t physics_step_us = 2000;
   /// `stride validate` after a run (config `validate` {seeds}): fresh seeds per world.
   int validate_seeds = 10;
   // Hypervolume normalisation (ideal and nadir objective vectors).
