@@ -101,3 +101,24 @@ TEST(StrideSimWorldOptions, UrdfSelectsTheRobotDescription) {
 }
 
 }  // namespace
+
+// The physics engine: the same stand on MuJoCo is another simulation, repeatable; a name that
+// is not an engine is one line and exit 2.
+TEST(StrideSimWorldOptions, EngineSelectsThePhysics) {
+  int code = -1;
+  auto stand = [&](const std::string& extra) {
+    const auto j = nlohmann::json::parse(
+        run_stride("sim stand --duration 1 --seed 2 --json " + extra + " 2>/dev/null", code));
+    EXPECT_EQ(code, 0) << extra;
+    EXPECT_FALSE(j.at("fell").get<bool>()) << extra;
+    return j.at("state_hash").get<std::string>();
+  };
+  const std::string simbody = stand("");
+  EXPECT_EQ(stand("--engine simbody"), simbody);
+  const std::string mujoco = stand("--engine mujoco");
+  EXPECT_NE(mujoco, simbody);
+  EXPECT_EQ(stand("--engine mujoco"), mujoco);
+  const std::string err = run_stride("sim stand --engine bullet 2>&1 >/dev/null", code);
+  EXPECT_EQ(code, 2);
+  EXPECT_EQ(err, "stride sim: --engine: expected simbody or mujoco, got 'bullet'\n");
+}
