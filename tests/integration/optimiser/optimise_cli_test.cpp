@@ -16,6 +16,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "read_file.hpp"
 #include "stride/optimiser/nsga2/evaluator.hpp"
 #include "stride/optimiser/problems/test_problems.hpp"
 #include "stride/optimiser/run/optimisation_run.hpp"
@@ -28,15 +29,8 @@ namespace fs = std::filesystem;
 
 const std::string kStride = std::string(STRIDE_BIN_DIR) + "/stride";
 
-std::string read(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 std::size_t count_lines(const fs::path& p) {
-  const std::string text = read(p);
+  const std::string text = test::read_file(p);
   return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
 }
 
@@ -88,7 +82,7 @@ TEST(OptimiseCli, SigkillMidGenerationThenResumeReproducesTheUninterruptedRun) {
   };
   const fs::path ref = tmp.path() / "ref";
   ASSERT_EQ(run_stride(with({"--out", ref.string()}), tmp.path()), 0)
-      << read(tmp.path() / "stderr");
+      << test::read_file(tmp.path() / "stderr");
 
   const fs::path cut = tmp.path() / "cut";
   int kills = 0;
@@ -106,7 +100,7 @@ TEST(OptimiseCli, SigkillMidGenerationThenResumeReproducesTheUninterruptedRun) {
       std::this_thread::sleep_for(std::chrono::milliseconds(1));
       nlohmann::json cp;
       try {
-        cp = nlohmann::json::parse(read(cut / "checkpoint.json"));
+        cp = nlohmann::json::parse(test::read_file(cut / "checkpoint.json"));
       } catch (const nlohmann::json::exception&) {
         continue;  // not written yet
       }
@@ -127,15 +121,15 @@ TEST(OptimiseCli, SigkillMidGenerationThenResumeReproducesTheUninterruptedRun) {
   ASSERT_EQ(run_stride({"optimise", "--out", cut.string(), "--resume", "--jobs", "2", "--json"},
                        tmp.path()),
             0)
-      << read(tmp.path() / "stderr");
-  const auto summary = nlohmann::json::parse(read(tmp.path() / "stdout"));
+      << test::read_file(tmp.path() / "stderr");
+  const auto summary = nlohmann::json::parse(test::read_file(tmp.path() / "stdout"));
   EXPECT_TRUE(summary["resumed"].get<bool>());
   EXPECT_EQ(summary["generations"], 12);
   for (const char* f : {"run.json", "evaluations.jsonl", "checkpoint.json", "pareto.csv"}) {
-    EXPECT_EQ(read(cut / f), read(ref / f)) << f;
+    EXPECT_EQ(test::read_file(cut / f), test::read_file(ref / f)) << f;
   }
-  EXPECT_EQ(without_wall_time(read(cut / "generations.jsonl")),
-            without_wall_time(read(ref / "generations.jsonl")));
+  EXPECT_EQ(without_wall_time(test::read_file(cut / "generations.jsonl")),
+            without_wall_time(test::read_file(ref / "generations.jsonl")));
   EXPECT_EQ(count_lines(cut / "generations.jsonl"), 12u);
 }
 
@@ -155,7 +149,7 @@ TEST(OptimiseCli, BadInputExitsTwoWithOneLineNamingIt) {
   };
   for (const auto& [args, word] : cases) {
     EXPECT_EQ(run_stride(args, tmp.path()), 2) << word;
-    const std::string err = read(tmp.path() / "stderr");
+    const std::string err = test::read_file(tmp.path() / "stderr");
     EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
     EXPECT_NE(err.find(word), std::string::npos) << err;
     EXPECT_FALSE(fs::exists(out)) << "bad input must not create the run directory";
@@ -167,7 +161,7 @@ TEST(OptimiseCli, BadInputExitsTwoWithOneLineNamingIt) {
   EXPECT_EQ(run_stride({"optimise", "--problem", "bnh", "--out", out}, tmp.path()), 2);
   EXPECT_EQ(run_stride({"optimise", "--out", out, "--resume", "--pop", "12"}, tmp.path()), 2);
   EXPECT_EQ(run_stride({"optimise", "--help"}, tmp.path()), 0);
-  EXPECT_NE(read(tmp.path() / "stdout").find("--etac"), std::string::npos);
+  EXPECT_NE(test::read_file(tmp.path() / "stdout").find("--etac"), std::string::npos);
 }
 
 /// Runs NSGA-II in memory (no run directory) and returns the final indicators.

@@ -19,6 +19,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "read_file.hpp"
 #include "stride/optimiser/tasks/robot_task.hpp"
 #include "temp_dir.hpp"
 
@@ -28,13 +29,6 @@ namespace {
 namespace fs = std::filesystem;
 const std::string kBin = std::string(STRIDE_BIN_DIR);
 const std::string kConfigs = std::string(STRIDE_SOURCE_DIR) + "/optimiser/configs/";
-
-std::string read(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 std::string without_wall_time(std::string text) {
   const std::string key = ",\"wall_s\":";
@@ -181,7 +175,7 @@ TEST(RobotTaskCli, SerialThreadsAndMpiGiveTheSameRunAndTheFrontLoads) {
   // Every genome scored on both engines (issue 21): the same run whatever the evaluator.
   fs::path config = short_walk_config(tmp.path(), 2);
   {
-    nlohmann::json c = nlohmann::json::parse(read(config));
+    nlohmann::json c = nlohmann::json::parse(test::read_file(config));
     c["engines"] = {"simbody", "mujoco"};
     std::ofstream(config) << c.dump(1);
   }
@@ -193,46 +187,47 @@ TEST(RobotTaskCli, SerialThreadsAndMpiGiveTheSameRunAndTheFrontLoads) {
     return a;
   };
   ASSERT_EQ(run(stride, args("serial", {"--jobs", "1"}), tmp.path()), 0)
-      << read(tmp.path() / "stderr");
+      << test::read_file(tmp.path() / "stderr");
   ASSERT_EQ(run(stride, args("threads", {"--jobs", "2"}), tmp.path()), 0)
-      << read(tmp.path() / "stderr");
+      << test::read_file(tmp.path() / "stderr");
   ::setenv("OMPI_ALLOW_RUN_AS_ROOT", "1", 1);
   ::setenv("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1", 1);
   std::vector<std::string> mpi = {"--oversubscribe", "-n", "3", stride};
   if (::geteuid() == 0) mpi.insert(mpi.begin(), "--allow-run-as-root");
   for (const auto& a : args("mpi", {"--mpi"})) mpi.push_back(a);
-  ASSERT_EQ(run("mpirun", mpi, tmp.path()), 0) << read(tmp.path() / "stderr");
+  ASSERT_EQ(run("mpirun", mpi, tmp.path()), 0) << test::read_file(tmp.path() / "stderr");
   for (const char* other : {"threads", "mpi"}) {
     for (const char* f : {"evaluations.jsonl", "pareto.csv", "checkpoint.json"})
-      EXPECT_EQ(read(tmp.path() / "serial" / f), read(tmp.path() / other / f)) << other << " " << f;
-    EXPECT_EQ(without_wall_time(read(tmp.path() / "serial/generations.jsonl")),
-              without_wall_time(read(tmp.path() / other / "generations.jsonl")));
+      EXPECT_EQ(test::read_file(tmp.path() / "serial" / f), test::read_file(tmp.path() / other / f))
+          << other << " " << f;
+    EXPECT_EQ(without_wall_time(test::read_file(tmp.path() / "serial/generations.jsonl")),
+              without_wall_time(test::read_file(tmp.path() / other / "generations.jsonl")));
   }
   // front/ files are parameter files of the firmware.
   const fs::path member = tmp.path() / "serial/front/000.json";
   ASSERT_TRUE(fs::exists(member));
-  EXPECT_EQ(nlohmann::json::parse(read(member)).size(), 46u);
+  EXPECT_EQ(nlohmann::json::parse(test::read_file(member)).size(), 46u);
   EXPECT_EQ(run(kBin + "/stride-fw", {"--hal", "sim", "--params", member.string(), "--ticks", "5"},
                 tmp.path()),
             0)
-      << read(tmp.path() / "stderr");
+      << test::read_file(tmp.path() / "stderr");
   EXPECT_EQ(
       run(stride,
           {"sim", "walk", "--params", member.string(), "--vx", "1", "--duration", "0.3", "--json"},
           tmp.path()),
       0)
-      << read(tmp.path() / "stderr");
+      << test::read_file(tmp.path() / "stderr");
   // stride report rebuilds the plots and names the picks.
   fs::remove(tmp.path() / "serial/hypervolume.svg");
   ASSERT_EQ(run(stride, {"report", (tmp.path() / "serial").string(), "--json"}, tmp.path()), 0)
-      << read(tmp.path() / "stderr");
-  const auto summary = nlohmann::json::parse(read(tmp.path() / "stdout"));
+      << test::read_file(tmp.path() / "stderr");
+  const auto summary = nlohmann::json::parse(test::read_file(tmp.path() / "stdout"));
   EXPECT_EQ(summary["task"], "walk");
   EXPECT_TRUE(summary["ind_o"].is_object());
   for (const char* key : {"fastest", "most_stable", "knee"})
     EXPECT_TRUE(summary.contains(key)) << key;
   for (const char* svg : {"hypervolume.svg", "pareto_by_generation.svg"})
-    EXPECT_EQ(read(tmp.path() / "serial" / svg).rfind("<svg", 0), 0u) << svg;
+    EXPECT_EQ(test::read_file(tmp.path() / "serial" / svg).rfind("<svg", 0), 0u) << svg;
   EXPECT_EQ(run(stride, {"report", (tmp.path() / "nothing").string()}, tmp.path()), 2);
 }
 
@@ -245,7 +240,7 @@ TEST(RobotTaskCli, CtrlCStopsAfterACheckpointAndResumeFinishesTheSameRun) {
       run(stride, {"optimise", "--config", config.string(), "--out", ref.string(), "--jobs", "1"},
           tmp.path()),
       0)
-      << read(tmp.path() / "stderr");
+      << test::read_file(tmp.path() / "stderr");
   const pid_t pid = launch(
       stride, {"optimise", "--config", config.string(), "--out", cut.string(), "--jobs", "1"},
       tmp.path());
@@ -254,21 +249,21 @@ TEST(RobotTaskCli, CtrlCStopsAfterACheckpointAndResumeFinishesTheSameRun) {
     ASSERT_LT(std::chrono::steady_clock::now(), deadline);
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
     try {
-      const auto cp = nlohmann::json::parse(read(cut / "checkpoint.json"));
+      const auto cp = nlohmann::json::parse(test::read_file(cut / "checkpoint.json"));
       if (cp["engine"]["completed_generations"].get<int>() >= 1) break;
     } catch (const nlohmann::json::exception&) {
     }
   }
   ASSERT_EQ(::kill(pid, SIGINT), 0);
   EXPECT_EQ(wait_exit(pid), 130);
-  EXPECT_NE(read(tmp.path() / "stderr").find("--resume"), std::string::npos);
-  const auto cp = nlohmann::json::parse(read(cut / "checkpoint.json"));
+  EXPECT_NE(test::read_file(tmp.path() / "stderr").find("--resume"), std::string::npos);
+  const auto cp = nlohmann::json::parse(test::read_file(cut / "checkpoint.json"));
   EXPECT_LT(cp["engine"]["completed_generations"].get<int>(), 4);
   ASSERT_EQ(run(stride, {"optimise", "--out", cut.string(), "--resume", "--jobs", "2"}, tmp.path()),
             0)
-      << read(tmp.path() / "stderr");
+      << test::read_file(tmp.path() / "stderr");
   for (const char* f : {"run.json", "evaluations.jsonl", "checkpoint.json", "pareto.csv"})
-    EXPECT_EQ(read(cut / f), read(ref / f)) << f;
+    EXPECT_EQ(test::read_file(cut / f), test::read_file(ref / f)) << f;
 }
 
 /// walk-omni with short segments (start 4 s, ramp 0.5 s, hold 2 s, stop 0.5 s: 22 s).
@@ -342,10 +337,10 @@ TEST(RobotTaskCli, WalkOmniRunReportsSpeedsPerDirection) {
       run(stride, {"optimise", "--config", config.string(), "--out", out.string(), "--jobs", "1"},
           tmp.path()),
       0)
-      << read(tmp.path() / "stderr");
+      << test::read_file(tmp.path() / "stderr");
   ASSERT_EQ(run(stride, {"report", out.string(), "--json"}, tmp.path()), 0)
-      << read(tmp.path() / "stderr");
-  const auto summary = nlohmann::json::parse(read(tmp.path() / "stdout"));
+      << test::read_file(tmp.path() / "stderr");
+  const auto summary = nlohmann::json::parse(test::read_file(tmp.path() / "stdout"));
   EXPECT_EQ(summary["task"], "walk-omni");
   ASSERT_TRUE(summary["directions"].is_array());
   std::vector<std::string> labels;
@@ -366,12 +361,12 @@ TEST(RobotTaskCli, WalkOmniRunReportsSpeedsPerDirection) {
     EXPECT_NEAR(obj1, summary["fastest"]["objectives"][0].get<double>(), 1e-12);
   }
   ASSERT_EQ(run(stride, {"report", out.string()}, tmp.path()), 0);
-  const std::string text = read(tmp.path() / "stdout");
+  const std::string text = test::read_file(tmp.path() / "stdout");
   EXPECT_NE(text.find("best per direction"), std::string::npos) << text;
   EXPECT_NE(text.find("Bit-Bots NUgus (sim)"), std::string::npos) << text;
   // The validation at the end of the run: per world, the speed table of Ind_O and the picks.
   EXPECT_NE(text.find("speeds per direction, world fresh seeds"), std::string::npos) << text;
-  const auto validation = nlohmann::json::parse(read(out / "validation.json"));
+  const auto validation = nlohmann::json::parse(test::read_file(out / "validation.json"));
   EXPECT_EQ(validation["task"], "walk-omni");
   for (const auto& ind : validation["individuals"])
     for (const auto& cell : ind["worlds"]) EXPECT_TRUE(cell["speeds"].contains("turn_right"));
@@ -388,7 +383,7 @@ TEST(RobotTaskCli, BadConfigNamesTheField) {
                  (tmp.path() / "run").string()},
                 tmp.path()),
             2);
-  const std::string err = read(tmp.path() / "stderr");
+  const std::string err = test::read_file(tmp.path() / "stderr");
   EXPECT_NE(err.find("genes[2].min"), std::string::npos) << err;
   EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1);
   EXPECT_FALSE(fs::exists(tmp.path() / "run"));

@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "read_file.hpp"
 #include "run_command.hpp"
 #include "temp_dir.hpp"
 
@@ -21,13 +22,6 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 const std::string kStride = std::string(STRIDE_BIN_DIR) + "/stride";
 const std::string kConfigs = std::string(STRIDE_SOURCE_DIR) + "/optimiser/configs/";
-
-std::string read(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 /// Runs `stride ARGS`, stderr to `err`; returns stdout and sets `code`.
 std::string stride(const std::string& args, const fs::path& err, int& code) {
@@ -60,19 +54,20 @@ TEST(ValidateCli, TinyWalkRunValidatesTheSameForAnyThreadCountAndReportShowsIt) 
   stride("optimise --config " + tiny_walk_config(tmp.path()).string() + " --out " + run.string() +
              " --jobs 2",
          err, code);
-  ASSERT_EQ(code, 0) << read(err);
+  ASSERT_EQ(code, 0) << test::read_file(err);
   // stride optimise validated at the end (3 seeds from the config).
-  ASSERT_TRUE(fs::exists(run / "validation.json")) << read(err);
-  const std::string by_optimise = read(run / "validation.json");
+  ASSERT_TRUE(fs::exists(run / "validation.json")) << test::read_file(err);
+  const std::string by_optimise = test::read_file(run / "validation.json");
   stride("validate " + run.string() + " --jobs 1", err, code);
-  ASSERT_EQ(code, 0) << read(err);
-  EXPECT_EQ(read(run / "validation.json"), by_optimise);  // 2 threads then 1: the same file
+  ASSERT_EQ(code, 0) << test::read_file(err);
+  EXPECT_EQ(test::read_file(run / "validation.json"),
+            by_optimise);  // 2 threads then 1: the same file
   const std::string printed = stride("validate " + run.string() + " --jobs 2 --json", err, code);
-  ASSERT_EQ(code, 0) << read(err);
-  EXPECT_EQ(read(run / "validation.json"), by_optimise);
+  ASSERT_EQ(code, 0) << test::read_file(err);
+  EXPECT_EQ(test::read_file(run / "validation.json"), by_optimise);
   const json v = json::parse(printed);
   EXPECT_EQ(v, json::parse(by_optimise));
-  EXPECT_NE(read(err).find("validate: "), std::string::npos);  // progress on stderr
+  EXPECT_NE(test::read_file(err).find("validate: "), std::string::npos);  // progress on stderr
 
   EXPECT_EQ(v["format"], "stride-validation-1");
   EXPECT_EQ(v["task"], "walk");
@@ -143,12 +138,12 @@ TEST(ValidateCli, TinyWalkRunValidatesTheSameForAnyThreadCountAndReportShowsIt) 
 
   // stride report: the table in the text, the JSON and report.html.
   const std::string text = stride("report " + run.string(), err, code);
-  ASSERT_EQ(code, 0) << read(err);
+  ASSERT_EQ(code, 0) << test::read_file(err);
   EXPECT_NE(text.find("validation of a walk run"), std::string::npos) << text;
   EXPECT_NE(text.find("wider randomisation"), std::string::npos) << text;
   const json summary = json::parse(stride("report " + run.string() + " --json", err, code));
   EXPECT_EQ(summary["validation"], v);
-  const std::string html = read(run / "report.html");
+  const std::string html = test::read_file(run / "report.html");
   EXPECT_NE(html.find("id=\"validation-table\""), std::string::npos);
   EXPECT_NE(html.find("id=\"validation-worlds\""), std::string::npos);
   EXPECT_NE(html.find("half step"), std::string::npos);
@@ -161,13 +156,13 @@ TEST(ValidateCli, AnExplodingWorldIsAFallWithItsReasonAndNoValidateWritesNothing
   stride("optimise --config " + tiny_walk_config(tmp.path()).string() + " --out " + run.string() +
              " --jobs 2 --no-validate",
          err, code);
-  ASSERT_EQ(code, 0) << read(err);
+  ASSERT_EQ(code, 0) << test::read_file(err);
   EXPECT_FALSE(fs::exists(run / "validation.json"));
   // A 10 ms step: the stiff servos explode the world at once; a fall with its reason, exit 0.
   const json v = json::parse(stride(
       "validate " + run.string() + " --seeds 2 --physics-step-us 10000 --engine simbody --json",
       err, code));
-  ASSERT_EQ(code, 0) << read(err);
+  ASSERT_EQ(code, 0) << test::read_file(err);
   ASSERT_EQ(v["worlds"].size(), 4u);
   EXPECT_EQ(v["worlds"][0]["name"], "engine simbody");  // --engine replaces the list
   EXPECT_EQ(v["worlds"][3]["name"], "step 10000 us");
@@ -191,11 +186,11 @@ TEST(ValidateCli, BadInputIsOneLineNamingItAndExitTwo) {
   stride("optimise --config " + tiny_walk_config(tmp.path()).string() + " --out " + run.string() +
              " --jobs 2 --no-validate --generations 1",
          err, code);
-  ASSERT_EQ(code, 0) << read(err);
+  ASSERT_EQ(code, 0) << test::read_file(err);
   auto expect_bad = [&](const std::string& args, const std::string& says) {
     stride("validate " + args, err, code);
     EXPECT_EQ(code, 2) << args;
-    const std::string e = read(err);
+    const std::string e = test::read_file(err);
     EXPECT_EQ(lines(e), 1) << e;
     EXPECT_NE(e.find(says), std::string::npos) << e;
   };
@@ -210,29 +205,30 @@ TEST(ValidateCli, BadInputIsOneLineNamingItAndExitTwo) {
   // A run that is not a robot run.
   stride("optimise --problem zdt1 --pop 8 --generations 2 --out " + (tmp.path() / "zdt1").string(),
          err, code);
-  ASSERT_EQ(code, 0) << read(err);
+  ASSERT_EQ(code, 0) << test::read_file(err);
   expect_bad((tmp.path() / "zdt1").string(), "is a 'zdt1' run, not a robot run");
   // A robot run without picks (no front members).
   fs::remove(run / "pareto.csv");
   expect_bad(run.string(), "has no picks to validate");
   EXPECT_FALSE(fs::exists(run / "validation.json"));
   // An unknown engine in a config: one line naming the field, exit 2.
-  json c = json::parse(read(tiny_walk_config(tmp.path())));
+  json c = json::parse(test::read_file(tiny_walk_config(tmp.path())));
   c["engine"] = "bullet";
   std::ofstream(tmp.path() / "bad.json") << c.dump();
   stride("optimise --config " + (tmp.path() / "bad.json").string() + " --out " +
              (tmp.path() / "bad").string(),
          err, code);
   EXPECT_EQ(code, 2);
-  EXPECT_EQ(lines(read(err)), 1);
-  EXPECT_NE(read(err).find("engine: must be \"simbody\" or \"mujoco\", got \"bullet\""),
+  EXPECT_EQ(lines(test::read_file(err)), 1);
+  EXPECT_NE(test::read_file(err).find("engine: must be \"simbody\" or \"mujoco\", got \"bullet\""),
             std::string::npos)
-      << read(err);
+      << test::read_file(err);
   stride("optimise --config " + tiny_walk_config(tmp.path()).string() + " --engine ode --out " +
              (tmp.path() / "bad").string(),
          err, code);
   EXPECT_EQ(code, 2);
-  EXPECT_NE(read(err).find("--engine: must be simbody or mujoco, got 'ode'"), std::string::npos);
+  EXPECT_NE(test::read_file(err).find("--engine: must be simbody or mujoco, got 'ode'"),
+            std::string::npos);
   EXPECT_FALSE(fs::exists(tmp.path() / "bad"));
 }
 

@@ -5,6 +5,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "read_file.hpp"
 #include "stride/optimiser/problems/test_problems.hpp"
 #include "stride/optimiser/run/optimisation_run.hpp"
 #include "temp_dir.hpp"
@@ -13,13 +14,6 @@ namespace stride::opt {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string read(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 /// The text with every `,"wall_s":<number>` removed (the only non-deterministic field).
 std::string without_wall_time(std::string text) {
@@ -57,28 +51,28 @@ TEST(RunDirectory, WritesEveryFile) {
        {"run.json", "evaluations.jsonl", "generations.jsonl", "checkpoint.json", "pareto.csv"}) {
     EXPECT_TRUE(fs::exists(options.dir / f)) << f;
   }
-  const std::string evaluations = read(options.dir / "evaluations.jsonl");
+  const std::string evaluations = test::read_file(options.dir / "evaluations.jsonl");
   EXPECT_EQ(static_cast<std::uint64_t>(std::count(evaluations.begin(), evaluations.end(), '\n')),
             summary.last.evaluations);
-  const std::string generations = read(options.dir / "generations.jsonl");
+  const std::string generations = test::read_file(options.dir / "generations.jsonl");
   EXPECT_EQ(std::count(generations.begin(), generations.end(), '\n'), 6);
   EXPECT_NE(generations.find("\"hypervolume\":"), std::string::npos);
   EXPECT_NE(generations.find("\"igd\":"), std::string::npos);
-  const std::string csv = read(options.dir / "pareto.csv");
+  const std::string csv = test::read_file(options.dir / "pareto.csv");
   EXPECT_EQ(csv.substr(0, csv.find('\n')), "f1,f2,x1,x2");
   EXPECT_EQ(static_cast<std::size_t>(std::count(csv.begin(), csv.end(), '\n')),
             summary.pareto_size + 1);
-  const auto run = nlohmann::json::parse(read(options.dir / "run.json"));
+  const auto run = nlohmann::json::parse(test::read_file(options.dir / "run.json"));
   EXPECT_EQ(run["problem"], "bnh");
   EXPECT_EQ(run["settings"]["popSize"], 16);
 
   // A second run into the same directory is refused and changes nothing.
-  const std::string before = read(options.dir / "checkpoint.json");
+  const std::string before = test::read_file(options.dir / "checkpoint.json");
   RunSummary again;
   const Status st = run_optimisation(*problem, config("bnh"), evaluator, options, again);
   ASSERT_FALSE(st.is_ok());
   EXPECT_NE(st.message().find("already holds a run"), std::string::npos);
-  EXPECT_EQ(read(options.dir / "checkpoint.json"), before);
+  EXPECT_EQ(test::read_file(options.dir / "checkpoint.json"), before);
 
   // Resuming with other settings is refused.
   RunConfig other = config("bnh");
@@ -87,7 +81,7 @@ TEST(RunDirectory, WritesEveryFile) {
   EXPECT_FALSE(run_optimisation(*problem, other, evaluator, options, again).is_ok());
   // Resuming a finished run changes nothing.
   ASSERT_TRUE(run_optimisation(*problem, config("bnh"), evaluator, options, again).is_ok());
-  EXPECT_EQ(read(options.dir / "checkpoint.json"), before);
+  EXPECT_EQ(test::read_file(options.dir / "checkpoint.json"), before);
   EXPECT_EQ(again.last.evaluations, summary.last.evaluations);
 }
 
@@ -121,10 +115,11 @@ TEST(RunDirectory, ResumeAfterAnInterruptionReproducesTheUninterruptedRun) {
     EXPECT_TRUE(summary.resumed);
     EXPECT_EQ(summary.resumed_at_generation, stop);
     for (const char* f : {"run.json", "evaluations.jsonl", "checkpoint.json", "pareto.csv"}) {
-      EXPECT_EQ(read(cut.dir / f), read(full.dir / f)) << f << " after stop " << stop;
+      EXPECT_EQ(test::read_file(cut.dir / f), test::read_file(full.dir / f))
+          << f << " after stop " << stop;
     }
-    EXPECT_EQ(without_wall_time(read(cut.dir / "generations.jsonl")),
-              without_wall_time(read(full.dir / "generations.jsonl")));
+    EXPECT_EQ(without_wall_time(test::read_file(cut.dir / "generations.jsonl")),
+              without_wall_time(test::read_file(full.dir / "generations.jsonl")));
   }
 }
 
