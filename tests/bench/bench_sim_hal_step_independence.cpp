@@ -9,6 +9,7 @@
 // real-time factor only.
 // Run: build/release/bench/bench_sim_hal_step_independence [--seeds N] [--steps-us 2000,1000]
 //      [--servo-law identified] [--imu cm730] [--engine mujoco] [--noise off]
+//      [--params FILE]   (a firmware parameter file, e.g. balance gains under test)
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -36,11 +37,16 @@ struct Walk {
   std::vector<double> z, y;  ///< torso height and sideways position per tick
 };
 
+fw::FirmwareOptions g_firmware;  // the firmware every episode runs (--params)
+
 Walk walk(sim::WorldOptions options, std::uint64_t seed, double vx, double vy, double vth,
           double duration_s) {
   Walk out;
   std::unique_ptr<fw::Firmware> firmware;
-  if (!fw::Firmware::create({}, firmware)) std::abort();
+  if (const stride::Status s = fw::Firmware::create(g_firmware, firmware); !s) {
+    std::fprintf(stderr, "%s\n", s.message().c_str());
+    std::exit(2);
+  }
   options.seed = seed;
   options.control_period_ns = firmware->period_ns();
   std::unique_ptr<sim::SimWorld> world;
@@ -85,6 +91,7 @@ int main(int argc, char** argv) {
   args.option("seeds", "seeds for the forward walk, the kick and the get-up", true, "3");
   args.option("steps-us", "physics steps [us], the finest last (the reference)", true,
               "2000,1000,500,250");
+  args.option("params", "firmware parameter file (JSON) applied after the defaults", true);
   sim::declare_world_options(args);
   if (const stride::Status s = args.parse(argc, argv); !s) {
     std::fprintf(stderr, "%s\n", s.message().c_str());
@@ -95,12 +102,14 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "%s\n", s.message().c_str());
     return 2;
   }
+  if (args.has("params")) g_firmware.params_file = args.get("params");
   std::int64_t seeds = 3;
   if (!args.get_int("seeds", seeds) || seeds < 1) return 2;
   const std::vector<std::int64_t> steps = parse_steps(args.get("steps-us"));
-  std::printf("engine %s, servo law %s, IMU %s, noise %s, %lld seeds\n",
+  std::printf("engine %s, servo law %s, IMU %s, noise %s, %lld seeds, parameters %s\n",
               sim::to_string(base.engine), args.get("servo-law").c_str(), args.get("imu").c_str(),
-              args.get("noise").c_str(), static_cast<long long>(seeds));
+              args.get("noise").c_str(), static_cast<long long>(seeds),
+              args.has("params") ? args.get("params").c_str() : "default");
   std::printf("%8s %6s %9s %9s %6s %6s %7s %7s %7s %8s %8s %8s %6s\n", "step_us", "stand",
               "fwd_goal", "fwd_t_med", "back", "left", "right", "turn_l", "turn_r", "kick", "getup",
               "dz_mm", "dy_mm");
@@ -131,12 +140,16 @@ int main(int argc, char** argv) {
     for (std::int64_t s = 1; s <= seeds; ++s) {
       sim::WorldOptions k = o;
       k.seed = static_cast<std::uint64_t>(s);
+      sim::KickEpisodeOptions kick_options;
+      kick_options.firmware = g_firmware;
       sim::EpisodeResult kick;
-      if (sim::run_kick_episode(k, {}, kick) && !kick.fell && kick.ball_distance_m >= 0.5) ++kicks;
+      if (sim::run_kick_episode(k, kick_options, kick) && !kick.fell && kick.ball_distance_m >= 0.5)
+        ++kicks;
       for (bool from_behind : {true, false}) {
         sim::PushEpisodeOptions push;
         push.from_behind = from_behind;
         push.duration_s = 40.0;  // a front fall rolls onto the back first (as the tests)
+        push.firmware = g_firmware;
         sim::PushEpisodeResult r;
         if (sim::run_push_episode(k, push, r) && r.got_up) ++got_up;
       }

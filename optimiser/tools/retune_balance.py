@@ -1,0 +1,168 @@
+#!/usr/bin/env python3
+"""Local search over the walk's balance feedback (walk.balance.*, not in the 46-parameter genome)
+on a set of simulated worlds: the re-tune of issue 20 point 5.
+
+A (mu/mu, lambda) evolution strategy in the unit box of the 13 balance parameters: each
+generation the current mean and lambda-1 Gaussian perturbations of it are scored on every
+condition with `stride sim walk --json`, and the mean moves to the weighted mean of the best mu.
+A condition scores 1 + (40 - time to goal) / 200 when the walk reaches its goal, 0.9 when it
+stays up without one (sideways, backward, turning), and 0.8 x survival / 30 s when it falls; a
+candidate's fitness is the mean over the conditions plus half the worst, so one failing world
+weighs more than a slow one. Every run is deterministic (the worlds' seeds) and the search's
+own draws come from --seed, so the same command writes the same result.
+
+    optimiser/tools/retune_balance.py --stride build/release/bin/stride \\
+        --conditions forward-steps --start firmware/config/balance-identified.json \\
+        --generations 10 --out best.json
+
+Conditions: a preset name (below) or a JSON file with a list of objects
+{"vx", "vy", "vth", "seed", "step" (physics step, us), "duration", "urdf", "law", "imu", "engine"}.
+The world defaults to the identified MX servo and the CM730 IMU with noise on.
+"""
+import argparse
+import json
+import math
+import os
+import random
+import subprocess
+import sys
+import tempfile
+from concurrent.futures import ThreadPoolExecutor
+
+SPACE = {  # name: search range (inside the firmware's registered bounds)
+    "walk.balance.ankle_pitch_gain": (0.0, 1.0),
+    "walk.balance.ankle_roll_gain": (0.0, 1.0),
+    "walk.balance.hip_pitch_gain": (0.0, 1.0),
+    "walk.balance.hip_roll_gain": (0.0, 1.0),
+    "walk.balance.filter_time": (0.0, 0.2),
+    "walk.balance.deadband": (0.0, 0.2),
+    "walk.balance.max_shift": (0.02, 0.5),
+    "walk.balance.pitch_angle_gain": (0.0, 20.0),
+    "walk.balance.roll_angle_gain": (0.0, 20.0),
+    "walk.balance.tilt_filter_time": (0.05, 3.0),
+    "walk.balance.tilt_reference_time": (0.0, 20.0),
+    "walk.balance.double_support_weight": (0.0, 1.0),
+    "walk.balance.start_sway_steps": (0.0, 10.0),
+}
+NAMES = list(SPACE)
+
+
+def fail(message):
+    """Bad input: one line naming what was wrong, exit 2 (the project's command-line contract)."""
+    print(f"retune_balance: {message}", file=sys.stderr)
+    sys.exit(2)
+
+
+def preset(name):
+    steps = {"forward-steps": (2000, 1000, 500), "forward-2ms": (2000,)}
+    if name in steps:
+        return [dict(vx=1, seed=s, step=st, duration=35) for st in steps[name] for s in (1, 2, 3)]
+    if name == "omni":
+        conds = [dict(vx=1, seed=s, step=st, duration=35) for st in (2000, 1000) for s in (1, 2, 3)]
+        conds += [dict(seed=1, step=st, duration=20, vth=v) for st in (2000, 1000) for v in (1, -1)]
+        conds += [dict(seed=1, step=2000, duration=20, **c)
+                  for c in (dict(vx=-1), dict(vy=1), dict(vy=-1))]
+        return conds
+    fail(f"--conditions: no preset '{name}' (forward-steps, forward-2ms, omni) and no such file")
+
+
+def run(stride, params, cond):
+    fd, path = tempfile.mkstemp(suffix=".json")
+    with os.fdopen(fd, "w") as f:
+        json.dump(params, f)
+    args = [stride, "sim", "walk", "--params", path, "--json", "--noise", "on",
+            "--duration", str(cond.get("duration", 35)), "--seed", str(cond.get("seed", 1)),
+            "--servo-law", cond.get("law", "identified"), "--imu", cond.get("imu", "cm730"),
+            "--physics-step-us", str(cond.get("step", 2000)),
+            "--engine", cond.get("engine", "simbody")]
+    for key in ("vx", "vy", "vth"):
+        if key in cond:
+            args += ["--" + key, str(cond[key])]
+    if "urdf" in cond:
+        args += ["--urdf", cond["urdf"]]
+    try:
+        out = subprocess.run(args, capture_output=True, text=True, check=False)
+    finally:
+        os.unlink(path)
+    try:
+        return json.loads(out.stdout)
+    except json.JSONDecodeError:  # a world that explodes prints its reason on stderr
+        return {"error": out.stderr.strip().splitlines()[-1] if out.stderr.strip() else "no output"}
+
+
+def score(result):
+    if "error" in result:
+        return 0.0
+    if result.get("time_to_goal_s") is not None:
+        return 1.0 + (40.0 - result["time_to_goal_s"]) / 200.0
+    if not result["fell"]:
+        return 0.9
+    return 0.8 * min(result["fall_time_s"], 30.0) / 30.0
+
+
+def label(result):
+    if "error" in result:
+        return "ERR"
+    if result.get("time_to_goal_s") is not None:
+        return f"G{result['time_to_goal_s']:.1f}"
+    return f"F{result['fall_time_s']:.1f}" if result["fell"] else "ok"
+
+
+def to_params(u):
+    return {n: lo + min(1.0, max(0.0, x)) * (hi - lo) for n, x, (lo, hi) in
+            zip(NAMES, u, SPACE.values())}
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--stride", default="build/release/bin/stride")
+    ap.add_argument("--conditions", default="forward-steps")
+    ap.add_argument("--start", required=True,
+                    help="parameter file naming all 13 walk.balance.* values to start from")
+    ap.add_argument("--out", required=True, help="best parameter set found (JSON)")
+    ap.add_argument("--generations", type=int, default=10)
+    ap.add_argument("--lambda", dest="lam", type=int, default=12)
+    ap.add_argument("--mu", type=int, default=4)
+    ap.add_argument("--sigma", type=float, default=0.12, help="step in the unit box")
+    ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--jobs", type=int, default=os.cpu_count() or 1)
+    a = ap.parse_args()
+    if not os.access(a.stride, os.X_OK):
+        fail(f"--stride: not an executable: {a.stride}")
+    if not 1 <= a.mu <= a.lam:
+        fail(f"--mu must be in [1, --lambda], got {a.mu}")
+    conds = json.load(open(a.conditions)) if os.path.isfile(a.conditions) else preset(a.conditions)
+    start = json.load(open(a.start))
+    for n in NAMES:
+        if n not in start:
+            fail(f"--start: {a.start} does not set {n}")
+    mean = [(start[n] - lo) / (hi - lo) for n, (lo, hi) in SPACE.items()]
+    rng = random.Random(a.seed)
+    weights = [math.log(a.mu + 0.5) - math.log(i + 1) for i in range(a.mu)]
+    best = (-1.0, None, "")
+    with ThreadPoolExecutor(a.jobs) as pool:
+        for gen in range(a.generations):
+            pop = [mean] + [[m + a.sigma * rng.gauss(0, 1) for m in mean]
+                            for _ in range(a.lam - 1)]
+            pop = [[min(1.0, max(0.0, x)) for x in u] for u in pop]
+            scored = []
+            for u in pop:
+                results = list(pool.map(lambda c, p=to_params(u): run(a.stride, p, c), conds))
+                values = [score(r) for r in results]
+                fitness = sum(values) / len(values) + 0.5 * min(values)
+                scored.append((fitness, u, " ".join(label(r) for r in results)))
+            scored.sort(key=lambda s: -s[0])
+            if scored[0][0] > best[0]:
+                best = scored[0]
+                with open(a.out + ".tmp", "w") as f:
+                    json.dump(to_params(best[1]), f, indent=1, sort_keys=True)
+                os.replace(a.out + ".tmp", a.out)
+            mean = [sum(w * s[1][k] for w, s in zip(weights, scored)) / sum(weights)
+                    for k in range(len(NAMES))]
+            print(f"generation {gen + 1}/{a.generations}: best {scored[0][0]:.3f} "
+                  f"(so far {best[0]:.3f}) | {scored[0][2]}", flush=True)
+    print(f"best {best[0]:.3f} written to {a.out}: {best[2]}")
+
+
+if __name__ == "__main__":
+    main()
