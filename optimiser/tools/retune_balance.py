@@ -5,11 +5,13 @@ on a set of simulated worlds: the re-tune of issue 20 point 5.
 A (mu/mu, lambda) evolution strategy in the unit box of the 13 balance parameters: each
 generation the current mean and lambda-1 Gaussian perturbations of it are scored on every
 condition with `stride sim walk --json`, and the mean moves to the weighted mean of the best mu.
-A condition scores 1 + (40 - time to goal) / 200 when the walk reaches its goal, 0.9 when it
-stays up without one (sideways, backward, turning), and 0.8 x survival / 30 s when it falls; a
-candidate's fitness is the mean over the conditions plus half the worst, so one failing world
-weighs more than a slow one. Every run is deterministic (the worlds' seeds) and the search's
-own draws come from --seed, so the same command writes the same result.
+A condition scores 1 + (40 - time to goal) / 200 when the walk reaches its goal; 0.9 when it
+stays up without one (backward, turning); sideways, 0.45 plus 0.45 x the progress the commanded
+way (mean torso y over the last 2 s, from a `--record` trace) per 0.1 m, capped at 0.9; and
+0.8 x survival / 30 s when it falls. A candidate's fitness is the mean over the conditions plus
+half the worst, so one failing world weighs more than a slow one. Every run is deterministic
+(the worlds' seeds) and the search's own draws come from --seed, so the same command writes the
+same result.
 
     optimiser/tools/retune_balance.py --stride build/release/bin/stride \\
         --conditions forward-steps --start firmware/config/balance-identified.json \\
@@ -66,6 +68,19 @@ def preset(name):
     fail(f"--conditions: no preset '{name}' (forward-steps, forward-2ms, omni) and no such file")
 
 
+def mean_torso_y(record, last_s=2.0):
+    """Mean torso y [m] over the last `last_s` of a `--record` trajectory (the sway averaged out)."""
+    ys, ts = [], []
+    with open(record) as f:
+        next(f)  # header
+        for line in f:
+            row = json.loads(line)
+            ts.append(row["t"])
+            ys.append(row["torso"]["p"][1])
+    tail = [y for t, y in zip(ts, ys) if t >= ts[-1] - last_s] if ts else []
+    return sum(tail) / len(tail) if tail else 0.0
+
+
 def run(stride, params, cond):
     fd, path = tempfile.mkstemp(suffix=".json")
     with os.fdopen(fd, "w") as f:
@@ -80,14 +95,25 @@ def run(stride, params, cond):
             args += ["--" + key, str(cond[key])]
     if "urdf" in cond:
         args += ["--urdf", cond["urdf"]]
+    record = None
+    if cond.get("vy"):  # sideways: score the progress too, from the recorded trajectory
+        fd, record = tempfile.mkstemp(suffix=".jsonl")
+        os.close(fd)
+        args += ["--record", record]
     try:
         out = subprocess.run(args, capture_output=True, text=True, check=False)
+        try:
+            result = json.loads(out.stdout)
+        except json.JSONDecodeError:  # a world that explodes prints its reason on stderr
+            lines = out.stderr.strip().splitlines()
+            return {"error": lines[-1] if lines else "no output"}
+        if record:
+            result["sideways_m"] = mean_torso_y(record) * (1 if cond["vy"] > 0 else -1)
+        return result
     finally:
         os.unlink(path)
-    try:
-        return json.loads(out.stdout)
-    except json.JSONDecodeError:  # a world that explodes prints its reason on stderr
-        return {"error": out.stderr.strip().splitlines()[-1] if out.stderr.strip() else "no output"}
+        if record:
+            os.unlink(record)
 
 
 def score(result):
@@ -96,6 +122,8 @@ def score(result):
     if result.get("time_to_goal_s") is not None:
         return 1.0 + (40.0 - result["time_to_goal_s"]) / 200.0
     if not result["fell"]:
+        if "sideways_m" in result:  # half for standing, half for 0.1 m the commanded way
+            return 0.45 + 0.45 * min(1.0, max(0.0, result["sideways_m"] / 0.1))
         return 0.9
     return 0.8 * min(result["fall_time_s"], 30.0) / 30.0
 
@@ -105,7 +133,9 @@ def label(result):
         return "ERR"
     if result.get("time_to_goal_s") is not None:
         return f"G{result['time_to_goal_s']:.1f}"
-    return f"F{result['fall_time_s']:.1f}" if result["fell"] else "ok"
+    if result["fell"]:
+        return f"F{result['fall_time_s']:.1f}"
+    return f"y{result['sideways_m']:+.2f}" if "sideways_m" in result else "ok"
 
 
 def to_params(u):
