@@ -5,7 +5,8 @@ on a set of simulated worlds: the re-tune of issue 20 point 5.
 A (mu/mu, lambda) evolution strategy in the unit box of the 13 balance parameters: each
 generation the current mean and lambda-1 Gaussian perturbations of it are scored on every
 condition with `stride sim walk --json`, and the mean moves to the weighted mean of the best mu.
-A condition scores 1 + (40 - time to goal) / 200 when the walk reaches its goal; 0.9 when it
+A condition scores 1 + (40 - time to goal) / 200 when the walk reaches its goal, less 0.5 per
+0.2 rad of heading change at the goal beyond 0.1 rad (from a `--record` trace); 0.9 when it
 stays up without one (backward, turning); sideways, 0.45 plus 0.45 x the progress the commanded
 way (mean torso y over the last 2 s, from a `--record` trace) per 0.1 m, capped at 0.9; and
 0.8 x survival / 30 s when it falls. A candidate's fitness is the mean over the conditions plus
@@ -68,17 +69,37 @@ def preset(name):
     fail(f"--conditions: no preset '{name}' (forward-steps, forward-2ms, omni) and no such file")
 
 
-def mean_torso_y(record, last_s=2.0):
-    """Mean torso y [m] over the last `last_s` of a `--record` trajectory (the sway averaged out)."""
-    ys, ts = [], []
+def read_torso(record):
+    """(t, x, y, yaw) of every tick of a `--record` trajectory."""
+    out = []
     with open(record) as f:
         next(f)  # header
         for line in f:
             row = json.loads(line)
-            ts.append(row["t"])
-            ys.append(row["torso"]["p"][1])
-    tail = [y for t, y in zip(ts, ys) if t >= ts[-1] - last_s] if ts else []
-    return sum(tail) / len(tail) if tail else 0.0
+            w, qx, qy, qz = row["torso"]["q"]
+            yaw = math.atan2(2 * (w * qz + qx * qy), 1 - 2 * (qy * qy + qz * qz))
+            out.append((row["t"], row["torso"]["p"][0], row["torso"]["p"][1], yaw))
+    return out
+
+
+def mean_over_last(samples, key, last_s):
+    """Mean of samples[key] over the last `last_s` seconds of `samples` (the sway averaged out)."""
+    if not samples:
+        return 0.0
+    tail = [s[key] for s in samples if s[0] >= samples[-1][0] - last_s]
+    return sum(tail) / len(tail)
+
+
+def mean_torso_y(record, last_s=2.0):
+    """Mean torso y [m] over the last `last_s` of a `--record` trajectory."""
+    return mean_over_last(read_torso(record), 2, last_s)
+
+
+def heading_at_goal(record, goal_x=2.5):
+    """Mean torso yaw [rad] over the second before the torso first passes x = goal_x (or the end)."""
+    samples = read_torso(record)
+    end = next((i for i, s in enumerate(samples) if s[1] >= goal_x), len(samples) - 1)
+    return mean_over_last(samples[: end + 1], 3, 1.0)
 
 
 def run(stride, params, cond):
@@ -96,7 +117,7 @@ def run(stride, params, cond):
     if "urdf" in cond:
         args += ["--urdf", cond["urdf"]]
     record = None
-    if cond.get("vy"):  # sideways: score the progress too, from the recorded trajectory
+    if cond.get("vy") or cond.get("vx", 0) > 0:  # score sideways progress, forward heading
         fd, record = tempfile.mkstemp(suffix=".jsonl")
         os.close(fd)
         args += ["--record", record]
@@ -107,8 +128,10 @@ def run(stride, params, cond):
         except json.JSONDecodeError:  # a world that explodes prints its reason on stderr
             lines = out.stderr.strip().splitlines()
             return {"error": lines[-1] if lines else "no output"}
-        if record:
+        if record and cond.get("vy"):
             result["sideways_m"] = mean_torso_y(record) * (1 if cond["vy"] > 0 else -1)
+        elif record:
+            result["heading_rad"] = heading_at_goal(record)
         return result
     finally:
         os.unlink(path)
@@ -120,7 +143,9 @@ def score(result):
     if "error" in result:
         return 0.0
     if result.get("time_to_goal_s") is not None:
-        return 1.0 + (40.0 - result["time_to_goal_s"]) / 200.0
+        # Straight: no loss up to 0.1 rad of heading change at the goal, 0.5 per 0.2 rad beyond.
+        crooked = max(0.0, abs(result.get("heading_rad", 0.0)) - 0.1) / 0.2
+        return max(0.5, 1.0 + (40.0 - result["time_to_goal_s"]) / 200.0 - 0.5 * crooked)
     if not result["fell"]:
         if "sideways_m" in result:  # half for standing, half for 0.1 m the commanded way
             return 0.45 + 0.45 * min(1.0, max(0.0, result["sideways_m"] / 0.1))
@@ -132,7 +157,8 @@ def label(result):
     if "error" in result:
         return "ERR"
     if result.get("time_to_goal_s") is not None:
-        return f"G{result['time_to_goal_s']:.1f}"
+        heading = f"/{result['heading_rad']:+.2f}" if "heading_rad" in result else ""
+        return f"G{result['time_to_goal_s']:.1f}{heading}"
     if result["fell"]:
         return f"F{result['fall_time_s']:.1f}"
     return f"y{result['sideways_m']:+.2f}" if "sideways_m" in result else "ok"
