@@ -11,7 +11,7 @@
 #include <memory>
 #include <string>
 
-#include "run_command.hpp"
+#include "robot_variants.hpp"
 #include "stride/firmware/firmware.hpp"
 #include "stride/sim_hal/episode.hpp"
 #include "stride/sim_hal/robot_model.hpp"
@@ -104,14 +104,9 @@ TEST(BalanceIdentified, BackwardSidewaysAndTurningTwentySeconds) {
 TEST(BalanceIdentified, ForwardReachesTheGoalOnRobotsThatDifferFromTheModel) {
   test::TempDir tmp;
   int code = -1;
-  const std::string out =
-      test::run_command("python3 " + std::string(STRIDE_SOURCE_DIR) +
-                            "/sim_hal/models/make_variants.py " + tmp.path().string(),
-                        code);
+  const std::string out = test::write_robot_variants(tmp.path(), code);
   ASSERT_EQ(code, 0) << out;
-  for (const char* name : {"trunk_mass_plus_10pct", "trunk_mass_minus_10pct",
-                           "trunk_com_1cm_forward", "trunk_com_1cm_backward", "trunk_com_1cm_left",
-                           "trunk_com_1cm_right", "left_leg_plus_5pct", "right_leg_plus_5pct"}) {
+  for (const char* name : test::kRobotVariants) {
     const std::filesystem::path urdf = tmp.path() / (std::string(name) + ".urdf");
     auto model = std::make_shared<sim::RobotModel>();
     const Status loaded = sim::RobotModel::load_file(urdf, *model);

@@ -5,7 +5,7 @@
 #include <map>
 #include <string>
 
-#include "run_command.hpp"
+#include "robot_variants.hpp"
 #include "stride/sim_hal/robot_model.hpp"
 #include "temp_dir.hpp"
 
@@ -15,17 +15,12 @@ namespace {
 TEST(RobotVariants, EachDiffersFromTheModelInWhatItsNameSays) {
   test::TempDir tmp;
   int code = -1;
-  const std::string out =
-      test::run_command("python3 " + std::string(STRIDE_SOURCE_DIR) +
-                            "/sim_hal/models/make_variants.py " + tmp.path().string(),
-                        code);
+  const std::string out = test::write_robot_variants(tmp.path(), code);
   ASSERT_EQ(code, 0) << out;
   RobotModel base;
   ASSERT_TRUE(RobotModel::load_file(RobotModel::igus_path(), base));
   std::map<std::string, RobotModel> robots;
-  for (const char* name : {"trunk_mass_plus_10pct", "trunk_mass_minus_10pct",
-                           "trunk_com_1cm_forward", "trunk_com_1cm_backward", "trunk_com_1cm_left",
-                           "trunk_com_1cm_right", "left_leg_plus_5pct", "right_leg_plus_5pct"}) {
+  for (const char* name : test::kRobotVariants) {
     const Status s =
         RobotModel::load_file(tmp.path() / (std::string(name) + ".urdf"), robots[name]);
     ASSERT_TRUE(s) << s.message();
