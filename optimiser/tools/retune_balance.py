@@ -56,6 +56,15 @@ def fail(message):
     sys.exit(2)
 
 
+def load_json(path, option):
+    """A JSON file given on the command line, or one line naming the option and the problem."""
+    try:
+        with open(path) as f:
+            return json.load(f)
+    except (OSError, json.JSONDecodeError) as e:
+        fail(f"{option}: cannot read {path}: {e}")
+
+
 def preset(name):
     steps = {"forward-steps": (2000, 1000, 500), "forward-2ms": (2000,)}
     if name in steps:
@@ -187,8 +196,13 @@ def main():
         fail(f"--stride: not an executable: {a.stride}")
     if not 1 <= a.mu <= a.lam:
         fail(f"--mu must be in [1, --lambda], got {a.mu}")
-    conds = json.load(open(a.conditions)) if os.path.isfile(a.conditions) else preset(a.conditions)
-    start = json.load(open(a.start))
+    conds = (load_json(a.conditions, "--conditions") if os.path.isfile(a.conditions)
+             else preset(a.conditions))
+    if not isinstance(conds, list) or not all(isinstance(c, dict) for c in conds) or not conds:
+        fail(f"--conditions: {a.conditions}: expected a non-empty list of objects")
+    start = load_json(a.start, "--start")
+    if not isinstance(start, dict):
+        fail(f"--start: {a.start}: expected an object of parameter values")
     for n in NAMES:
         if n not in start:
             fail(f"--start: {a.start} does not set {n}")
