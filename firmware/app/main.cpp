@@ -41,6 +41,10 @@ int main(int argc, char** argv) {
   args.option("hal", "HAL backend: " + backends, true, "test")
       .option("params", "parameter file (JSON) applied at start-up")
       .option("servo-table", "servo table file", true, fw::ServoTable::default_path().string())
+      .option("robot-description",
+              "rigid-body model from `stride describe` (must match the "
+              "servo table)",
+              true, fw::RobotDescription::default_path().string())
       .option("console", "serve the parameter console on DEV (serial device or pty) or stdio")
       .option("ticks", "stop after N ticks (default: run until SIGINT)")
       .option("no-rt", "do not ask for SCHED_FIFO and mlockall", false)
@@ -70,6 +74,7 @@ int main(int argc, char** argv) {
 
   fw::FirmwareOptions options;
   options.servo_table = args.get("servo-table");
+  options.robot_description = args.get("robot-description");
   if (args.has("params")) options.params_file = args.get("params");
   std::unique_ptr<fw::Firmware> firmware;
   if (Status s = fw::Firmware::create(options, firmware); !s) return fail(2, s.message());

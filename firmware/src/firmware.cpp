@@ -45,6 +45,10 @@ Firmware::~Firmware() = default;
 Status FirmwareFiles::load(const FirmwareOptions& options, FirmwareFiles& out) {
   FirmwareFiles files;
   if (Status s = ServoTable::load(options.servo_table, files.servos); !s) return s;
+  const std::filesystem::path robot_path = options.robot_description.empty()
+                                               ? RobotDescription::default_path()
+                                               : options.robot_description;
+  if (Status s = RobotDescription::load(robot_path, files.servos, files.robot); !s) return s;
   const std::filesystem::path scripts_dir =
       options.scripts_dir.empty() ? data_dir() / "scripts" : options.scripts_dir;
   if (Status s = load_script_folder(scripts_dir, files.servos, files.scripts); !s) return s;
@@ -62,6 +66,7 @@ Status Firmware::create(const FirmwareOptions& options, const FirmwareFiles& fil
                         std::unique_ptr<Firmware>& out) {
   std::unique_ptr<Firmware> fw(new Firmware());
   fw->servos_ = files.servos;
+  fw->robot_ = files.robot;
 
   ParamSpec rate{"loop.rate_hz",
                  ParamType::kInt,
@@ -93,7 +98,7 @@ Status Firmware::create(const FirmwareOptions& options, const FirmwareFiles& fil
   // The motion engines register their parameters here, before the parameter file applies.
   try {
     fw->engines_->walk_engine =
-        std::make_unique<WalkEngine>(fw->params_, fw->servos_, fw->period_ns_);
+        std::make_unique<WalkEngine>(fw->params_, fw->servos_, fw->period_ns_, fw->robot_);
   } catch (const std::exception& e) {
     return Status::error(e.what());
   }

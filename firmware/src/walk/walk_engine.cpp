@@ -35,11 +35,14 @@ Eigen::Matrix3d yaw_pitch(double yaw, double pitch) {
 
 }  // namespace
 
-WalkEngine::WalkEngine(ParameterStore& store, const ServoTable& servos, std::int64_t period_ns)
+WalkEngine::WalkEngine(ParameterStore& store, const ServoTable& servos, std::int64_t period_ns,
+                       const RobotDescription& robot)
     : parameter_set_(store),
       period_s_(static_cast<double>(period_ns) * 1e-9),
       balance_(store, period_s_),
-      heading_(store, period_s_) {
+      heading_(store, period_s_),
+      compliance_(store, robot, servos, period_s_),
+      capture_(store, period_s_) {
   if (period_ns <= 0) throw std::invalid_argument("walk engine: control period must be > 0");
   left_leg_index_ = {servo_index(servos, "l_hip_yaw"),     servo_index(servos, "l_hip_roll"),
                      servo_index(servos, "l_hip_pitch"),   servo_index(servos, "l_knee"),
@@ -84,6 +87,8 @@ void WalkEngine::start(const hal::SensorFrame& sensors, const hal::CommandFrame&
   step_begin_s_ = 0.0;
   balance_.reset();
   heading_.reset();
+  compliance_.reset();
+  capture_.reset();
   heading_correction_ = 0.0;
   std::array<double, hal::kServoCount> pose{};
   for (std::size_t k = 0; k < kDriven; ++k) {
@@ -150,6 +155,14 @@ void WalkEngine::begin_step() noexcept {
   heading_correction_ = step_count_ > kStepsWithoutLift ? correction : 0.0;
   walk::PlanarVector planned = velocity_;
   planned.angle += heading_correction_;
+  // Capture step: the footstep moves with the capture point's deviation (torso frame, turned
+  // into the walk plane). The swing target moves by 1.5 v (v, then the torso's half step).
+  if (step_count_ > kStepsWithoutLift && capture_.footstep_enabled()) {
+    const double c = std::cos(torso_destination_.theta), s = std::sin(torso_destination_.theta);
+    const double dx = capture_.step_offset_x(), dy = capture_.step_offset_y();
+    planned.x += (c * dx - s * dy) / 1.5;
+    planned.y += (s * dx + c * dy) / 1.5;
+  }
   left_source_ = left_destination_;
   right_source_ = right_destination_;
   torso_source_ = torso_destination_;
@@ -199,6 +212,12 @@ void WalkEngine::step(const hal::SensorFrame& sensors, hal::Tick tick,
   // while no turn is commanded (a NaN command counts as 0, as in scale_command).
   const bool holding = !(std::abs(command_.angle) > 0.0);
   heading_.update(sensors.cm730, params_.body_tilt, state_ == State::kStarting, holding);
+  const bool stepping =
+      state_ == State::kWalking || state_ == State::kStopRequest || state_ == State::kLastStep;
+  const double pair_phase =
+      0.5 * ((swing_ == walk::Foot::kLeft ? 0.0 : 1.0) + std::clamp(snapshot_.phase, 0.0, 1.0));
+  capture_.update(sensors.cm730, pair_phase, params_.step_time,
+                  stepping && step_count_ > kStepsWithoutLift, !stepping);
   const double t = static_cast<double>(std::max<hal::Tick>(0, tick - start_tick_)) * period_s_;
   double blend = 1.0;
   if (state_ == State::kStarting) {
@@ -215,6 +234,13 @@ void WalkEngine::step(const hal::SensorFrame& sensors, hal::Tick tick,
   }
   if (state_ == State::kWalking || state_ == State::kStopRequest || state_ == State::kLastStep) {
     const double walking_time = t - kStartBlendTime;
+    // Step timing feedback: the step's clock runs at the phase rate (exactly the tick clock
+    // when the feedback is off, so the seed's walk is bit-identical).
+    snapshot_.phase_rate = 1.0;
+    if (capture_.timing_enabled() && step_count_ > kStepsWithoutLift) {
+      snapshot_.phase_rate = capture_.phase_rate(swing_ == walk::Foot::kLeft);
+      step_begin_s_ -= (snapshot_.phase_rate - 1.0) * period_s_;
+    }
     double time_in_step = walking_time - step_begin_s_;
     for (int guard = 0; guard < 8 && time_in_step >= params_.step_time; ++guard) {
       step_begin_s_ += params_.step_time;
@@ -239,9 +265,17 @@ void WalkEngine::step(const hal::SensorFrame& sensors, hal::Tick tick,
   snapshot_.velocity = velocity_;
   snapshot_.heading_correction = heading_correction_;
   snapshot_.heading_error = heading_.heading_error();
+  snapshot_.capture_x = capture_.deviation_x();
+  snapshot_.capture_y = capture_.deviation_y();
 
   const double arm_gain = gain_register(params_.gain_arms);
   const double leg_gain = gain_register(params_.gain_legs);
+  if (compliance_.enabled()) {
+    std::array<double, hal::kServoCount> p_gain{};
+    for (std::size_t k = 0; k < kDriven; ++k)
+      p_gain[driven_index_[k]] = k < 6 ? arm_gain : leg_gain;
+    compliance_.apply(targets_, field_, contact_, p_gain, sensors);
+  }
   for (std::size_t k = 0; k < kDriven; ++k) {
     const std::size_t i = driven_index_[k];
     hal::ServoCommand& command = out.servos[i];
@@ -267,6 +301,8 @@ void WalkEngine::compute_targets(double time_in_step, bool standing) noexcept {
   double left_roll = 0.0;
   double right_roll = 0.0;
   double swing_feedback = 1.0;  // share of the balance shift the swing leg takes
+  contact_ = {true, true};
+  Eigen::Vector2d acceleration = Eigen::Vector2d::Zero();  // planned, walk plane [m/s^2]
   if (standing) {
     torso = walk::torso_between(left, right, p);
   } else {
@@ -279,6 +315,12 @@ void WalkEngine::compute_targets(double time_in_step, bool standing) noexcept {
                             ? p.step_height * profile.vertical * walk::lift_factor(velocity_, p)
                             : 0.0;
     const double compensation = p.hip_roll_compensation * profile.compensation;
+    acceleration = {lipm_x_.acceleration(time_in_step), lipm_y_.acceleration(time_in_step)};
+    const double psi = profile.single_support_phase;
+    if (psi > 0.0 && psi < 1.0 && step_count_ > kStepsWithoutLift) {
+      contact_.left = swing_ != Foot::kLeft;
+      contact_.right = swing_ != Foot::kRight;
+    }
     swing_feedback = balance_.double_support_weight() * (1.0 - profile.compensation);
     if (swing_ == Foot::kLeft) {
       left = walk::interpolate(left_source_, left_destination_, profile.horizontal);
@@ -299,6 +341,8 @@ void WalkEngine::compute_targets(double time_in_step, bool standing) noexcept {
   solve_leg(left_leg_, left, left_lift, torso, left_roll, left_feedback, left_leg_index_);
   solve_leg(right_leg_, right, right_lift, torso, right_roll, right_feedback, right_leg_index_);
   write_arms(phase, torso, left, right);
+  const Eigen::Matrix3d trunk = yaw_pitch(torso.theta, p.body_tilt);
+  field_ = trunk.transpose() * Eigen::Vector3d(-acceleration.x(), -acceleration.y(), -9.81);
   snapshot_.phase = phase;
   snapshot_.torso = torso;
   snapshot_.left_foot = left;

@@ -35,7 +35,8 @@ std::size_t index(const char* name) {
 TEST(WalkEngine, RegistersTheParametersWithIndODefaults) {
   ParameterStore store;
   WalkEngine engine(store, ServoTable::defaults(), kPeriodNs);
-  EXPECT_EQ(store.list("walk.").size() - store.list("walk.balance.").size(),
+  EXPECT_EQ(store.list("walk.").size() - store.list("walk.balance.").size() -
+                store.list("walk.compliance.").size() - store.list("walk.capture.").size(),
             walk::kWalkParameterCount);
   int genome = 0;
   for (const auto& row : walk::walk_parameter_table()) {

@@ -15,6 +15,7 @@
 
 #include "stride/firmware/controller.hpp"
 #include "stride/firmware/parameter_store.hpp"
+#include "stride/firmware/robot_description.hpp"
 #include "stride/firmware/script/script.hpp"
 #include "stride/firmware/servo_table.hpp"
 #include "stride/hal/status.hpp"
@@ -23,6 +24,8 @@ namespace stride::fw {
 
 struct FirmwareOptions {
   std::filesystem::path servo_table = ServoTable::default_path();
+  /// Rigid-body model (stride describe); empty: the shipped one beside the servo table's data.
+  std::filesystem::path robot_description;
   std::filesystem::path scripts_dir;                 ///< keyframe scripts; empty: the shipped ones
   std::optional<std::filesystem::path> params_file;  ///< applied after the defaults
 };
@@ -32,9 +35,11 @@ struct FirmwareOptions {
 /// builds one per evaluation) loads them once; the firmware built from them is the same.
 struct FirmwareFiles {
   ServoTable servos;
+  RobotDescription robot;  ///< checked against `servos`
   std::vector<Script> scripts;
 
-  /// Reads options.servo_table and the scripts folder; an error names the file and field.
+  /// Reads options.servo_table, the robot description and the scripts folder; an error names
+  /// the file and field.
   static Status load(const FirmwareOptions& options, FirmwareFiles& out);
 };
 
@@ -59,6 +64,7 @@ class Firmware {
 
   ParameterStore params_;
   ServoTable servos_;
+  RobotDescription robot_;
   std::int64_t period_ns_ = 10'000'000;
   std::unique_ptr<Engines> engines_;
   std::unique_ptr<Controller> controller_;

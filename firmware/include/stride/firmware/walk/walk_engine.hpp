@@ -31,8 +31,11 @@
 
 #include "stride/firmware/motion_engine.hpp"
 #include "stride/firmware/parameter_store.hpp"
+#include "stride/firmware/robot_description.hpp"
 #include "stride/firmware/servo_table.hpp"
 #include "stride/firmware/walk/balance_feedback.hpp"
+#include "stride/firmware/walk/capture_step.hpp"
+#include "stride/firmware/walk/compliance_compensation.hpp"
 #include "stride/firmware/walk/footstep_planner.hpp"
 #include "stride/firmware/walk/heading_hold.hpp"
 #include "stride/firmware/walk/leg_kinematics.hpp"
@@ -59,7 +62,9 @@ class WalkEngine final : public WalkControl {
     walk::PlanarVector velocity;               ///< current velocity [m/step, rad/step]
     double heading_correction = 0.0;  ///< turn the heading hold added to this step [rad/step]
     double heading_error = 0.0;       ///< the heading hold's integrated yaw error [rad]
-    bool ik_clamped = false;          ///< a leg target was out of reach this tick
+    double capture_x = 0.0, capture_y = 0.0;  ///< capture-point deviation, torso frame [m]
+    double phase_rate = 1.0;                  ///< phase rate of the step timing feedback
+    bool ik_clamped = false;                  ///< a leg target was out of reach this tick
   };
 
   /// Blend time from the previous pose into the walk's stance at start() [s].
@@ -70,8 +75,11 @@ class WalkEngine final : public WalkControl {
   static constexpr int kStepsWithoutLift = 2;
 
   /// Registers the walk.* parameters in `store` (throws std::invalid_argument on a name
-  /// clash, std::runtime_error if a servo name is missing from `servos`).
-  WalkEngine(ParameterStore& store, const ServoTable& servos, std::int64_t period_ns);
+  /// clash, std::runtime_error if a servo name is missing from `servos`). `robot` (kept by
+  /// reference: it must outlive the engine) is the rigid-body model of the compliance
+  /// compensation.
+  WalkEngine(ParameterStore& store, const ServoTable& servos, std::int64_t period_ns,
+             const RobotDescription& robot = RobotDescription::defaults());
 
   std::string_view name() const noexcept override { return "walk"; }
   void start(const hal::SensorFrame& sensors, const hal::CommandFrame& last_sent,
@@ -88,6 +96,10 @@ class WalkEngine final : public WalkControl {
   std::uint64_t ik_clamped_ticks() const noexcept { return ik_clamped_ticks_; }
   /// The parameters latched for the current step.
   const walk::WalkParameters& parameters() const noexcept { return params_; }
+  /// The capture-step feedback (its latest capture-point deviation).
+  const walk::CaptureStep& capture() const noexcept { return capture_; }
+  /// The compliance compensation (its last torques and offsets).
+  const walk::ComplianceCompensation& compliance() const noexcept { return compliance_; }
 
  private:
   static constexpr std::size_t kDriven = 18;  // arm and leg servos
@@ -108,7 +120,11 @@ class WalkEngine final : public WalkControl {
   walk::BalanceFeedback balance_;
   walk::BalanceShift balance_shift_;
   walk::HeadingHold heading_;
-  double heading_correction_ = 0.0;  // added to the current step's turn [rad/step]
+  walk::ComplianceCompensation compliance_;
+  walk::CaptureStep capture_;
+  walk::FootContact contact_;               // feet planned on the ground this tick
+  Eigen::Vector3d field_{0.0, 0.0, -9.81};  // g - planned trunk acceleration, trunk frame
+  double heading_correction_ = 0.0;         // added to the current step's turn [rad/step]
   walk::LegKinematics left_leg_{walk::LegSide::kLeft};
   walk::LegKinematics right_leg_{walk::LegSide::kRight};
   std::array<std::size_t, 6> left_leg_index_{}, right_leg_index_{};

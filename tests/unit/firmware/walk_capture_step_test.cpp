@@ -1,0 +1,109 @@
+// CaptureStep: off by default (the clock-driven seed walk); the walk's own periodic rocking is
+// learned and not fed back; a tilt beyond it moves the next footstep towards where the robot
+// falls and changes the step timing the right way; allocation-free.
+#include "stride/firmware/walk/capture_step.hpp"
+
+#include <cmath>
+#include <numbers>
+
+#include <gtest/gtest.h>
+
+#include "counting_allocator.hpp"
+
+namespace stride::fw::walk {
+namespace {
+
+constexpr double kPeriod = 0.01;
+constexpr double kStepTime = 0.5;
+
+hal::Cm730State imu_at(double roll, double pitch, double roll_rate, double pitch_rate) {
+  hal::Cm730State imu;
+  imu.accel_mps2 = {-9.81 * std::sin(pitch), 9.81 * std::sin(roll) * std::cos(pitch),
+                    9.81 * std::cos(roll) * std::cos(pitch)};
+  imu.gyro_rad_s = {roll_rate, pitch_rate, 0.0};
+  return imu;
+}
+
+struct Rig {
+  ParameterStore store;
+  CaptureStep capture{store, kPeriod};
+  double time = 0.0;
+  void set(const char* name, double value) { ASSERT_TRUE(store.set_now({{name, value}}).is_ok()); }
+  /// Walks `seconds` with the trunk rolling +-amplitude once per step pair, plus `extra` roll.
+  void walk(double seconds, double amplitude, double extra = 0.0) {
+    const double omega = std::numbers::pi / kStepTime;  // one roll cycle per step pair
+    for (double end = time + seconds; time < end - 1e-9; time += kPeriod) {
+      const double pair_phase = std::fmod(time, 2.0 * kStepTime) / (2.0 * kStepTime);
+      const double roll = amplitude * std::sin(omega * time) + extra;
+      capture.update(imu_at(roll, 0.17, amplitude * omega * std::cos(omega * time), 0.0),
+                     pair_phase, kStepTime, true, false);
+    }
+  }
+  void stand(double seconds) {
+    for (double end = time + seconds; time < end - 1e-9; time += kPeriod) {
+      capture.update(imu_at(0.0, 0.17, 0.0, 0.0), 0.0, kStepTime, false, true);
+    }
+  }
+};
+
+TEST(WalkCaptureStep, OffByDefault) {
+  Rig rig;
+  rig.stand(1.0);
+  rig.walk(2.0, 0.05, 0.1);
+  EXPECT_FALSE(rig.capture.footstep_enabled());
+  EXPECT_FALSE(rig.capture.timing_enabled());
+  EXPECT_EQ(rig.capture.step_offset_x(), 0.0);
+  EXPECT_EQ(rig.capture.step_offset_y(), 0.0);
+  EXPECT_EQ(rig.capture.phase_rate(true), 1.0);
+}
+
+TEST(WalkCaptureStep, TheWalksOwnRockingIsLearnedAndNotFedBack) {
+  Rig rig;
+  rig.stand(1.0);
+  double early = 0.0;
+  for (int i = 0; i < 10; ++i) {
+    rig.walk(0.1, 0.05);
+    early = std::max(early, std::abs(rig.capture.deviation_y()));
+  }
+  rig.walk(20.0, 0.05);  // learning
+  double late = 0.0;
+  for (int i = 0; i < 20; ++i) {
+    rig.walk(0.1, 0.05);
+    late = std::max(late, std::abs(rig.capture.deviation_y()));
+  }
+  EXPECT_GT(early, 0.004);  // before learning, the rocking looks like a deviation
+  EXPECT_LT(late, 0.25 * early + 1e-3);
+}
+
+TEST(WalkCaptureStep, ATiltMovesTheFootstepAndTheTimingTowardsTheFall) {
+  Rig rig;
+  rig.set("walk.capture.step_gain_y", 1.0);
+  rig.set("walk.capture.step_gain_x", 1.0);
+  rig.set("walk.capture.timing_gain", 10.0);
+  rig.stand(1.0);
+  rig.walk(20.0, 0.05);
+  EXPECT_LT(std::abs(rig.capture.step_offset_y()), 0.003);
+  // The trunk rolls 0.05 rad more to its right (positive roll about x tips the top towards -y):
+  // the capture point leaves to the right, the next footstep moves right.
+  rig.walk(0.2, 0.05, 0.05);
+  EXPECT_LT(rig.capture.deviation_y(), -0.01);
+  EXPECT_LT(rig.capture.step_offset_y(), -0.01);
+  EXPECT_GE(rig.capture.step_offset_y(), -0.04);  // walk.capture.max_step_y
+  // The right foot, swinging, lands sooner; the left one later.
+  EXPECT_GT(rig.capture.phase_rate(false), 1.0);
+  EXPECT_LT(rig.capture.phase_rate(true), 1.0);
+  EXPECT_GE(rig.capture.phase_rate(true), 0.7);  // walk.capture.max_timing 0.3
+}
+
+TEST(WalkCaptureStep, UpdateAllocatesNothing) {
+  Rig rig;
+  rig.set("walk.capture.step_gain_y", 1.0);
+  test::start_counting_allocations();
+  rig.stand(0.5);
+  rig.walk(2.0, 0.05, 0.02);
+  (void)rig.capture.step_offset_y();
+  EXPECT_EQ(test::stop_counting_allocations(), 0U);
+}
+
+}  // namespace
+}  // namespace stride::fw::walk
