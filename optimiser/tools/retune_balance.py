@@ -18,6 +18,9 @@ same result.
         --conditions forward-steps --start firmware/config/balance-identified.json \\
         --generations 10 --out best.json
 
+--space stepping (or all) searches the closed-loop stepping gains of issue 29
+(walk.compliance.*, walk.capture.*) too; --fixed FILE sets further parameters in every candidate.
+
 Conditions: a preset name (below) or a JSON file with a list of objects
 {"vx", "vy", "vth", "seed", "step" (physics step, us), "duration", "urdf", "law", "imu", "engine"}.
 The world defaults to the identified MX servo and the CM730 IMU with noise on.
@@ -47,6 +50,17 @@ SPACE = {  # name: search range (inside the firmware's registered bounds)
     "walk.balance.double_support_weight": (0.0, 1.0),
     "walk.balance.start_sway_steps": (0.0, 10.0),
 }
+STEPPING = {  # the closed-loop stepping of issue 29 (walk.compliance.*, walk.capture.*)
+    "walk.compliance.gain": (0.0, 1.2),
+    "walk.compliance.back_emf_gain": (0.0, 1.2),
+    "walk.capture.step_gain_x": (0.0, 1.5),
+    "walk.capture.step_gain_y": (0.0, 1.5),
+    "walk.capture.timing_gain": (0.0, 10.0),
+    "walk.capture.learn_steps": (1.0, 12.0),
+}
+STEPPING_START = {"walk.compliance.gain": 0.0, "walk.compliance.back_emf_gain": 0.0,
+                  "walk.capture.step_gain_x": 0.0, "walk.capture.step_gain_y": 0.0,
+                  "walk.capture.timing_gain": 0.0, "walk.capture.learn_steps": 4.0}
 NAMES = list(SPACE)
 
 
@@ -69,13 +83,19 @@ def preset(name):
     steps = {"forward-steps": (2000, 1000, 500), "forward-2ms": (2000,)}
     if name in steps:
         return [dict(vx=1, seed=s, step=st, duration=35) for st in steps[name] for s in (1, 2, 3)]
+    if name == "stepping":  # every direction at two steps, forward on two seeds
+        conds = [dict(vx=1, seed=s, step=st, duration=30) for st in (2000, 1000) for s in (1, 2)]
+        conds += [dict(seed=1, step=st, duration=20, **c) for st in (2000, 1000)
+                  for c in (dict(vx=-1), dict(vy=1), dict(vy=-1), dict(vth=1), dict(vth=-1))]
+        return conds
     if name == "omni":
         conds = [dict(vx=1, seed=s, step=st, duration=35) for st in (2000, 1000) for s in (1, 2, 3)]
         conds += [dict(seed=1, step=st, duration=20, vth=v) for st in (2000, 1000) for v in (1, -1)]
         conds += [dict(seed=1, step=2000, duration=20, **c)
                   for c in (dict(vx=-1), dict(vy=1), dict(vy=-1))]
         return conds
-    fail(f"--conditions: no preset '{name}' (forward-steps, forward-2ms, omni) and no such file")
+    fail(f"--conditions: no preset '{name}' (forward-steps, forward-2ms, omni, stepping) and no "
+         "such file")
 
 
 def read_torso(record):
@@ -173,9 +193,11 @@ def label(result):
     return f"y{result['sideways_m']:+.2f}" if "sideways_m" in result else "ok"
 
 
-def to_params(u):
-    return {n: lo + min(1.0, max(0.0, x)) * (hi - lo) for n, x, (lo, hi) in
-            zip(NAMES, u, SPACE.values())}
+def to_params(u, fixed=None):
+    params = dict(fixed or {})
+    params.update({n: lo + min(1.0, max(0.0, x)) * (hi - lo) for n, x, (lo, hi) in
+                   zip(NAMES, u, SPACE.values())})
+    return params
 
 
 def main():
@@ -191,7 +213,21 @@ def main():
     ap.add_argument("--sigma", type=float, default=0.12, help="step in the unit box")
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--jobs", type=int, default=os.cpu_count() or 1)
+    ap.add_argument("--space", choices=("balance", "stepping", "all"), default="balance",
+                    help="the 13 walk.balance.* gains, the stepping gains (walk.compliance.*, "
+                         "walk.capture.*), or both")
+    ap.add_argument("--fixed", help="parameter file (JSON object) set in every candidate, e.g. "
+                                    "wider velocity limits; the searched names override it")
     a = ap.parse_args()
+    global NAMES, SPACE
+    if a.space == "stepping":
+        SPACE = dict(STEPPING)
+    elif a.space == "all":
+        SPACE = {**SPACE, **STEPPING}
+    NAMES = list(SPACE)
+    fixed = load_json(a.fixed, "--fixed") if a.fixed else {}
+    if not isinstance(fixed, dict):
+        fail(f"--fixed: {a.fixed}: expected an object of parameter values")
     if not os.access(a.stride, os.X_OK):
         fail(f"--stride: not an executable: {a.stride}")
     if not 1 <= a.mu <= a.lam:
@@ -204,6 +240,8 @@ def main():
     if not isinstance(start, dict):
         fail(f"--start: {a.start}: expected an object of parameter values")
     for n in NAMES:
+        if n not in start and n in STEPPING_START:
+            start[n] = STEPPING_START[n]  # the stepping gains start off
         if n not in start:
             fail(f"--start: {a.start} does not set {n}")
     mean = [(start[n] - lo) / (hi - lo) for n, (lo, hi) in SPACE.items()]
@@ -217,7 +255,8 @@ def main():
             pop = [[min(1.0, max(0.0, x)) for x in u] for u in pop]
             scored = []
             for u in pop:
-                results = list(pool.map(lambda c, p=to_params(u): run(a.stride, p, c), conds))
+                results = list(pool.map(lambda c, p=to_params(u, fixed): run(a.stride, p, c),
+                                        conds))
                 values = [score(r) for r in results]
                 fitness = sum(values) / len(values) + 0.5 * min(values)
                 scored.append((fitness, u, " ".join(label(r) for r in results)))
@@ -225,7 +264,7 @@ def main():
             if scored[0][0] > best[0]:
                 best = scored[0]
                 with open(a.out + ".tmp", "w") as f:
-                    json.dump(to_params(best[1]), f, indent=1, sort_keys=True)
+                    json.dump(to_params(best[1], fixed), f, indent=1, sort_keys=True)
                 os.replace(a.out + ".tmp", a.out)
             mean = [sum(w * s[1][k] for w, s in zip(weights, scored)) / sum(weights)
                     for k in range(len(NAMES))]

@@ -36,6 +36,11 @@ CaptureStep::CaptureStep(ParameterStore& store, double period_s)
                                      "low-pass time constant of the tilt deviation's rate");
   tilt_filter_time_ = store.add_real("walk.capture.tilt_filter_time", 0.3, 0.02, 5.0, "s",
                                      "complementary filter time constant of the trunk tilt");
+  touchdown_load_ = store.add_real("walk.capture.touchdown_load", 0.0, 0.0, 1.0, "1",
+                                   "swing knee load (fraction of stall torque) that ends a step "
+                                   "late in its phase (0: the clock ends every step)");
+  touchdown_phase_ = store.add_real("walk.capture.touchdown_phase", 0.9, 0.5, 1.0, "1",
+                                    "earliest step phase a touchdown may end the step at");
 }
 
 void CaptureStep::reset() noexcept {
@@ -134,6 +139,16 @@ double CaptureStep::phase_rate(bool left_swings) const noexcept {
   const double limit = store_.value(max_timing_);
   const double side = left_swings ? 1.0 : -1.0;
   return std::clamp(1.0 + gain * side * xi_y_, 1.0 - limit, 1.0 + limit);
+}
+
+}  // namespace stride::fw::walk
+
+namespace stride::fw::walk {
+
+bool CaptureStep::touchdown(double phase, double swing_knee_load) const noexcept {
+  const double threshold = store_.value(touchdown_load_);
+  return threshold > 0.0 && phase >= store_.value(touchdown_phase_) &&
+         std::abs(swing_knee_load) >= threshold;
 }
 
 }  // namespace stride::fw::walk

@@ -242,6 +242,17 @@ void WalkEngine::step(const hal::SensorFrame& sensors, hal::Tick tick,
       step_begin_s_ -= (snapshot_.phase_rate - 1.0) * period_s_;
     }
     double time_in_step = walking_time - step_begin_s_;
+    // Support exchange at touchdown: a swing foot that has landed ends its step now.
+    if (step_count_ > kStepsWithoutLift && state_ != State::kLastStep &&
+        time_in_step < params_.step_time) {
+      const auto& knee =
+          sensors.servos[swing_ == walk::Foot::kLeft ? left_leg_index_[3] : right_leg_index_[3]];
+      if (capture_.touchdown(time_in_step / params_.step_time, knee.load)) {
+        step_begin_s_ -= params_.step_time - time_in_step;
+        time_in_step = params_.step_time;
+        ++touchdown_steps_;
+      }
+    }
     for (int guard = 0; guard < 8 && time_in_step >= params_.step_time; ++guard) {
       step_begin_s_ += params_.step_time;
       begin_step();

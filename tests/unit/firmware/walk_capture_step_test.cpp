@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "counting_allocator.hpp"
+#include "stride/firmware/walk/walk_engine.hpp"
 
 namespace stride::fw::walk {
 namespace {
@@ -93,6 +94,42 @@ TEST(WalkCaptureStep, ATiltMovesTheFootstepAndTheTimingTowardsTheFall) {
   EXPECT_GT(rig.capture.phase_rate(false), 1.0);
   EXPECT_LT(rig.capture.phase_rate(true), 1.0);
   EXPECT_GE(rig.capture.phase_rate(true), 0.7);  // walk.capture.max_timing 0.3
+}
+
+TEST(WalkCaptureStep, TouchdownNeedsALateEnoughPhaseAndLoad) {
+  Rig rig;
+  EXPECT_FALSE(rig.capture.touchdown(0.95, 0.9));  // off by default
+  rig.set("walk.capture.touchdown_load", 0.2);
+  EXPECT_FALSE(rig.capture.touchdown(0.8, 0.9));   // before walk.capture.touchdown_phase 0.9
+  EXPECT_FALSE(rig.capture.touchdown(0.95, 0.1));  // no weight on the foot yet
+  EXPECT_TRUE(rig.capture.touchdown(0.95, -0.3));  // either sign of load
+}
+
+/// Steps a walk engine for `seconds` with the knees reporting `knee_load`; returns the steps.
+int steps_taken(double touchdown_load, double knee_load, double seconds) {
+  ParameterStore store;
+  WalkEngine engine(store, ServoTable::defaults(), 10'000'000);
+  EXPECT_TRUE(store.set_now({{"walk.capture.touchdown_load", touchdown_load}}).is_ok());
+  hal::SensorFrame sensors;
+  sensors.cm730.accel_mps2 = {0.0, 0.0, 9.81};
+  for (auto& servo : sensors.servos) servo.load = knee_load;
+  hal::CommandFrame out{};
+  engine.set_velocity(1.0, 0.0, 0.0);
+  engine.start(sensors, out, 0);
+  const int ticks = static_cast<int>(seconds / 0.01);
+  for (int t = 0; t < ticks; ++t) engine.step(sensors, t, out);
+  return engine.snapshot().step_count;
+}
+
+TEST(WalkCaptureStep, ALandedSwingFootEndsItsStepEarly) {
+  // Ind_O's 0.85 s steps: 1 s start blend, then 9 s walking is 11 steps by the clock.
+  const int by_clock = steps_taken(0.0, 0.5, 10.0);
+  EXPECT_EQ(steps_taken(0.3, 0.1, 10.0), by_clock);  // no touchdown seen
+  // A load from the start of the late window: the steps after the first two (no lift) end at
+  // phase 0.9, about 10 % sooner.
+  const int early = steps_taken(0.3, 0.5, 10.0);
+  EXPECT_GT(early, by_clock);
+  EXPECT_LE(early, by_clock + 2);
 }
 
 TEST(WalkCaptureStep, UpdateAllocatesNothing) {

@@ -19,7 +19,11 @@
 // Timing (NimbRo's df law on the lateral capture point): while the capture point leaves towards
 // the swing side the swing foot must land sooner; away from it, later:
 //   phase rate = clamp(1 + timing_gain * s xi_y, 1 - max_timing, 1 + max_timing),
-// s = +1 while the left foot swings, -1 while the right does. Real-time: no allocation, no I/O.
+// s = +1 while the left foot swings, -1 while the right does.
+// Support exchange at touchdown (Bit-Bots' phase reset): late in a step (phase >= touchdown_phase)
+// the step ends as soon as the swing leg's knee servo reports a load of touchdown_load or more
+// (a fraction of its stall torque: the foot has taken weight), instead of when the clock says.
+// Real-time: no allocation, no I/O.
 #pragma once
 
 #include <array>
@@ -52,6 +56,9 @@ class CaptureStep {
   double step_offset_y() const noexcept;
   /// Phase rate for this tick while `left_swings` (1 = the clock's pace).
   double phase_rate(bool left_swings) const noexcept;
+  /// True if the swing foot has landed: `phase` (0..1) is late enough and the swing knee's
+  /// present load (fraction of stall torque) reaches walk.capture.touchdown_load (> 0).
+  bool touchdown(double phase, double swing_knee_load) const noexcept;
   /// The capture point deviation [m] (walk frame) of the latest update().
   double deviation_x() const noexcept { return xi_x_; }
   double deviation_y() const noexcept { return xi_y_; }
@@ -61,7 +68,7 @@ class CaptureStep {
   double period_s_;
   ParamHandle step_gain_x_, step_gain_y_, max_step_x_, max_step_y_;
   ParamHandle timing_gain_, max_timing_, com_height_, learn_steps_, rate_filter_time_,
-      tilt_filter_time_;
+      tilt_filter_time_, touchdown_load_, touchdown_phase_;
   bool tilt_valid_ = false;
   double roll_ = 0.0, pitch_ = 0.0;
   std::array<double, kBins> expected_roll_{}, expected_pitch_{};

@@ -94,6 +94,8 @@ class WalkEngine final : public WalkControl {
   const Snapshot& snapshot() const noexcept { return snapshot_; }
   /// Ticks since construction in which a leg target had to be clamped.
   std::uint64_t ik_clamped_ticks() const noexcept { return ik_clamped_ticks_; }
+  /// Steps since construction that ended at a detected touchdown (walk.capture.touchdown_load).
+  std::uint64_t touchdown_steps() const noexcept { return touchdown_steps_; }
   /// The parameters latched for the current step.
   const walk::WalkParameters& parameters() const noexcept { return params_; }
   /// The capture-step feedback (its latest capture-point deviation).
@@ -147,6 +149,7 @@ class WalkEngine final : public WalkControl {
   std::array<double, kDriven> blend_from_{};
   bool tick_clamped_ = false;
   std::uint64_t ik_clamped_ticks_ = 0;
+  std::uint64_t touchdown_steps_ = 0;
   Snapshot snapshot_;
 };
 
