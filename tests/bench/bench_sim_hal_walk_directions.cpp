@@ -20,6 +20,7 @@
 #include "stride/sim_hal/episode.hpp"
 #include "stride/sim_hal/sim_cli.hpp"
 #include "stride/sim_hal/sim_robot.hpp"
+#include "stride/sim_hal/swing_clearance.hpp"
 
 namespace {
 
@@ -50,10 +51,6 @@ double yaw_of(const Eigen::Isometry3d& pose) {
   return std::atan2(r(1, 0), r(0, 0));
 }
 
-double lowest_stud(const Eigen::Isometry3d& foot) {
-  return foot.translation().z() - 0.0565;  // stud tips below the ankle (level foot)
-}
-
 WalkFigures walk(const fw::FirmwareOptions& firmware_options, sim::WorldOptions options,
                  std::uint64_t seed, const Direction& d, double duration) {
   std::unique_ptr<fw::Firmware> firmware;
@@ -75,10 +72,7 @@ WalkFigures walk(const fw::FirmwareOptions& firmware_options, sim::WorldOptions 
   const double period = static_cast<double>(firmware->period_ns()) * 1e-9;
   Eigen::Isometry3d start = Eigen::Isometry3d::Identity(), at5 = start;
   double yaw_unwrapped = 0.0, previous_yaw = 0.0, yaw5 = 0.0;
-  double stand_left = 0.0, stand_right = 0.0;
-  int swing = 0;  // +1 left foot up, -1 right foot up, 0 none
-  double peak = 0.0;
-  bool mid_contact = false;
+  sim::SwingClearance clearance;
   const sim::StepFunction step = [&](const hal::SensorFrame& sensors, hal::Tick tick) {
     const sim::GroundTruth g = robot.world().ground_truth();
     const double t = static_cast<double>(tick) * period;
@@ -93,41 +87,16 @@ WalkFigures walk(const fw::FirmwareOptions& firmware_options, sim::WorldOptions 
       at5 = g.torso;
       yaw5 = yaw_unwrapped;
     }
-    const double hl = lowest_stud(g.left_foot), hr = lowest_stud(g.right_foot);
-    if (t < 0.5) {
-      stand_left = hl;
-      stand_right = hr;
-    } else {
-      // The swing foot is the one more than 5 mm above where it stood; a step ends when it is
-      // back within 2 mm.
-      const double ul = hl - stand_left, ur = hr - stand_right;
-      const int now = ul > 0.005 && ul > ur ? 1 : (ur > 0.005 && ur > ul ? -1 : 0);
-      if (swing == 0 && now != 0) {
-        swing = now;
-        peak = 0.0;
-        mid_contact = false;
-      }
-      if (swing != 0) {
-        const double up = swing > 0 ? ul : ur;
-        const auto& contact = swing > 0 ? g.left_contact : g.right_contact;
-        if (up > peak) {
-          peak = up;
-          mid_contact = contact.points_in_contact > 0;  // touching at the highest point
-        }
-        if (up < 0.002) {
-          out.clearance.push_back(peak);
-          ++out.steps;
-          if (mid_contact) ++out.grazing;
-          swing = 0;
-        }
-      }
-    }
+    clearance.observe(t, g);
     return controller.step(sensors, tick);
   };
   sim::EpisodeOptions episode;
   episode.duration_s = duration;
   const sim::EpisodeResult result = sim::run_episode(robot, step, episode);
   out.fell = result.fell;
+  out.clearance = clearance.clearance();
+  out.steps = clearance.steps();
+  out.grazing = clearance.grazing_steps();
   const Eigen::Isometry3d end = robot.world().torso_pose();
   const double span = result.sim_time_s - 5.0;
   out.heading = yaw_unwrapped;
