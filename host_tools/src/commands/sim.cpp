@@ -91,8 +91,13 @@ Status write_html(const stride::fw::CliArgs& args, const std::string& motion,
       {"max field-plane sway", fixed(result.max_fps, "m/s^2")},
       {"ball moved", fixed(result.ball_distance_m, "m")},
       {"state hash", sim::hash_hex(result.state_hash)}};
-  return report::write_episode_html(args.get("html"), "Stride sim " + motion, facts,
-                                    robot.world().model(), episode, scene, times);
+  std::vector<std::string> warnings;
+  Status written =
+      report::write_episode_html(args.get("html"), "Stride sim " + motion, facts,
+                                 robot.world().model(), episode, scene, times, &warnings);
+  for (const std::string& w : warnings)
+    std::fprintf(stderr, "stride sim: warning: %s (see %s)\n", w.c_str(), args.get("html").c_str());
+  return written;
 }
 
 }  // namespace
