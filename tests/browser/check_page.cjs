@@ -12,12 +12,13 @@
 //     its pixels show the robot (a render with the robots hidden differs in at least 1500
 //     pixels), the slider moves the robot (the links' world positions and the pixels change
 //     between the start and 60 % of the replay), its time and the accelerometer charts' cursors
-//     follow the clock;
+//     follow the clock; the wheel zooms, a drag orbits and "reset view" restores the picture;
 //   - with --replay3d-unavailable REGEX: the 3D view says it is unavailable (or leaves an
 //     individual out) in words matching REGEX, without a console error;
 //   - screenshots of the whole page, of each section and of the replay after playing go to
 //     OUT_DIR/NAME-full.png, NAME-SECTION.png; the 3D view to NAME-3d-start.png and
-//     NAME-3d-middle.png (and NAME-3d-hidden.png: the same scene without the robots).
+//     NAME-3d-middle.png (and NAME-3d-hidden.png: the same scene without the robots;
+//     NAME-3d-orbited.png: zoomed in and turned).
 // usage: node check_page.cjs --chromium PATH --modules DIR --out OUT_DIR
 //          { --name NAME --page FILE --sections a,b,c [--replay N] [--expect-warnings]
 //            [--replay3d | --replay3d-unavailable REGEX] } ...
@@ -288,6 +289,24 @@ async function check3d(page, args, failures) {
   const middleX = middle.cursors.filter((c) => c.visible).map((c) => c.x);
   if (middleX.length === 0 || !(Math.max(...middleX) > Math.max(...startX, 0)))
     failures.push('accelerometer cursors did not move right with the slider');
+  // The camera: the wheel zooms, a drag orbits (the picture changes each time), reset restores.
+  const box = await (await page.$('#replay3d-canvas')).boundingBox();
+  await page.mouse.move(box.x + box.width / 2, box.y + box.height / 2);
+  await page.mouse.wheel({deltaY: -400});
+  await grab('zoomed');
+  const zoomed = await differing('middle', 'zoomed');
+  await page.mouse.down();
+  await page.mouse.move(box.x + box.width / 2 + 120, box.y + box.height / 2 + 30, {steps: 4});
+  await page.mouse.up();
+  await grab('orbited');
+  await shot('orbited');
+  const orbited = await differing('zoomed', 'orbited');
+  await page.click('#replay3d-reset');
+  await grab('reset');
+  const reset = await differing('middle', 'reset');
+  if (zoomed < 2000) failures.push('3D view: the wheel changed only ' + zoomed + ' pixels');
+  if (orbited < 2000) failures.push('3D view: dragging changed only ' + orbited + ' pixels');
+  if (reset > 200) failures.push('3D view: reset view left ' + reset + ' pixels changed');
   // The layouts: ghosted puts the individuals over each other, side by side apart.
   const lanes = await page.evaluate(() => {
     const layout = document.getElementById('replay3d-layout');
@@ -307,7 +326,8 @@ async function check3d(page, args, failures) {
   });
   if (lanes.shown > 1 && !(lanes.side > lanes.ghost + 0.3))
     failures.push('3D view: side by side is not wider than ghosted ' + JSON.stringify(lanes));
-  return {state: state.state, robotPixels, total, moved, travel, shown: middle.shown, lanes,
+  return {state: state.state, robotPixels, total, moved, travel, zoomed, orbited, reset,
+          shown: middle.shown, lanes,
           cursors: middle.cursors.length};
 }
 
