@@ -71,6 +71,7 @@ Status write_html(const stride::fw::CliArgs& args, const std::string& motion,
   report::ReplayScene scene;
   scene.grass_m = world.contact.grass_thickness_m;
   scene.ball_radius_m = world.ball.present ? world.ball.radius_m : 0.0;
+  if (motion == "walk") scene.goal_m = sim::EpisodeOptions{}.goal_distance_m;  // time_to_goal_s
   const std::vector<double> times =
       motion == "kick"
           ? report::strip_times(std::max(1.0, report::first_ball_motion_s({episode}, 2.0) - 1.5),

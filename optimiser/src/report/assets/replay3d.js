@@ -106,18 +106,18 @@
                                 new THREE.MeshLambertMaterial({color: 0x8fcf78}));
   ground.position.set(fieldLength / 2 - 1, 0, grass - 0.012);
   scene.add(ground);
-  const grid = new THREE.GridHelper(Math.ceil(fieldLength + 4), Math.ceil(fieldLength + 4) * 2, 0x5f9f4f, 0x7fbf6a);
-  grid.rotation.x = Math.PI / 2;
-  grid.position.set(Math.ceil(fieldLength + 4) / 2 - 2, 0, grass - 0.006);
-  scene.add(grid);
-  function line(x, colour, width) {
-    const m = new THREE.Mesh(new THREE.BoxBufferGeometry(width, 6, 0.002),
+  // Lines on the grass: a 0.5 m grid (flat strips, lit like the grass), the start and goal lines.
+  function strip(x0, x1, y0, y1, colour, lift) {
+    const m = new THREE.Mesh(new THREE.BoxBufferGeometry(x1 - x0, y1 - y0, 0.002),
                              new THREE.MeshLambertMaterial({color: colour}));
-    m.position.set(x, -1.5, grass - 0.005);
+    m.position.set((x0 + x1) / 2, (y0 + y1) / 2, grass - 0.008 + lift);
     scene.add(m);
   }
-  line(0, 0xffffff, 0.02);
-  if (goal) line(goal, 0xd0021b, 0.04);
+  const gridX1 = Math.ceil(fieldLength - 1);
+  for (let x = -2; x <= gridX1; x += 0.5) strip(x - 0.004, x + 0.004, -3.5, 3.5, 0x6fae5c, 0);
+  for (let y = -3.5; y <= 3.5; y += 0.5) strip(-2, gridX1, y - 0.004, y + 0.004, 0x6fae5c, 0);
+  strip(-0.01, 0.01, -3.5, 1.5, 0xffffff, 0.002);
+  if (goal) strip(goal - 0.02, goal + 0.02, -3.5, 1.5, 0xd0021b, 0.002);
 
   function label(text, colour) {
     const c = document.createElement('canvas');
