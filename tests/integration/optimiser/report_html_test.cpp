@@ -184,6 +184,23 @@ TEST_F(ReportHtml, MissingPiecesGiveAPageAndOneWarningLine) {
   EXPECT_NE(test::slurp(torn / "report.html").find("validation.json exists but cannot be parsed"),
             std::string::npos);
 
+  // three.js missing when the report is written: the page says the 3D view is unavailable (the
+  // 2D replay stays), one warning line.
+  const fs::path flat = copy_run("no_three");
+  r = stride({"report", flat.string()}, tmp_->path(), {"STRIDE_THREE_JS=/nonexistent/three.js"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(count(r.err, "\n"), 1) << r.err;
+  EXPECT_NE(r.err.find("the 3D replay is unavailable: three.js not found at /nonexistent/three.js"),
+            std::string::npos)
+      << r.err;
+  html = test::slurp(flat / "report.html");
+  EXPECT_NE(html.find("<p class=\"missing\">The 3D view is unavailable: three.js not found"),
+            std::string::npos);
+  EXPECT_NE(html.find("<li>the 3D replay is unavailable: three.js not found"), std::string::npos);
+  EXPECT_NE(html.find("id=\"replay-cards\""), std::string::npos);
+  EXPECT_EQ(html.find("<script id=\"three-js\">"), std::string::npos);
+  EXPECT_EQ(count(html, "</html>"), 1);
+
   // No run.json: bad input, one line, exit 2, no page.
   const fs::path none = tmp_->path() / "none";
   fs::create_directories(none);
