@@ -235,6 +235,21 @@ TEST(StrideSimHtml, WritesTheReplayOfOneEpisode) {
   EXPECT_NE(flat_html.find("The 3D view is unavailable: three.js not found"), std::string::npos);
   EXPECT_NE(flat_html.find("id=\"replay-cards\""), std::string::npos);
   EXPECT_EQ(count(flat_html, "</html>"), 1);
+  // A URDF the page cannot draw (no collision geometry): the page says so, one warning line.
+  std::string urdf = test::slurp(fs::path(STRIDE_SOURCE_DIR) / "sim_hal/models/igus_op.urdf");
+  urdf = std::regex_replace(urdf, std::regex(R"(<collision[^]*?</collision>)"), "");
+  std::ofstream(tmp.path() / "bare.urdf") << urdf;
+  const fs::path bare = tmp.path() / "bare.html";
+  r = stride({"sim", "stand", "--duration", "0.2", "--urdf", (tmp.path() / "bare.urdf").string(),
+              "--html", bare.string()},
+             tmp.path());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(count(r.err, "\n"), 1) << r.err;
+  EXPECT_NE(r.err.find("has no box or sphere collision geometry to draw"), std::string::npos)
+      << r.err;
+  EXPECT_NE(test::slurp(bare).find("The 3D view is unavailable: the robot model (igus_op) has no "
+                                   "box or sphere collision geometry to draw."),
+            std::string::npos);
   r = stride({"sim", "stand", "--duration", "0.2", "--html", "/nonexistent/dir/x.html"},
              tmp.path());
   EXPECT_EQ(r.code, 1);
