@@ -206,7 +206,7 @@
     const tag = label(run.ind.name, run.ind.colour);
     lane.add(tag);
     Object.assign(run, {lane: lane, robot: robot, links: links, joints: joints, ball: ball, arrows: arrows, tag: tag,
-                        torso: new THREE.Vector3(), forces: [0, 0]});
+                        torso: new THREE.Vector3(), forces: [0, 0], tagLift: 0});
   }
 
   // Pose at time t (linear between frames, the last frame after the end; as replay.js).
@@ -234,7 +234,7 @@
       run.joints[k].group.quaternion.setFromAxisAngle(run.joints[k].axis, value(run, fr, 7 + k) / 1e4);
     const b = 7 + J + 6;
     if (run.ball) run.ball.position.set(value(run, fr, b) / 1000, value(run, fr, b + 1) / 1000, value(run, fr, b + 2) / 1000);
-    run.tag.position.set(run.torso.x, run.torso.y, run.torso.z + 0.42);
+    run.tag.position.set(run.torso.x, run.torso.y, run.torso.z + 0.42 + run.tagLift);
     run.robot.updateMatrixWorld(true);
     run.arrows.forEach(function (arrow, side) {
       if (!arrow) return;
@@ -279,6 +279,7 @@
     for (const run of runs) run.lane.visible = list.indexOf(run) >= 0;
     list.forEach(function (run, k) {
       run.lane.position.set(0, ghost ? 0 : -0.65 * k, 0);
+      run.tagLift = ghost ? 0.1 * k : 0;  // ghosted: the labels stacked, not on top of each other
       const translucent = ghost && list.length > 1 && run === first;  // Ind_O is the ghost
       for (const m of run.materials) {
         m.transparent = translucent;
