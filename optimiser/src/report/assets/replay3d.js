@@ -116,8 +116,8 @@
   const gridX1 = Math.ceil(fieldLength - 1);
   for (let x = -2; x <= gridX1; x += 0.5) strip(x - 0.004, x + 0.004, -3.5, 3.5, 0x6fae5c, 0);
   for (let y = -3.5; y <= 3.5; y += 0.5) strip(-2, gridX1, y - 0.004, y + 0.004, 0x6fae5c, 0);
-  strip(-0.01, 0.01, -3.5, 1.5, 0xffffff, 0.002);
-  if (goal) strip(goal - 0.02, goal + 0.02, -3.5, 1.5, 0xd0021b, 0.002);
+  strip(-0.01, 0.01, -3.5, 3.5, 0xffffff, 0.002);
+  if (goal) strip(goal - 0.02, goal + 0.02, -3.5, 3.5, 0xd0021b, 0.002);
 
   function label(text, colour) {
     const c = document.createElement('canvas');
@@ -278,7 +278,7 @@
     const list = shown(), ghost = layout.value === 'ghost';
     for (const run of runs) run.lane.visible = list.indexOf(run) >= 0;
     list.forEach(function (run, k) {
-      run.lane.position.set(0, ghost ? 0 : -0.65 * k, 0);
+      run.lane.position.set(0, ghost ? 0 : 0.65 * k, 0);  // the picks on the left: seen beside, not behind
       run.tagLift = ghost ? 0.1 * k : 0;  // ghosted: the labels stacked, not on top of each other
       const translucent = ghost && list.length > 1 && run === first;  // Ind_O is the ghost
       for (const m of run.materials) {
@@ -292,7 +292,7 @@
 
   // The camera: orbit around a target that follows the shown robots.
   const camera = new THREE.PerspectiveCamera(40, 2, 0.05, 100);
-  const home = {azimuth: -Math.PI * 0.32, elevation: 0.3, distance: 2.6};
+  const home = {azimuth: -Math.PI * 0.3, elevation: 0.35, distance: 3.0};  // front right
   const orbit = Object.assign({target: new THREE.Vector3(0, 0, 0.35)}, home);
   function followTarget() {
     if (!followBox.checked) return;
