@@ -88,10 +88,17 @@
   // Renderer, scene, lights, field.
   THREE.Object3D.DefaultUp.set(0, 0, 1);
   const HEIGHT = 440;
-  const renderer = new THREE.WebGLRenderer({antialias: true, preserveDrawingBuffer: true});
+  let renderer;
+  try {
+    renderer = new THREE.WebGLRenderer({antialias: true, preserveDrawingBuffer: true});
+  } catch (e) {
+    return fail('WebGL could not be started (' + (e && e.message ? e.message : e) + ').');
+  }
   renderer.setPixelRatio(window.devicePixelRatio || 1);
   const canvas = renderer.domElement;
   canvas.id = 'replay3d-canvas';
+  canvas.setAttribute('role', 'img');
+  canvas.setAttribute('aria-label', '3D replay of ' + runs.map(function (r) { return r.ind.name; }).join(', '));
   view.appendChild(canvas);
   const scene = new THREE.Scene();
   scene.background = new THREE.Color(0xe8f1f8);
