@@ -20,6 +20,7 @@ packages=(
   clang libclang-rt-14-dev clang-format
   python3 curl xz-utils
   chromium
+  libjs-three   # three.js r111, inlined into the report pages' 3D replay at report time
 )
 # node and npm drive Chromium in the browser test (tests/browser/). Debian's nodejs and npm
 # packages are installed unless a node with npm is already there: NodeSource's nodejs bundles

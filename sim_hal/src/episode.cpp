@@ -53,7 +53,11 @@ EpisodeResult run_episode(SimRobot& robot, const StepFunction& controller,
     if (options.recorder) options.recorder->record(tick - first_tick, world, sensors, commands);
     if (options.on_tick) options.on_tick(tick - first_tick, world, sensors);
     while (next_snapshot < snapshot_times.size() && snapshot_times[next_snapshot] <= t + 1e-9) {
-      result.snapshots.push_back({t, world.link_poses(), world.ground_truth().ball_position});
+      PoseSnapshot snapshot;
+      snapshot.time_s = t;
+      snapshot.links = world.link_poses();
+      snapshot.ball = world.ground_truth().ball_position;
+      result.snapshots.push_back(std::move(snapshot));
       ++next_snapshot;
     }
     if (world.status() != WorldStatus::kRunning) break;

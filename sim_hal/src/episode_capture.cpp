@@ -21,7 +21,13 @@ void EpisodeCapturer::observe(hal::Tick tick, const SimWorld& world,
   const double t = static_cast<double>(tick) * capture_.period_s;
   const auto& a = sensors.cm730.accel_mps2;
   capture_.accel.push_back({t, Eigen::Vector3d(a[0], a[1], a[2])});
-  last_ = {t, world.link_poses(), world.ground_truth().ball_position};
+  const GroundTruth truth = world.ground_truth();
+  last_ = {t,
+           world.link_poses(),
+           truth.ball_position,
+           world.joint_angles(),
+           truth.left_contact.force,
+           truth.right_contact.force};
   have_last_ = true;
   if (tick % every_ == 0) capture_.frames.push_back(last_);
 }

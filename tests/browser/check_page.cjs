@@ -8,10 +8,20 @@
 //     been drawn on, and the replay's time
 //     advances after Play is clicked (the clock's data-time and the slider both move), and
 //     the slider moves the clock;
+//   - with --replay3d: the 3D view (replay3d.js, three.js on SwiftShader's WebGL) is drawn and
+//     its pixels show the robot (a render with the robots hidden differs in at least 1500
+//     pixels), the slider moves the robot (the links' world positions and the pixels change
+//     between the start and 60 % of the replay), its time and the accelerometer charts' cursors
+//     follow the clock; the wheel zooms, a drag orbits and "reset view" restores the picture;
+//   - with --replay3d-unavailable REGEX: the 3D view says it is unavailable (or leaves an
+//     individual out) in words matching REGEX, without a console error;
 //   - screenshots of the whole page, of each section and of the replay after playing go to
-//     OUT_DIR/NAME-full.png, NAME-SECTION.png.
+//     OUT_DIR/NAME-full.png, NAME-SECTION.png; the 3D view to NAME-3d-start.png and
+//     NAME-3d-middle.png (and NAME-3d-hidden.png: the same scene without the robots;
+//     NAME-3d-orbited.png: zoomed in and turned).
 // usage: node check_page.cjs --chromium PATH --modules DIR --out OUT_DIR
-//          { --name NAME --page FILE --sections a,b,c [--replay N] [--expect-warnings] } ...
+//          { --name NAME --page FILE --sections a,b,c [--replay N] [--expect-warnings]
+//            [--replay3d | --replay3d-unavailable REGEX] } ...
 // (one browser for all pages; exit status 1 if any page fails a check)
 'use strict';
 const path = require('path');
@@ -25,6 +35,8 @@ function parseArgs(argv) {
     if (a === '--name') out.pages.push(page = {name: argv[++i], replay: 0, expectWarnings: false});
     else if (a === '--expect-warnings') page.expectWarnings = true;
     else if (a === '--replay') page.replay = parseInt(argv[++i], 10);
+    else if (a === '--replay3d') page.replay3d = true;
+    else if (a === '--replay3d-unavailable') page.unavailable3d = new RegExp(argv[++i]);
     else if (['--page', '--sections'].includes(a)) page[a.slice(2)] = argv[++i];
     else out[a.replace(/^--/, '')] = argv[++i];
   }
@@ -42,8 +54,10 @@ async function main() {
   const browser = await puppeteer.launch({
     executablePath: opts.chromium,
     headless: true,
+    // WebGL without a GPU: SwiftShader, which Chromium only uses when asked to.
     args: ['--no-sandbox', '--disable-gpu', '--disable-dev-shm-usage', '--no-first-run',
-           '--allow-file-access-from-files'],
+           '--allow-file-access-from-files', '--use-angle=swiftshader',
+           '--enable-unsafe-swiftshader'],
   });
   let failed = 0;
   try {
@@ -85,7 +99,7 @@ async function checkPage(browser, args) {
     for (const s of sections) {
       if (!s.present) { failures.push('section ' + s.id + ' is absent'); continue; }
       if (s.text === 0 && s.graphics === 0) failures.push('section ' + s.id + ' is empty');
-      if (!args.expectWarnings && s.missing.length > 0)
+      if (!args.expectWarnings && !(args.unavailable3d && s.id === 'replay') && s.missing.length > 0)
         failures.push('section ' + s.id + ' says: ' + s.missing.join(' / '));
     }
     // The validation section (stride validate's validation.json): a row per individual and
@@ -173,15 +187,148 @@ async function checkPage(browser, args) {
       const el = await page.$('section#replay');
       await el.screenshot({path: path.join(args.out, args.name + '-replay.png')});
     }
+    let replay3d = null;
+    if (args.replay3d) replay3d = await check3d(page, args, failures);
+    if (args.unavailable3d) {
+      await page.waitForFunction(() => document.querySelector('#replay3d .missing'),
+                                 {timeout: 10000}).catch(() => {});
+      const said = await page.evaluate(() => Array.from(
+          document.querySelectorAll('#replay3d .missing')).map((m) => m.textContent).join(' / '));
+      if (!args.unavailable3d.test(said))
+        failures.push('3D view: expected a note matching ' + args.unavailable3d + ', found "' + said + '"');
+      replay3d = {said};
+      const el = await page.$('#replay3d');
+      if (el) await el.screenshot({path: path.join(args.out, args.name + '-3d.png')});
+    }
     await page.screenshot({path: path.join(args.out, args.name + '-full.png'), fullPage: true});
     for (const s of sections) {
       const el = s.present && s.id !== 'replay' ? await page.$('section#' + s.id) : null;
       if (el) await el.screenshot({path: path.join(args.out, args.name + '-' + s.id + '.png')});
     }
-    console.log(JSON.stringify({page: args.page, sections, front, warnings, replay, failures}));
+    console.log(JSON.stringify({page: args.page, sections, front, warnings, replay, replay3d, failures}));
     await page.close();
   }
   return failures;
+}
+
+// The 3D view: drawn, the robot in its pixels, moved by the slider, in step with the clock and
+// the accelerometer cursors.
+async function check3d(page, args, failures) {
+  await page.waitForFunction(() => window.strideReplay3d && window.strideReplay3d.state !== 'loading',
+                             {timeout: 15000}).catch(() => {});
+  const state = await page.evaluate(() => window.strideReplay3d
+      ? {state: window.strideReplay3d.state, reason: window.strideReplay3d.reason} : null);
+  if (!state || state.state !== 'ok') {
+    failures.push('3D view not drawn: ' + JSON.stringify(state));
+    return state;
+  }
+  // Move the shared slider to time t (as a person would) and measure the 3D view.
+  const at = (fraction) => page.evaluate((fraction) => {
+    const s = document.getElementById('replay-time');
+    s.value = (parseFloat(s.max) * fraction).toFixed(2);
+    s.dispatchEvent(new Event('input'));
+    const api = window.strideReplay3d;
+    const clock = parseFloat(document.getElementById('replay-clock').dataset.time);
+    const cursors = Array.from(document.querySelectorAll('#accelerometer line.replay-cursor'))
+        .map((l) => ({time: parseFloat(l.dataset.time), x: parseFloat(l.getAttribute('x1')),
+                      visible: l.getAttribute('visibility') !== 'hidden'}));
+    return {clock, time: api.time, links: api.linkPositions(), cursors, shown: api.shown()};
+  }, fraction);
+  // Pixels of the 3D canvas, kept in the page; the number of pixels that differ between two.
+  const grab = (key) => page.evaluate((key) => {
+    const api = window.strideReplay3d;
+    api.render();
+    const c = document.createElement('canvas');
+    c.width = api.canvas.width;
+    c.height = api.canvas.height;
+    const g = c.getContext('2d');
+    g.drawImage(api.canvas, 0, 0);
+    (window.__grabs = window.__grabs || {})[key] = g.getImageData(0, 0, c.width, c.height).data;
+    return c.width * c.height;
+  }, key);
+  const differing = (a, b) => page.evaluate((a, b) => {
+    const p = window.__grabs[a], q = window.__grabs[b];
+    let n = 0;
+    for (let i = 0; i < p.length; i += 4)
+      if (Math.abs(p[i] - q[i]) + Math.abs(p[i + 1] - q[i + 1]) + Math.abs(p[i + 2] - q[i + 2]) > 40) ++n;
+    return n;
+  }, a, b);
+  const shot = async (name) => {
+    const el = await page.$('#replay3d');
+    await el.screenshot({path: path.join(args.out, args.name + '-3d-' + name + '.png')});
+  };
+
+  const start = await at(0);
+  const total = await grab('start');
+  await shot('start');
+  await page.evaluate(() => window.strideReplay3d.setRobotsVisible(false));
+  await grab('hidden');
+  await shot('hidden');
+  await page.evaluate(() => window.strideReplay3d.setRobotsVisible(true));
+  const robotPixels = await differing('start', 'hidden');
+  if (robotPixels < 1500) failures.push('3D view: only ' + robotPixels + ' pixels show the robot');
+  if (robotPixels > 0.6 * total) failures.push('3D view: ' + robotPixels + ' of ' + total + ' pixels changed without the robot');
+  const middle = await at(0.6);
+  await grab('middle');
+  await shot('middle');
+  const moved = await differing('start', 'middle');
+  let travel = 0;
+  middle.links.forEach((p, i) => {
+    const q = start.links[i];
+    if (q) travel = Math.max(travel, Math.hypot(p[0] - q[0], p[1] - q[1], p[2] - q[2]));
+  });
+  if (!(travel > 0.02)) failures.push('3D view: the slider did not move the robot (links moved ' + travel + ' m)');
+  if (moved < 200) failures.push('3D view: the slider changed only ' + moved + ' pixels');
+  for (const m of [start, middle]) {
+    if (Math.abs(m.time - m.clock) > 1e-3) failures.push('3D view at ' + m.time + ' s, clock at ' + m.clock + ' s');
+    if (m.cursors.length < 4) failures.push('accelerometer: ' + m.cursors.length + ' time cursors');
+    for (const c of m.cursors)
+      if (Math.abs(c.time - m.clock) > 1e-3) failures.push('accelerometer cursor at ' + c.time + ' s, clock at ' + m.clock + ' s');
+  }
+  const startX = start.cursors.filter((c) => c.visible).map((c) => c.x);
+  const middleX = middle.cursors.filter((c) => c.visible).map((c) => c.x);
+  if (middleX.length === 0 || !(Math.max(...middleX) > Math.max(...startX, 0)))
+    failures.push('accelerometer cursors did not move right with the slider');
+  // The camera: the wheel zooms, a drag orbits (the picture changes each time), reset restores.
+  const box = await (await page.$('#replay3d-canvas')).boundingBox();
+  await page.mouse.move(box.x + box.width / 2, box.y + box.height / 2);
+  await page.mouse.wheel({deltaY: -400});
+  await grab('zoomed');
+  const zoomed = await differing('middle', 'zoomed');
+  await page.mouse.down();
+  await page.mouse.move(box.x + box.width / 2 + 120, box.y + box.height / 2 + 30, {steps: 4});
+  await page.mouse.up();
+  await grab('orbited');
+  await shot('orbited');
+  const orbited = await differing('zoomed', 'orbited');
+  await page.click('#replay3d-reset');
+  await grab('reset');
+  const reset = await differing('middle', 'reset');
+  if (zoomed < 2000) failures.push('3D view: the wheel changed only ' + zoomed + ' pixels');
+  if (orbited < 2000) failures.push('3D view: dragging changed only ' + orbited + ' pixels');
+  if (reset > 200) failures.push('3D view: reset view left ' + reset + ' pixels changed');
+  // The layouts: ghosted puts the individuals over each other, side by side apart.
+  const lanes = await page.evaluate(() => {
+    const layout = document.getElementById('replay3d-layout');
+    const spread = () => {
+      const ys = window.strideReplay3d.linkPositions().map((p) => p[1]);
+      return Math.max(...ys) - Math.min(...ys);
+    };
+    const side = spread();
+    layout.value = 'ghost';
+    layout.dispatchEvent(new Event('change'));
+    window.strideReplay3d.render();
+    const ghost = spread();
+    layout.value = 'side';
+    layout.dispatchEvent(new Event('change'));
+    window.strideReplay3d.render();
+    return {side, ghost, shown: window.strideReplay3d.shown().length};
+  });
+  if (lanes.shown > 1 && !(lanes.side > lanes.ghost + 0.3))
+    failures.push('3D view: side by side is not wider than ghosted ' + JSON.stringify(lanes));
+  return {state: state.state, robotPixels, total, moved, travel, zoomed, orbited, reset,
+          shown: middle.shown, lanes,
+          cursors: middle.cursors.length};
 }
 
 main().catch((e) => { console.error(e.stack || String(e)); process.exit(1); });

@@ -4,7 +4,9 @@
 # run directory with nothing evaluated yet, and a
 # `stride sim kick --html` page, then loads every page in headless Chromium (check_page.cjs:
 # no console error, no network, every section present and not empty, the replay drawn and its
-# time advancing after Play) and writes screenshots to OUT_DIR.
+# time advancing after Play, the 3D view showing the robot and moved by the slider) and writes
+# screenshots to OUT_DIR. The 3D view's bad inputs: a page made without three.js, and copies of
+# the sim-kick page with its trajectory cut short or emptied, each saying so.
 #
 # usage: run_browser_tests.sh STRIDE_BINARY OUT_DIR SOURCE_DIR
 # Chromium: $STRIDE_CHROMIUM or chromium on the PATH; puppeteer-core:
@@ -60,17 +62,39 @@ echo "== stride report / stride sim --html"
 "$stride" report "$runs/kick"
 "$stride" report "$runs/empty" 2>&1
 "$stride" sim kick --duration 6 --html "$runs/sim-kick.html"
+# The 3D view's bad inputs: no three.js at report time (one warning line, the page says so),
+# and pages whose trajectory data is broken (cut short) or missing (emptied).
+STRIDE_THREE_JS=/nonexistent/three.min.js "$stride" sim stand --duration 1 \
+  --html "$runs/sim-no-three.html" 2>"$runs/sim-no-three.err"
+test "$(wc -l <"$runs/sim-no-three.err")" -eq 1
+grep -q 'warning: the 3D replay is unavailable: three.js not found' "$runs/sim-no-three.err"
+node -e '
+const fs = require("fs");
+const [page, broken, missing] = process.argv.slice(1);
+const html = fs.readFileSync(page, "utf8");
+const motion = /"motion":"([A-Za-z0-9+\/=]+)"/;
+if (!motion.test(html)) throw new Error(page + ": no 3D motion data");
+fs.writeFileSync(broken, html.replace(motion, (m, d) => "\"motion\":\"" + d.slice(0, d.length / 2 - (d.length / 2) % 4) + "\""));
+fs.writeFileSync(missing, html.replace(motion, "\"motion\":\"\""));
+' "$runs/sim-kick.html" "$runs/sim-kick-broken.html" "$runs/sim-kick-missing.html"
 
 echo "== pages in $chromium"
 report_sections=settings,picks,pareto,hypervolume,accelerometer,poses,replay,parameters
 status=0
 node "$here/check_page.cjs" --chromium "$chromium" --modules "$modules" --out "$out" \
   --name walk --page "$runs/walk/report.html" --sections "$report_sections,validation" \
-  --replay 2 \
+  --replay 2 --replay3d \
   --name kick --page "$runs/kick/report.html" --sections "$report_sections" --replay 2 \
+  --replay3d \
   --name empty --page "$runs/empty/report.html" --sections "$report_sections" --replay 1 \
   --expect-warnings \
   --name sim-kick --page "$runs/sim-kick.html" --sections episode,accelerometer,poses,replay \
-  --replay 1 || status=1
+  --replay 1 --replay3d \
+  --name sim-no-three --page "$runs/sim-no-three.html" --sections episode,replay --replay 1 \
+  --expect-warnings --replay3d-unavailable 'unavailable: three\.js not found' \
+  --name sim-kick-broken --page "$runs/sim-kick-broken.html" --sections episode,replay \
+  --replay 1 --replay3d-unavailable 'unavailable: .*trajectory is broken' \
+  --name sim-kick-missing --page "$runs/sim-kick-missing.html" --sections episode,replay \
+  --replay 1 --replay3d-unavailable 'unavailable: .*no trajectory was recorded' || status=1
 ls "$out"/*.png
 exit $status

@@ -71,6 +71,7 @@ Status write_html(const stride::fw::CliArgs& args, const std::string& motion,
   report::ReplayScene scene;
   scene.grass_m = world.contact.grass_thickness_m;
   scene.ball_radius_m = world.ball.present ? world.ball.radius_m : 0.0;
+  if (motion == "walk") scene.goal_m = sim::EpisodeOptions{}.goal_distance_m;  // time_to_goal_s
   const std::vector<double> times =
       motion == "kick"
           ? report::strip_times(std::max(1.0, report::first_ball_motion_s({episode}, 2.0) - 1.5),
@@ -91,8 +92,13 @@ Status write_html(const stride::fw::CliArgs& args, const std::string& motion,
       {"max field-plane sway", fixed(result.max_fps, "m/s^2")},
       {"ball moved", fixed(result.ball_distance_m, "m")},
       {"state hash", sim::hash_hex(result.state_hash)}};
-  return report::write_episode_html(args.get("html"), "Stride sim " + motion, facts,
-                                    robot.world().model(), episode, scene, times);
+  std::vector<std::string> warnings;
+  Status written =
+      report::write_episode_html(args.get("html"), "Stride sim " + motion, facts,
+                                 robot.world().model(), episode, scene, times, &warnings);
+  for (const std::string& w : warnings)
+    std::fprintf(stderr, "stride sim: warning: %s (see %s)\n", w.c_str(), args.get("html").c_str());
+  return written;
 }
 
 }  // namespace

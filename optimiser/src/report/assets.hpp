@@ -6,5 +6,6 @@ namespace stride::opt::report::assets {
 
 extern const char kReportCss[];
 extern const char kReplayJs[];
+extern const char kReplay3dJs[];
 
 }  // namespace stride::opt::report::assets

@@ -58,6 +58,20 @@ void HtmlPage::set_replay_data(const nlohmann::json& data) {
   }
 }
 
+void HtmlPage::add_script(const std::string& id, const std::string& code) {
+  std::string safe;
+  safe.reserve(code.size());
+  for (std::size_t i = 0; i < code.size(); ++i) {
+    if (code.compare(i, 8, "</script") == 0) {
+      safe += "<\\/script";
+      i += 7;
+    } else {
+      safe += code[i];
+    }
+  }
+  scripts_ += "<script id=\"" + html_escape(id) + "\">\n" + safe + "\n</script>\n";
+}
+
 std::string HtmlPage::str() const {
   std::string out =
       "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
@@ -78,7 +92,7 @@ std::string HtmlPage::str() const {
   out += "</div>\n" + sections_ + "</main>\n";
   if (!replay_json_.empty()) {
     out += "<script type=\"application/json\" id=\"replay-data\">" + replay_json_ +
-           "</script>\n<script>\n" + assets::kReplayJs + "</script>\n";
+           "</script>\n<script>\n" + assets::kReplayJs + "</script>\n" + scripts_;
   }
   out += "</body>\n</html>\n";
   return out;

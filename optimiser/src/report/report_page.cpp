@@ -6,6 +6,7 @@
 
 #include "stride/firmware/atomic_file.hpp"
 #include "stride/optimiser/report/html_page.hpp"
+#include "stride/optimiser/report/html_replay3d.hpp"
 #include "stride/optimiser/report/html_tables.hpp"
 #include "stride/optimiser/report/run_plots.hpp"
 
@@ -134,10 +135,16 @@ Status write_report_html(const fs::path& dir, const RobotTask& task, ReportOutco
                                              : pose_strips_html(model, replays, times, scene, true);
   page.add_section("poses", "Poses at regular times", strips);
   if (!replays.empty() && !model.links().empty()) {
-    page.add_section("replay", "Replay", note + replay_section_html());
-    page.set_replay_data(replay_data(model, replays, scene));
+    std::vector<std::string> replay_warnings;
+    add_replay_section(page, note, model, replays, scene, replay_warnings);
+    out.warnings.insert(out.warnings.end(), replay_warnings.begin(), replay_warnings.end());
+    page.add_warnings(replay_warnings);
   } else {
-    page.add_section("replay", "Replay", missing_note("No episode could be re-run."));
+    page.add_section("replay", "Replay",
+                     missing_note(replays.empty() ? "No episode could be re-run: no trajectory to "
+                                                    "replay (2D or 3D)."
+                                                  : "The robot model could not be loaded: "
+                                                    "nothing to replay."));
   }
   page.add_section("parameters", "Parameters that moved most (Table E)",
                    parameter_table_html(data, picks));
@@ -150,7 +157,8 @@ Status write_report_html(const fs::path& dir, const RobotTask& task, ReportOutco
 Status write_episode_html(const fs::path& file, const std::string& title,
                           const std::vector<std::pair<std::string, std::string>>& facts,
                           const sim::RobotModel& model, const ReplayIndividual& episode,
-                          const ReplayScene& scene, const std::vector<double>& strip_times_s) {
+                          const ReplayScene& scene, const std::vector<double>& strip_times_s,
+                          std::vector<std::string>* warnings) {
   HtmlPage page(title, episode.note);
   std::string table = "<table id=\"episode-table\">";
   for (const auto& [k, v] : facts)
@@ -165,8 +173,11 @@ Status write_episode_html(const fs::path& file, const std::string& title,
                          : std::optional(std::pair(strip_times_s.front(), strip_times_s.back()))));
   page.add_section("poses", "Poses at regular times",
                    pose_strips_html(model, {episode}, strip_times_s, scene, false));
-  page.add_section("replay", "Replay", replay_section_html());
-  page.set_replay_data(replay_data(model, {episode}, scene));
+  std::vector<std::string> replay_warnings;
+  add_replay_section(page, "", model, {episode}, scene, replay_warnings);
+  page.add_warnings(replay_warnings);
+  if (warnings != nullptr)
+    warnings->insert(warnings->end(), replay_warnings.begin(), replay_warnings.end());
   return fw::write_file_atomically(file, page.str());
 }
 

@@ -121,6 +121,9 @@ std::string render_chart(const ChartSpec& spec) {
   std::ostringstream svg;
   svg << "<svg xmlns=\"http://www.w3.org/2000/svg\"";
   if (!spec.id.empty()) svg << " id=\"" << xml_escape(spec.id) << "\"";
+  // The plot area and its x range, for the page's scripts (the replay's time cursor).
+  svg << " data-plot=\"" << kLeft << ' ' << kTop << ' ' << num(right) << ' ' << num(bottom) << ' '
+      << num(x0) << ' ' << num(x1) << '"';
   svg << " viewBox=\"0 0 " << W << ' ' << H << "\" width=\"" << W << "\" height=\"" << H
       << "\" font-family=\"sans-serif\" font-size=\"12\">\n"
       << "<rect width=\"" << W << "\" height=\"" << H << "\" fill=\"white\"/>\n"

@@ -1,7 +1,8 @@
 // report.html end to end: a short walk run, `stride report` re-running Ind_O and the picks (the
 // re-run scores exactly what the run logged), every section on the page, no network resource;
 // run directories with pieces missing give a page and one warning line, never a failure;
-// `stride sim --html` writes the one-episode page. (The page in a real browser:
+// `stride sim --html` writes the one-episode page, with the 3D replay when three.js is there and
+// a note and one warning line when it is not. (The page in a real browser:
 // tests/browser/.)
 #include <gtest/gtest.h>
 
@@ -26,8 +27,13 @@ struct Result {
   std::string out, err;
 };
 
-Result stride(const std::vector<std::string>& args, const fs::path& dir) {
-  std::vector<std::string> argv = {kStride};
+// `env` sets extra environment variables ("NAME=value") for the child.
+Result stride(const std::vector<std::string>& args, const fs::path& dir,
+              const std::vector<std::string>& env = {}) {
+  std::vector<std::string> argv;
+  if (!env.empty()) argv.push_back("/usr/bin/env");
+  argv.insert(argv.end(), env.begin(), env.end());
+  argv.push_back(kStride);
   argv.insert(argv.end(), args.begin(), args.end());
   Result r;
   r.code = test::wait_exit(test::spawn(argv, dir / "out.txt", dir / "err.txt"));
@@ -82,9 +88,17 @@ TEST_F(ReportHtml, EverySectionAndTheReRunScoresWhatTheRunLogged) {
   const auto summary = nlohmann::json::parse(r.out);
   EXPECT_EQ(summary["report"], (dir / "report.html").string());
   EXPECT_TRUE(summary["warnings"].empty());
-  const std::string html = test::slurp(dir / "report.html");
-  EXPECT_EQ(html.size(), summary["report_bytes"].get<std::size_t>());
-  EXPECT_LT(html.size(), 5u << 20);
+  const std::string page = test::slurp(dir / "report.html");
+  EXPECT_EQ(page.size(), summary["report_bytes"].get<std::size_t>());
+  EXPECT_LT(page.size(), 5u << 20);
+  // three.js (Debian's libjs-three) inlined once for the 3D replay; the checks below look at
+  // the rest of the page (three.js itself names the XHTML namespace).
+  const std::size_t three = page.find("<script id=\"three-js\">");
+  ASSERT_NE(three, std::string::npos) << "three.js not inlined (libjs-three installed?)";
+  EXPECT_NE(page.find("REVISION", three), std::string::npos);
+  const std::size_t three_end = page.find("</script>", three);
+  const std::string html = page.substr(0, three) + page.substr(three_end);
+  EXPECT_EQ(count(html, "<script id=\"replay3d-js\">"), 1);
   for (const char* id : {"settings", "picks", "pareto", "hypervolume", "accelerometer", "poses",
                          "replay", "parameters"})
     EXPECT_EQ(count(html, std::string("data-section=\"") + id + "\""), 1) << id;
@@ -108,13 +122,20 @@ TEST_F(ReportHtml, EverySectionAndTheReRunScoresWhatTheRunLogged) {
   const auto replay =
       nlohmann::json::parse(html.substr(start, html.find("</script>", start) - start));
   EXPECT_EQ(replay["individuals"].size(), static_cast<std::size_t>(rows));
-  for (const auto& ind : replay["individuals"]) EXPECT_GT(ind["frames"].get<int>(), 5);
+  for (const auto& ind : replay["individuals"]) {
+    EXPECT_GT(ind["frames"].get<int>(), 5);
+    // The 3D motion: 25 frames per second, 36 int16 per frame (96 base64 digits).
+    EXPECT_EQ(ind["motion_frames"], ind["frames"]);
+    EXPECT_EQ(ind["motion"].get<std::string>().size(), ind["frames"].get<std::size_t>() * 96);
+  }
+  EXPECT_NEAR(replay["frame_dt"].get<double>(), 0.04, 1e-12);
+  EXPECT_EQ(replay["robot3d"]["links"].size(), 21u);
   const std::string svg = test::slurp(dir / "pareto_by_generation.svg");
   EXPECT_NE(svg.find(">Ind_O<"), std::string::npos);
   EXPECT_NE(svg.find("front/000.json"), std::string::npos);  // tooltips name the front files
   // The same run reported twice gives the same page (deterministic re-runs).
   ASSERT_EQ(stride({"report", dir.string()}, tmp_->path()).code, 0);
-  EXPECT_EQ(test::slurp(dir / "report.html"), html);
+  EXPECT_EQ(test::slurp(dir / "report.html"), page);
 }
 
 TEST_F(ReportHtml, MissingPiecesGiveAPageAndOneWarningLine) {
@@ -163,6 +184,23 @@ TEST_F(ReportHtml, MissingPiecesGiveAPageAndOneWarningLine) {
   EXPECT_NE(test::slurp(torn / "report.html").find("validation.json exists but cannot be parsed"),
             std::string::npos);
 
+  // three.js missing when the report is written: the page says the 3D view is unavailable (the
+  // 2D replay stays), one warning line.
+  const fs::path flat = copy_run("no_three");
+  r = stride({"report", flat.string()}, tmp_->path(), {"STRIDE_THREE_JS=/nonexistent/three.js"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(count(r.err, "\n"), 1) << r.err;
+  EXPECT_NE(r.err.find("the 3D replay is unavailable: three.js not found at /nonexistent/three.js"),
+            std::string::npos)
+      << r.err;
+  html = test::slurp(flat / "report.html");
+  EXPECT_NE(html.find("<p class=\"missing\">The 3D view is unavailable: three.js not found"),
+            std::string::npos);
+  EXPECT_NE(html.find("<li>the 3D replay is unavailable: three.js not found"), std::string::npos);
+  EXPECT_NE(html.find("id=\"replay-cards\""), std::string::npos);
+  EXPECT_EQ(html.find("<script id=\"three-js\">"), std::string::npos);
+  EXPECT_EQ(count(html, "</html>"), 1);
+
   // No run.json: bad input, one line, exit 2, no page.
   const fs::path none = tmp_->path() / "none";
   fs::create_directories(none);
@@ -181,6 +219,37 @@ TEST(StrideSimHtml, WritesTheReplayOfOneEpisode) {
   for (const char* id : {"episode", "accelerometer", "poses", "replay"})
     EXPECT_EQ(count(html, std::string("data-section=\"") + id + "\""), 1) << id;
   EXPECT_NE(html.find("id=\"replay-data\""), std::string::npos);
+  EXPECT_NE(html.find("<script id=\"replay3d-js\">"), std::string::npos);
+  EXPECT_EQ(r.err, "");
+  // Without three.js: the page says the 3D view is unavailable, one warning line, exit 0.
+  const fs::path flat = tmp.path() / "flat.html";
+  r = stride({"sim", "stand", "--duration", "0.5", "--html", flat.string()}, tmp.path(),
+             {"STRIDE_THREE_JS=/nonexistent/three.min.js"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(count(r.err, "\n"), 1) << r.err;
+  EXPECT_NE(r.err.find("stride sim: warning: the 3D replay is unavailable: three.js not found at "
+                       "/nonexistent/three.min.js"),
+            std::string::npos)
+      << r.err;
+  const std::string flat_html = test::slurp(flat);
+  EXPECT_NE(flat_html.find("The 3D view is unavailable: three.js not found"), std::string::npos);
+  EXPECT_NE(flat_html.find("id=\"replay-cards\""), std::string::npos);
+  EXPECT_EQ(count(flat_html, "</html>"), 1);
+  // A URDF the page cannot draw (no collision geometry): the page says so, one warning line.
+  std::string urdf = test::slurp(fs::path(STRIDE_SOURCE_DIR) / "sim_hal/models/igus_op.urdf");
+  urdf = std::regex_replace(urdf, std::regex(R"(<collision[^]*?</collision>)"), "");
+  std::ofstream(tmp.path() / "bare.urdf") << urdf;
+  const fs::path bare = tmp.path() / "bare.html";
+  r = stride({"sim", "stand", "--duration", "0.2", "--urdf", (tmp.path() / "bare.urdf").string(),
+              "--html", bare.string()},
+             tmp.path());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(count(r.err, "\n"), 1) << r.err;
+  EXPECT_NE(r.err.find("has no box or sphere collision geometry to draw"), std::string::npos)
+      << r.err;
+  EXPECT_NE(test::slurp(bare).find("The 3D view is unavailable: the robot model (igus_op) has no "
+                                   "box or sphere collision geometry to draw."),
+            std::string::npos);
   r = stride({"sim", "stand", "--duration", "0.2", "--html", "/nonexistent/dir/x.html"},
              tmp.path());
   EXPECT_EQ(r.code, 1);

@@ -1,11 +1,15 @@
 // Report building blocks: 1-2-5 ticks, charts with the legend outside the plot and tooltips,
-// the tolerant run-directory and validation.json readers, base64 and the stick figure.
+// the tolerant run-directory and validation.json readers, base64 and the stick figure, the 3D
+// replay's robot description and motion data and what its section says when a piece is missing.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <string>
 
+#include "stride/optimiser/report/html_page.hpp"
 #include "stride/optimiser/report/html_replay.hpp"
+#include "stride/optimiser/report/html_replay3d.hpp"
 #include "stride/optimiser/report/html_tables.hpp"
 #include "stride/optimiser/report/run_data.hpp"
 #include "stride/optimiser/report/run_plots.hpp"
@@ -142,6 +146,141 @@ TEST(ReportReplay, Base64AndStickFigure) {
   const std::vector<Eigen::Isometry3d> poses(model.links().size(), Eigen::Isometry3d::Identity());
   EXPECT_EQ(sim::stick_points(model, poses).size(), static_cast<std::size_t>(f.point_count));
   EXPECT_TRUE(sim::stick_points(model, {}).empty());
+}
+
+// An igus capture of `frames` frames standing still at the origin.
+ReplayIndividual still_capture(const sim::RobotModel& model, int frames) {
+  ReplayIndividual ind;
+  ind.name = "Ind_O";
+  ind.colour = "#1f77b4";
+  ind.capture.period_s = 0.01;
+  ind.capture.frame_every_ticks = 4;
+  for (int f = 0; f < frames; ++f) {
+    sim::PoseSnapshot s;
+    s.time_s = 0.04 * f;
+    s.links.assign(model.links().size(), Eigen::Isometry3d::Identity());
+    s.links[0].translation() = Eigen::Vector3d(0.01 * f, 0, 0.5);
+    s.joint_angles.assign(model.joints().size(), 0.25);
+    s.left_foot_force = {0, 0, 30};
+    s.right_foot_force = {1, 0, 35};
+    ind.capture.frames.push_back(s);
+  }
+  return ind;
+}
+
+// Sets $STRIDE_THREE_JS for one scope.
+struct ThreeJsAt {
+  explicit ThreeJsAt(const std::string& path) { ::setenv("STRIDE_THREE_JS", path.c_str(), 1); }
+  ~ThreeJsAt() { ::unsetenv("STRIDE_THREE_JS"); }
+};
+
+TEST(ReportReplay3d, RobotFromTheCollisionGeometryAndCompactMotion) {
+  sim::RobotModel model;
+  ASSERT_TRUE(sim::RobotModel::load_file(sim::RobotModel::igus_path(), model));
+  std::string problem;
+  const nlohmann::json robot = robot3d_model(model, problem);
+  ASSERT_FALSE(robot.is_null()) << problem;
+  EXPECT_EQ(problem, "");
+  EXPECT_EQ(robot["links"].size(), model.links().size());
+  EXPECT_EQ(robot["joints"].size(), model.joints().size());
+  EXPECT_EQ(robot["feet"][0], model.link_index("left_foot_link"));
+  EXPECT_EQ(robot["feet"][1], model.link_index("right_foot_link"));
+  EXPECT_EQ(robot["values_per_frame"], 3 + 4 + 20 + 6 + 3);
+  // Each foot: its sole box and 4 studs; the head: a sphere; the trunk: a box.
+  const auto& foot = robot["links"][model.link_index("left_foot_link")];
+  EXPECT_EQ(foot["boxes"].size(), 1u);
+  EXPECT_EQ(foot["spheres"].size(), 4u);
+  for (const auto& stud : foot["spheres"]) EXPECT_EQ(stud[4], 1);
+  EXPECT_EQ(robot["links"][model.link_index("head_link")]["spheres"].size(), 1u);
+  EXPECT_EQ(robot["links"][0]["boxes"][0].size(), 10u);
+
+  // 72 bytes per frame (96 base64 digits).
+  const ReplayIndividual ind = still_capture(model, 25);
+  const std::string motion = robot3d_motion(model, ind, problem);
+  EXPECT_EQ(problem, "");
+  EXPECT_EQ(motion.size(), 25u * 96u);
+
+  // No frames, or joint angles of another robot: said, no data.
+  ReplayIndividual empty = ind;
+  empty.capture.frames.clear();
+  EXPECT_EQ(robot3d_motion(model, empty, problem), "");
+  EXPECT_NE(problem.find("Ind_O: no trajectory was recorded"), std::string::npos) << problem;
+  ReplayIndividual other = ind;
+  other.capture.frames[3].joint_angles.resize(12);
+  EXPECT_EQ(robot3d_motion(model, other, problem), "");
+  EXPECT_NE(problem.find("12 joint angles, the robot model 20"), std::string::npos) << problem;
+}
+
+TEST(ReportReplay3d, NothingToDrawIsSaidNotDrawn) {
+  // A URDF whose links have no box or sphere to draw.
+  sim::RobotModel bare;
+  ASSERT_TRUE(sim::RobotModel::load_string(
+      R"(<robot name="bare"><link name="a"><inertial><mass value="1"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial></link>
+<link name="b"><inertial><mass value="1"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial></link>
+<joint name="j" type="continuous"><parent link="a"/><child link="b"/><axis xyz="0 0 1"/></joint></robot>)",
+      "bare.urdf", bare));
+  std::string problem;
+  EXPECT_TRUE(robot3d_model(bare, problem).is_null());
+  EXPECT_NE(problem.find("(bare) has no box or sphere collision geometry"), std::string::npos)
+      << problem;
+  EXPECT_TRUE(robot3d_model(sim::RobotModel{}, problem).is_null());
+  EXPECT_NE(problem.find("could not be loaded"), std::string::npos) << problem;
+}
+
+TEST(ReportReplay3d, SectionSaysWhatIsMissingWithOneWarning) {
+  test::TempDir tmp;
+  sim::RobotModel model;
+  ASSERT_TRUE(sim::RobotModel::load_file(sim::RobotModel::igus_path(), model));
+  const ReplayIndividual ind = still_capture(model, 10);
+  ReplayIndividual empty = ind;
+  empty.name = "knee";
+  empty.capture.frames.clear();
+  auto page_of = [&](const std::vector<ReplayIndividual>& inds,
+                     std::vector<std::string>& warnings) {
+    HtmlPage page("t", "s");
+    add_replay_section(page, "", model, inds, ReplayScene{}, warnings);
+    return page.str();
+  };
+  {
+    // three.js missing: the 3D view says so; the 2D replay stays.
+    ThreeJsAt three((tmp.path() / "absent.js").string());
+    std::vector<std::string> warnings;
+    const std::string html = page_of({ind}, warnings);
+    ASSERT_EQ(warnings.size(), 1u);
+    EXPECT_NE(warnings[0].find("three.js not found at " + (tmp.path() / "absent.js").string()),
+              std::string::npos);
+    EXPECT_NE(html.find("The 3D view is unavailable: three.js not found"), std::string::npos);
+    EXPECT_NE(html.find("id=\"replay-cards\""), std::string::npos);
+    EXPECT_EQ(html.find("id=\"replay3d-js\""), std::string::npos);
+  }
+  const std::string fake = tmp.write("three.min.js", "var THREE={REVISION:'111'};").string();
+  ThreeJsAt three(fake);
+  {
+    // Everything there: three.js and the 3D script inlined, no warning.
+    std::vector<std::string> warnings;
+    const std::string html = page_of({ind}, warnings);
+    EXPECT_TRUE(warnings.empty());
+    EXPECT_NE(html.find("<script id=\"three-js\">"), std::string::npos);
+    EXPECT_NE(html.find("var THREE={REVISION:'111'};"), std::string::npos);
+    EXPECT_NE(html.find("<script id=\"replay3d-js\">"), std::string::npos);
+    EXPECT_NE(html.find("\"robot3d\":"), std::string::npos);
+    EXPECT_NE(html.find("data-state=\"loading\""), std::string::npos);
+  }
+  {
+    // One individual without a trajectory: left out and said; none: the view says so.
+    std::vector<std::string> warnings;
+    std::string html = page_of({ind, empty}, warnings);
+    ASSERT_EQ(warnings.size(), 1u);
+    EXPECT_NE(warnings[0].find("leaves out knee: no trajectory was recorded"), std::string::npos);
+    EXPECT_NE(html.find("<script id=\"replay3d-js\">"), std::string::npos);
+    EXPECT_NE(html.find("class=\"missing\""), std::string::npos);
+    warnings.clear();
+    html = page_of({empty}, warnings);
+    ASSERT_EQ(warnings.size(), 1u);
+    EXPECT_NE(html.find("The 3D view is unavailable: knee: no trajectory was recorded."),
+              std::string::npos);
+    EXPECT_EQ(html.find("id=\"replay3d-js\""), std::string::npos);
+  }
 }
 
 }  // namespace

@@ -6,7 +6,9 @@
 //   int16 millimetres, per frame (points + 1 ball point) x (x, y, z).
 // Each individual gets a card with a side view (x right, following the torso), a front view
 // (the robot's left on the right) and a top view of the whole path; the controls play, pause,
-// change the speed and scrub the shared time.
+// change the speed and scrub the shared time. A cursor on every accelerometer chart (the <svg>
+// elements with data-plot="left top right bottom t0 t1") follows the replay's time, and the
+// event 'stride-replay-time' (detail: the time [s]) tells the 3D view (replay3d.js).
 (function () {
   'use strict';
   const source = document.getElementById('replay-data');
@@ -207,12 +209,40 @@
   slider.max = end.toFixed(2);
   let time = 0, playing = false, last = null;
 
+  // The time cursors on the accelerometer charts.
+  const SVG_NS = 'http://www.w3.org/2000/svg';
+  const cursors = Array.from(document.querySelectorAll('#accelerometer svg[data-plot]'))
+      .map(function (svg) {
+        const [left, top, right, bottom, t0, t1] = svg.dataset.plot.split(' ').map(parseFloat);
+        const line = document.createElementNS(SVG_NS, 'line');
+        line.setAttribute('class', 'replay-cursor');
+        line.setAttribute('y1', top);
+        line.setAttribute('y2', bottom);
+        line.setAttribute('stroke', '#d0021b');
+        line.setAttribute('stroke-width', '1.5');
+        line.setAttribute('pointer-events', 'none');
+        svg.appendChild(line);
+        return {line: line, left: left, right: right, t0: t0, t1: t1};
+      });
+  function moveCursors(t) {
+    for (const c of cursors) {
+      const inside = t >= c.t0 && t <= c.t1 && c.t1 > c.t0;
+      const x = inside ? c.left + (c.right - c.left) * (t - c.t0) / (c.t1 - c.t0) : c.left;
+      c.line.setAttribute('x1', x.toFixed(1));
+      c.line.setAttribute('x2', x.toFixed(1));
+      c.line.setAttribute('visibility', inside ? 'visible' : 'hidden');
+      c.line.dataset.time = t.toFixed(3);
+    }
+  }
+
   function show(t) {
     time = Math.min(Math.max(0, t), end);
     slider.value = time.toFixed(2);
     clock.textContent = 't = ' + time.toFixed(2) + ' s';
     clock.dataset.time = time.toFixed(3);
     draw(time);
+    moveCursors(time);
+    document.dispatchEvent(new CustomEvent('stride-replay-time', {detail: time}));
   }
   function tick(now) {
     if (!playing) return;

@@ -34,11 +34,15 @@ using StepFunction = std::function<hal::CommandFrame(const hal::SensorFrame&, ha
 StepFunction hold_pose_controller(const std::array<double, hal::kServoCount>& pose,
                                   double p_gain = 76.0);
 
-/// Link poses at one moment, for pictures.
+/// Link poses at one moment, for pictures; the replays also keep the joint angles and the feet's
+/// contact forces (EpisodeCapturer fills them; empty or zero elsewhere).
 struct PoseSnapshot {
   double time_s = 0.0;
   std::vector<Eigen::Isometry3d> links;
   Eigen::Vector3d ball = Eigen::Vector3d::Zero();
+  std::vector<double> joint_angles;                            ///< model().joints() order [rad]
+  Eigen::Vector3d left_foot_force = Eigen::Vector3d::Zero();   ///< contact force, world [N]
+  Eigen::Vector3d right_foot_force = Eigen::Vector3d::Zero();  ///< contact force, world [N]
 };
 
 class TrajectoryRecorder;

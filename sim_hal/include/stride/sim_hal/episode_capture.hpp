@@ -1,8 +1,8 @@
 // EpisodeCapture: what a replay of an episode needs, taken while it runs (EpisodeOptions::
-// on_tick): the link poses and the ball every `frame_every_ticks` control ticks (5 at 100 Hz:
-// 20 frames per second) plus the last tick, and the accelerometer (the IMU reading the
-// controller saw, torso frame, m/s^2) at every tick. Used by `stride sim --html` and by
-// `stride report` when it re-runs the chosen individuals.
+// on_tick): the link poses, the joint angles, each foot's contact force and the ball every
+// `frame_every_ticks` control ticks (4 at 100 Hz: 25 frames per second) plus the last tick, and
+// the accelerometer (the IMU reading the controller saw, torso frame, m/s^2) at every tick. Used by
+// `stride sim --html` and by `stride report` when it re-runs the chosen individuals.
 #pragma once
 
 #include <Eigen/Core>
@@ -19,14 +19,14 @@ struct AccelSample {
 
 struct EpisodeCapture {
   double period_s = 0.01;  ///< control period
-  int frame_every_ticks = 5;
+  int frame_every_ticks = 4;
   std::vector<PoseSnapshot> frames;  ///< at ticks 0, k, 2k, ... and the last tick
   std::vector<AccelSample> accel;    ///< every tick
 };
 
 class EpisodeCapturer {
  public:
-  explicit EpisodeCapturer(int frame_every_ticks = 5)
+  explicit EpisodeCapturer(int frame_every_ticks = 4)
       : every_(frame_every_ticks < 1 ? 1 : frame_every_ticks) {}
   /// The observer to put into EpisodeOptions::on_tick (it refers to this capturer).
   std::function<void(hal::Tick, const SimWorld&, const hal::SensorFrame&)> observer();

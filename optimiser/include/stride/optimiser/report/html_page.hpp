@@ -33,6 +33,9 @@ class HtmlPage {
   void add_section(const std::string& id, const std::string& heading, const std::string& body);
   /// The replay data (see html_replay.hpp); the page then includes the replay script.
   void set_replay_data(const nlohmann::json& data);
+  /// A script written inline after the replay script (in the order added), as
+  /// <script id=ID>; "</script" inside it is escaped.
+  void add_script(const std::string& id, const std::string& code);
   std::string str() const;
 
  private:
@@ -41,6 +44,7 @@ class HtmlPage {
   std::vector<std::pair<std::string, std::string>> nav_;
   std::string sections_;
   std::string replay_json_;
+  std::string scripts_;
 };
 
 }  // namespace stride::opt::report

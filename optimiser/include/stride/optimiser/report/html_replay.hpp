@@ -2,10 +2,10 @@
 // side (data for replay.js), the accelerometer over time (the seed's Fig D.2) and strips of
 // poses at regular times (the seed's Fig 7.3), all from EpisodeCaptures of re-run episodes.
 //
-// Replay data: frames every EpisodeCapture::frame_every_ticks ticks (20 per second at 100 Hz)
+// Replay data: frames every EpisodeCapture::frame_every_ticks ticks (25 per second at 100 Hz)
 // plus the last tick; each frame is the stick figure's points (sim/stick_figure.hpp) and the
-// ball, as int16 millimetres, base64 (about 250 bytes per frame: 5 kB per second of episode
-// and individual).
+// ball, as int16 millimetres, base64 (248 bytes per frame: 6.2 kB per second of episode and
+// individual). The 3D replay's data is added by html_replay3d.hpp.
 #pragma once
 
 #include <optional>

@@ -36,10 +36,12 @@ Status write_report_html(const std::filesystem::path& dir, const RobotTask& task
                          ReportOutcome& out);
 
 /// One episode's page (`stride sim --html`): `facts` (name, value) as its summary table, the
-/// accelerometer, a pose strip and the replay.
+/// accelerometer, a pose strip and the replay (2D and 3D). What the 3D view is missing
+/// (three.js, a drawable model, the trajectory) is said on the page and appended to `warnings`.
 Status write_episode_html(const std::filesystem::path& file, const std::string& title,
                           const std::vector<std::pair<std::string, std::string>>& facts,
                           const sim::RobotModel& model, const ReplayIndividual& episode,
-                          const ReplayScene& scene, const std::vector<double>& strip_times_s);
+                          const ReplayScene& scene, const std::vector<double>& strip_times_s,
+                          std::vector<std::string>* warnings = nullptr);
 
 }  // namespace stride::opt::report
