@@ -70,6 +70,11 @@ class MujocoEngine final : public PhysicsEngine {
   void set_joint_speed(std::size_t joint, double speed) override {
     d_->qvel[joint_dof_[joint]] = speed;
   }
+  void set_torso_force(const Eigen::Vector3d& force) override {
+    // xfrc_applied acts at the body's centre of mass, world frame; mj_resetData clears it.
+    mjtNum* f = d_->xfrc_applied + 6 * link_body_[0];
+    for (int k = 0; k < 3; ++k) f[k] = force[k];
+  }
 
   const mjModel* model() const { return m_.get(); }
 

@@ -9,6 +9,7 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "stride/firmware/servo_table.hpp"
 #include "stride/hal/command_frame.hpp"
@@ -89,6 +90,21 @@ struct Randomisation {
   double latency_probability = 0.0;  ///< chance of one control tick of command latency
 };
 
+/// A push on the trunk (issue 29 point 4, `stride sim walk --push T,DIR,IMPULSE`): the impulse
+/// `impulse_n_s` along the horizontal direction `direction_rad`, measured anticlockwise from the
+/// robot's heading (the torso's yaw when the push starts: 0 forward, pi/2 left), starting
+/// `time_s` after the episode start. It is applied as a constant horizontal force of
+/// impulse / kPushDuration at the trunk's centre of mass over the physics steps of
+/// kPushDuration (rounded to whole steps, the force scaled so that the impulse is exact), so
+/// that each engine passes it through its own multibody dynamics and contact, as a hand or a
+/// pendulum striking the chest would.
+struct TorsoPush {
+  static constexpr double kPushDuration = 0.01;  ///< [s], one control period at 100 Hz
+  double time_s = 0.0;
+  double direction_rad = 0.0;
+  double impulse_n_s = 0.0;
+};
+
 struct WorldOptions {
   EngineKind engine = EngineKind::kSimbody;
   std::filesystem::path urdf = RobotModel::igus_path();
@@ -111,6 +127,8 @@ struct WorldOptions {
   std::uint64_t seed = 1;
   /// A state with a speed above this [rad/s or m/s] counts as exploded.
   double max_speed = 200.0;
+  /// Pushes on the trunk during each episode (times from the episode's reset).
+  std::vector<TorsoPush> pushes;
 };
 
 enum class WorldStatus : std::uint8_t {
