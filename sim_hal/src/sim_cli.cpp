@@ -23,6 +23,10 @@ void declare_world_options(fw::CliArgs& args) {
               "simbody");
   args.option("servo-law", "servo model: seed (Gazebo figures) or identified (MX, BAM M6)", true,
               "seed");
+  args.option("contact",
+              "field contact: seed (the seed's 2 cm grass) or turf (a 5 mm layer over solid "
+              "ground, sim_hal/models/README.md)",
+              true, "seed");
 }
 
 Status read_world_options(const fw::CliArgs& args, WorldOptions& out) {
@@ -64,6 +68,9 @@ Status read_world_options(const fw::CliArgs& args, WorldOptions& out) {
   const std::string engine = args.get("engine", "simbody");
   if (!parse_engine_kind(engine, out.engine))
     return Status::error("--engine: expected simbody or mujoco, got '" + engine + "'");
+  const std::string contact = args.get("contact", "seed");
+  if (!parse_contact_kind(contact, out.contact))
+    return Status::error("--contact: expected seed or turf, got '" + contact + "'");
   const std::string law = args.get("servo-law", "seed");
   if (law == "seed") {
     out.servo.law = ServoLaw::kSeed;

@@ -10,7 +10,8 @@
 
 namespace stride::sim {
 
-/// Declares --seed, --noise on|off, --physics-step-us, --urdf, --imu, --servo-law, --engine.
+/// Declares --seed, --noise on|off, --physics-step-us, --urdf, --imu, --servo-law, --engine,
+/// --contact.
 void declare_world_options(fw::CliArgs& args);
 /// Reads them into `out` (whose control period the caller sets). The error names the option.
 Status read_world_options(const fw::CliArgs& args, WorldOptions& out);

@@ -40,7 +40,30 @@ struct ContactOptions {
   double tangential_damping_n_s_m = 20.0;    ///< [N s/m]
   double ball_robot_stiffness_n_m = 5000.0;  ///< ball against robot links [N/m]
   double ball_robot_damping_n_s_m = 10.0;
+  /// MuJoCo only: model the solid ground under the grass (a second plane at z = 0, its own
+  /// stiffness per contact). Simbody always has it; MuJoCo's seed world leaves it out (the
+  /// grass spring continues below 2 cm), so that its earlier figures stand.
+  bool mujoco_solid_ground = false;
+
+  /// The seed's Gazebo grass (the defaults above): a 2 cm soft layer.
+  static ContactOptions seed() { return {}; }
+  /// Artificial turf (issue 29, sim_hal/models/README.md "Turf"): the seed's grass spring in a
+  /// 5 mm layer over the solid ground, modelled on both engines, and a stick spring softer than
+  /// the normal spring as in an elastic contact (Mindlin: k_t / k_n = 2(1-nu)/(2-nu), 0.7 for
+  /// rubber infill, nu 0.45; the seed's 5000 N/m is 3.3 times the normal 1500 N/m). A standing
+  /// robot sinks about 5 mm and a foot in single support about 5.5 mm (seed: 5 and 11 mm):
+  /// turf deforms 4-11 mm under an athlete's impact (FIFA), far less under a 6.5 kg robot.
+  static ContactOptions turf() {
+    ContactOptions c;
+    c.grass_thickness_m = 0.005;
+    c.tangential_stiffness_n_m = 1000.0;
+    c.mujoco_solid_ground = true;
+    return c;
+  }
 };
+
+/// "seed" or "turf" (ContactOptions::seed(), ::turf()); false for anything else.
+bool parse_contact_kind(std::string_view text, ContactOptions& out);
 
 struct BallOptions {
   bool present = true;
