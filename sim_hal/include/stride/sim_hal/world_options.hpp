@@ -51,7 +51,7 @@ struct ContactOptions {
   /// 5 mm layer over the solid ground, modelled on both engines, and a stick spring softer than
   /// the normal spring as in an elastic contact (Mindlin: k_t / k_n = 2(1-nu)/(2-nu), 0.7 for
   /// rubber infill, nu 0.45; the seed's 5000 N/m is 3.3 times the normal 1500 N/m). A standing
-  /// robot sinks about 5 mm and a foot in single support about 5.5 mm (seed: 5 and 11 mm):
+  /// robot sinks at most about 5 mm and a foot in single support 5.5 mm (seed: 5 and 11 mm):
   /// turf deforms 4-11 mm under an athlete's impact (FIFA), far less under a 6.5 kg robot.
   static ContactOptions turf() {
     ContactOptions c;
