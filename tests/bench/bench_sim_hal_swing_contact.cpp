@@ -5,7 +5,9 @@
 // it while it does, their ratio (Coulomb caps it at mu), the horizontal impulse per swing, and
 // the median over swings of the lowest stud tip's clearance above the grass top (negative: in
 // the grass); the walk's progress along the command (m/s or rad/s from 5 s, median of the
-// seeds) and how fast the feet carrying over half the weight slide along it (at their studs).
+// seeds), how fast the feet carrying over half the weight slide along it (at their studs), and
+// the feet's mean move along it split by load (lifted, partly loaded, loaded): stepping shows
+// as the lifted part, sliding as the loaded part.
 // The contact options below override ContactOptions fields for experiments.
 // Run: build/release/bench/bench_sim_hal_swing_contact --params FILE --servo-law identified
 //        --imu cm730 --engine simbody|mujoco --vy 1 [--seeds 3] [--duration 20]
@@ -38,6 +40,10 @@ struct Totals {
   int falls = 0, runs = 0;
   double stance_slip_m = 0.0;  ///< stance feet's moves along the command, summed
   double stance_s = 0.0;
+  /// Both feet's sole moves along the command while each carried under 15 %, 15-50 % and over
+  /// 50 % of the weight, summed, and the time they were summed over.
+  double move_m[3] = {0.0, 0.0, 0.0};
+  double move_s = 0.0;
   std::vector<double> progress;  ///< per run: torso displacement 5 s .. end along the command
 };
 
@@ -70,6 +76,8 @@ void walk(const sim::WorldOptions& options, const fw::FirmwareOptions& fw_option
   double lowest = 0.0, impulse = 0.0;
   Eigen::Vector3d stance_last[2] = {Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
   bool stance_was[2] = {false, false};
+  bool have_last_sole = false;
+  Eigen::Vector3d last_sole[2];
   const Eigen::Vector3d along =
       vy != 0 ? Eigen::Vector3d(0, vy > 0 ? 1 : -1, 0) : Eigen::Vector3d(vx >= 0 ? 1 : -1, 0, 0);
   auto close_swing = [&] {
@@ -99,6 +107,16 @@ void walk(const sim::WorldOptions& options, const fw::FirmwareOptions& fw_option
     for (int f = 0; f < 2; ++f)
       if (contact[f]->force.z() < 0.15 * weight && contact[1 - f]->force.z() > 0.5 * weight)
         swing = f;
+    for (int f = 0; f < 2; ++f) {  // each foot's move, by its load
+      const Eigen::Vector3d p = sole(f, *pose[f]);
+      if (have_last_sole) {
+        const double load = contact[f]->force.z() / weight;
+        totals.move_m[load < 0.15 ? 0 : load < 0.5 ? 1 : 2] += along.dot(p - last_sole[f]);
+      }
+      last_sole[f] = p;
+    }
+    if (have_last_sole) totals.move_s += dt;
+    have_last_sole = true;
     for (int f = 0; f < 2; ++f) {  // a foot carrying over half the weight: does it slip?
       const bool stance = contact[f]->force.z() > 0.5 * weight;
       if (stance && stance_was[f]) {
@@ -212,11 +230,16 @@ int main(int argc, char** argv) {
       "%s vx %.0f vy %.0f vth %.0f: progress %.3f (median, per s from 5 s); %d swings, falls %d; "
       "swing foot touching %.0f %% of swing time; while touching: horizontal %.2f N, vertical "
       "%.2f N, ratio %.2f; horizontal impulse per swing %.3f N s (median); lowest stud "
-      "clearance per swing %.1f mm (median); stance feet slip along the command %.1f mm/s\n",
+      "clearance per swing %.1f mm (median); stance feet slip along the command %.1f mm/s; "
+      "the feet's mean move along it while under 15 %% / 15-50 %% / over 50 %% of the weight "
+      "%.1f / %.1f / %.1f mm/s\n",
       sim::to_string(options.engine), vx, vy, vth, median(t.progress), t.swings, t.falls,
       100.0 * t.touching_s / std::max(t.swing_s, 1e-9), t.horizontal_n_s / touching,
       t.vertical_n_s / touching, t.horizontal_n_s / std::max(t.vertical_n_s, 1e-9),
       median(t.impulse_per_swing), median(t.lowest_clearance_mm),
-      1e3 * t.stance_slip_m / std::max(t.stance_s, 1e-9));
+      1e3 * t.stance_slip_m / std::max(t.stance_s, 1e-9),
+      1e3 * t.move_m[0] / std::max(2 * t.move_s, 1e-9),
+      1e3 * t.move_m[1] / std::max(2 * t.move_s, 1e-9),
+      1e3 * t.move_m[2] / std::max(2 * t.move_s, 1e-9));
   return 0;
 }
