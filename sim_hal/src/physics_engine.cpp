@@ -26,6 +26,17 @@ bool parse_engine_kind(std::string_view text, EngineKind& out) {
   return true;
 }
 
+bool parse_contact_kind(std::string_view text, ContactOptions& out) {
+  if (text == "seed") {
+    out = ContactOptions::seed();
+  } else if (text == "turf") {
+    out = ContactOptions::turf();
+  } else {
+    return false;
+  }
+  return true;
+}
+
 std::uint64_t fnv1a(std::uint64_t hash, const void* data, std::size_t bytes) {
   const auto* p = static_cast<const unsigned char*>(data);
   for (std::size_t i = 0; i < bytes; ++i) {

@@ -1,8 +1,10 @@
 // Simulator command-line options (shared by stride sim and stride-fw --hal sim).
 #include "stride/sim_hal/sim_cli.hpp"
 
+#include <cmath>
 #include <filesystem>
 #include <memory>
+#include <sstream>
 #include <system_error>
 
 #include "stride/sim_hal/physics_engine.hpp"
@@ -21,6 +23,10 @@ void declare_world_options(fw::CliArgs& args) {
               "simbody");
   args.option("servo-law", "servo model: seed (Gazebo figures) or identified (MX, BAM M6)", true,
               "seed");
+  args.option("contact",
+              "field contact: seed (the seed's 2 cm grass) or turf (a 5 mm layer over solid "
+              "ground, sim_hal/models/README.md)",
+              true, "seed");
 }
 
 Status read_world_options(const fw::CliArgs& args, WorldOptions& out) {
@@ -62,6 +68,9 @@ Status read_world_options(const fw::CliArgs& args, WorldOptions& out) {
   const std::string engine = args.get("engine", "simbody");
   if (!parse_engine_kind(engine, out.engine))
     return Status::error("--engine: expected simbody or mujoco, got '" + engine + "'");
+  const std::string contact = args.get("contact", "seed");
+  if (!parse_contact_kind(contact, out.contact))
+    return Status::error("--contact: expected seed or turf, got '" + contact + "'");
   const std::string law = args.get("servo-law", "seed");
   if (law == "seed") {
     out.servo.law = ServoLaw::kSeed;
@@ -71,6 +80,74 @@ Status read_world_options(const fw::CliArgs& args, WorldOptions& out) {
     return Status::error("--servo-law: expected seed or identified, got '" + law + "'");
   }
   return Status::ok();
+}
+
+namespace {
+
+bool parse_number(const std::string& text, double& out) {
+  try {
+    std::size_t used = 0;
+    out = std::stod(text, &used);
+    return used == text.size() && std::isfinite(out);
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
+}  // namespace
+
+Status parse_push(const std::string& text, double duration_s, TorsoPush& out) {
+  const auto bad = [&text](const std::string& why) {
+    return Status::error("--push: " + why + " in '" + text +
+                         "' (expected T,DIR,IMPULSE, e.g. 5.2,forward,1.5)");
+  };
+  std::vector<std::string> parts;
+  std::stringstream in(text);
+  std::string part;
+  while (std::getline(in, part, ',')) parts.push_back(part);
+  if (parts.size() != 3 || text.empty() || text.back() == ',')
+    return bad("expected three comma-separated fields");
+  if (!parse_number(parts[0], out.time_s)) return bad("bad time '" + parts[0] + "'");
+  if (!(out.time_s >= 0.0 && out.time_s < duration_s))
+    return bad("time must be in [0, " + std::to_string(duration_s) + ") s (the episode)");
+  const std::string& dir = parts[1];
+  constexpr double kPi = 3.14159265358979323846;
+  if (dir == "forward") {
+    out.direction_rad = 0.0;
+  } else if (dir == "backward") {
+    out.direction_rad = kPi;
+  } else if (dir == "left") {
+    out.direction_rad = kPi / 2;
+  } else if (dir == "right") {
+    out.direction_rad = -kPi / 2;
+  } else {
+    double degrees = 0.0;
+    if (!parse_number(dir, degrees))
+      return bad("direction must be forward, backward, left, right or degrees, got '" + dir + "'");
+    if (!(degrees >= -360.0 && degrees <= 360.0))
+      return bad("direction in degrees must be in [-360, 360]");
+    out.direction_rad = degrees * kPi / 180.0;
+  }
+  if (!parse_number(parts[2], out.impulse_n_s)) return bad("bad impulse '" + parts[2] + "'");
+  if (!(out.impulse_n_s > 0.0 && out.impulse_n_s <= kMaxPushImpulse))
+    return bad("impulse must be in (0, " + std::to_string(static_cast<int>(kMaxPushImpulse)) +
+               "] N s");
+  return Status::ok();
+}
+
+std::vector<std::string> repeated_option_values(int argc, const char* const* argv,
+                                                const std::string& name) {
+  std::vector<std::string> out;
+  const std::string flag = "--" + name;
+  for (int i = 1; i < argc; ++i) {
+    const std::string word = argv[i];
+    if (word == flag && i + 1 < argc) {
+      out.emplace_back(argv[++i]);
+    } else if (word.rfind(flag + "=", 0) == 0) {
+      out.push_back(word.substr(flag.size() + 1));
+    }
+  }
+  return out;
 }
 
 }  // namespace stride::sim

@@ -47,7 +47,15 @@ struct SimWorld::Impl {
   std::string reason;
   ImuSampler imu;
 
+  // Pushes (WorldOptions::pushes): physics steps since the reset, each push's first step,
+  // the steps it lasts, and the torso's heading when it began.
+  std::int64_t steps = 0;
+  std::vector<std::int64_t> push_first_step;
+  std::vector<double> push_heading;
+  std::int64_t push_steps = 1;
+
   Status configure();
+  void apply_pushes();
   double armature(std::size_t servo) const;
   void servo_torques();
   bool step_once();
@@ -71,12 +79,21 @@ Status SimWorld::Impl::configure() {
       !(o.contact.tangential_stiffness_n_m > 0.0) || !(o.contact.grass_damping_n_s_m >= 0.0) ||
       !(o.contact.ground_damping_n_s_m >= 0.0) || !(o.contact.tangential_damping_n_s_m >= 0.0))
     return Status::error("contact: thickness, damping and friction must be >= 0, stiffness > 0");
+  for (const TorsoPush& p : o.pushes)
+    if (!(p.time_s >= 0.0) || !std::isfinite(p.time_s) || !std::isfinite(p.direction_rad) ||
+        !(p.impulse_n_s >= 0.0) || !std::isfinite(p.impulse_n_s))
+      return Status::error("push: time and impulse must be finite and >= 0, direction finite");
   engine = make_physics_engine(o.engine);
   if (!engine)
     return Status::error(std::string("engine '") + to_string(o.engine) +
                          "' is not available in this build");
   h = static_cast<double>(o.physics_step_ns) * 1e-9;
   steps_per_period = static_cast<int>(o.control_period_ns / o.physics_step_ns);
+  push_steps = std::max<std::int64_t>(1, std::llround(TorsoPush::kPushDuration / h));
+  push_first_step.clear();
+  for (const TorsoPush& p : o.pushes)
+    push_first_step.push_back(static_cast<std::int64_t>(std::ceil(p.time_s / h - 1e-9)));
+  push_heading.assign(o.pushes.size(), 0.0);
   if (o.model) {
     model = *o.model;
   } else if (Status s = RobotModel::load_file(o.urdf, model); !s) {
@@ -148,13 +165,32 @@ void SimWorld::Impl::servo_torques() {
   }
 }
 
+/// The force of the pushes acting during the coming step (see TorsoPush).
+void SimWorld::Impl::apply_pushes() {
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();
+  for (std::size_t i = 0; i < options.pushes.size(); ++i) {
+    const std::int64_t first = push_first_step[i];
+    if (steps < first || steps >= first + push_steps) continue;
+    if (steps == first) {  // the robot's heading when the push begins
+      const Eigen::Matrix3d r = engine->link_pose(0).linear();
+      push_heading[i] = std::atan2(r(1, 0), r(0, 0));
+    }
+    const double angle = push_heading[i] + options.pushes[i].direction_rad;
+    const double magnitude = options.pushes[i].impulse_n_s / (static_cast<double>(push_steps) * h);
+    force += magnitude * Eigen::Vector3d(std::cos(angle), std::sin(angle), 0.0);
+  }
+  engine->set_torso_force(force);
+}
+
 bool SimWorld::Impl::step_once() {
   if (status != WorldStatus::kRunning) return false;
+  if (!options.pushes.empty()) apply_pushes();
   servo_torques();
   // The chain reads the torso at the step's start and its acceleration over the step.
   TorsoMotion start;
   if (imu.needs_steps()) start = torso_motion();
   status = engine->step(joint_tau, reason);
+  ++steps;
   if (status != WorldStatus::kRunning) return false;
   if (imu.needs_steps()) {
     start.linear_acceleration = engine->torso_acceleration();
@@ -296,6 +332,7 @@ Status SimWorld::reset(const ResetSpec& spec) {
       !s)
     return Status::error("reset: " + s.message());
   w.periods = 0;
+  w.steps = 0;
   w.status = WorldStatus::kRunning;
   w.reason.clear();
   w.imu.reset(w.options.imu, w.options.gravity_mps2, w.accel_bias, w.gyro_bias,

@@ -40,6 +40,7 @@ sim::WorldOptions world_for_trial(const TaskConfig& config, int world) {
     w.imu.chain.noise = noisy;
   }
   w.physics_step_ns = config.physics_step_us * 1000;
+  sim::parse_contact_kind(config.contact, w.contact);  // checked when the config was read
   return w;
 }
 

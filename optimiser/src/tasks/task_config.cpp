@@ -83,6 +83,7 @@ const char* const kKnownFields[] = {"task",
                                     "urdf",
                                     "servo_law",
                                     "imu",
+                                    "contact",
                                     "physics_step_us",
                                     "validate",
                                     "hypervolume_ideal",
@@ -91,7 +92,7 @@ const char* const kKnownFields[] = {"task",
 
 // `engine` ("simbody" | "mujoco") or `engines` (a list of distinct engines), not both.
 // The simulated robot: `urdf` (parsed here, so that a broken file is named at load time),
-// `servo_law`, `imu`, `physics_step_us`.
+// `servo_law`, `imu`, `contact`, `physics_step_us`.
 Status parse_robot(const nlohmann::json& doc, TaskConfig& c) {
   if (doc.contains("urdf")) {
     const auto& u = doc.at("urdf");
@@ -116,6 +117,13 @@ Status parse_robot(const nlohmann::json& doc, TaskConfig& c) {
     if (!i.is_string() || (i != "ideal" && i != "cm730"))
       return Status::error("imu: must be \"ideal\" or \"cm730\", got " + i.dump());
     c.imu_cm730 = i == "cm730";
+  }
+  if (doc.contains("contact")) {
+    const auto& k = doc.at("contact");
+    sim::ContactOptions parsed;
+    if (!k.is_string() || !sim::parse_contact_kind(k.get<std::string>(), parsed))
+      return Status::error("contact: must be \"seed\" or \"turf\", got " + k.dump());
+    c.contact = k.get<std::string>();
   }
   std::int64_t step = c.physics_step_us;
   if (Status s = integer(doc, "physics_step_us", 1, 10000, step, false); !s) return s;
@@ -355,6 +363,7 @@ nlohmann::json to_json(const TaskConfig& c) {
   if (!c.urdf.empty()) j["urdf"] = std::filesystem::absolute(c.urdf).string();
   j["servo_law"] = c.servo_law == sim::ServoLaw::kIdentified ? "identified" : "seed";
   j["imu"] = c.imu_cm730 ? "cm730" : "ideal";
+  j["contact"] = c.contact;
   j["physics_step_us"] = c.physics_step_us;
   auto limit = [](double v) { return v < 0.0 ? nlohmann::json(nullptr) : nlohmann::json(v); };
   j["max_drift_ratio"] = limit(c.max_drift_ratio);

@@ -35,8 +35,10 @@ void set_contact_params(mjModel* m, const EngineModel& model) {
     set(m->geom_solref + mjNREF * g, m->geom_solimp + mjNIMP * g, c.grass_stiffness_n_m,
         tran_weight(m, g));
   }
+  const int ground = mj_name2id(m, mjOBJ_GEOM, "ground");  // -1 unless mujoco_solid_ground
   for (int p = 0; p < m->npair; ++p)
-    set(m->pair_solref + mjNREF * p, m->pair_solimp + mjNIMP * p, c.ball_robot_stiffness_n_m,
+    set(m->pair_solref + mjNREF * p, m->pair_solimp + mjNIMP * p,
+        m->pair_geom1[p] == ground ? c.ground_stiffness_n_m : c.ball_robot_stiffness_n_m,
         tran_weight(m, m->pair_geom1[p]) + tran_weight(m, m->pair_geom2[p]));
 }
 

@@ -24,9 +24,12 @@
 // creeps at (1-d) A F timeconst / (2 impratio); kImpRatio = 10 keeps that near 1 mm/s per N on
 // a foot. The Coulomb bound of the elliptic cone is exact: |f_t| <= mu f_n.
 //
-// Not modelled: the solid ground under the 2 cm of grass (Stride's second, stiffer spring).
-// The grass spring continues below; it is reached only at impacts (standing sinks ~5 mm,
-// single support ~11 mm).
+// The solid ground under the grass (Stride's second, stiffer spring) is modelled only when
+// ContactOptions::mujoco_solid_ground (the turf contact): a second plane at z = 0, touched
+// through explicit pairs whose static stiffness is ground_stiffness_n_m per contact (the grass
+// spring continues below it, so a point on the ground has k_g d + k_s (d - T) where Stride's
+// law has k_g T + k_s (d - T): 1500 N/m against 2e4). On the seed's 2 cm grass it is left out:
+// reached only at impacts (standing sinks ~5 mm, single support ~11 mm).
 #pragma once
 
 #include <mujoco/mujoco.h>

@@ -103,6 +103,9 @@ std::string write_mjcf(const EngineModel& model) {
   w.line(2, "<geom name=\"grass\" type=\"plane\" size=\"0 0 1\" pos=\"0 0 " +
                 num(model.contact.grass_thickness_m) + "\" solmix=\"0\"" + kFieldBits + w.friction +
                 "/>");
+  if (model.contact.mujoco_solid_ground)  // touched only through the pairs below
+    w.line(2, R"(<geom name="ground" type="plane" size="0 0 1" pos="0 0 0" contype="0" )"
+              R"(conaffinity="0"/>)");
   w.line(2, "<body name=\"l0\">");
   w.line(3, R"(<freejoint name="root"/>)");
   w.link_contents(0, 3);
@@ -119,19 +122,24 @@ std::string write_mjcf(const EngineModel& model) {
     w.line(2, "</body>");
   }
   w.line(1, "</worldbody>");
-  if (model.ball.present) {  // the ball against every robot geom
+  // Robot geom names in model order.
+  std::vector<std::string> robot_geoms;
+  for (std::size_t l = 0; l < robot.links().size(); ++l) {
+    const LinkSpec& link = robot.links()[l];
+    for (std::size_t k = 0; k < link.spheres.size(); ++k)
+      robot_geoms.push_back("l" + std::to_string(l) + "s" + std::to_string(k));
+    for (std::size_t k = 0; k < link.boxes.size(); ++k)
+      robot_geoms.push_back("l" + std::to_string(l) + "b" + std::to_string(k));
+  }
+  if (model.ball.present || model.contact.mujoco_solid_ground) {
     w.line(1, "<contact>");
-    for (std::size_t l = 0; l < robot.links().size(); ++l) {
-      const LinkSpec& link = robot.links()[l];
-      for (std::size_t k = 0; k < link.spheres.size() + link.boxes.size(); ++k) {
-        const std::string geom =
-            "l" + std::to_string(l) +
-            (k < link.spheres.size() ? "s" + std::to_string(k)
-                                     : "b" + std::to_string(k - link.spheres.size()));
-        // Frictionless, as in Stride's contact law (sim_hal/models/README.md).
+    if (model.ball.present)                        // the ball against every robot geom
+      for (const std::string& geom : robot_geoms)  // frictionless, as in Stride's contact law
         w.line(2, "<pair geom1=\"ball\" geom2=\"" + geom + "\" condim=\"1\"/>");
-      }
-    }
+    if (model.contact.mujoco_solid_ground)  // the solid ground under the grass (contact_params)
+      for (const std::string& geom : robot_geoms)
+        w.line(2, "<pair geom1=\"ground\" geom2=\"" + geom + "\" condim=\"3\" friction=\"" + mu +
+                      " " + mu + " 0.005 0.0001 0.0001\"/>");
     w.line(1, "</contact>");
   }
   w.line(0, "</mujoco>");

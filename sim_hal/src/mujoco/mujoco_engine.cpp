@@ -70,6 +70,11 @@ class MujocoEngine final : public PhysicsEngine {
   void set_joint_speed(std::size_t joint, double speed) override {
     d_->qvel[joint_dof_[joint]] = speed;
   }
+  void set_torso_force(const Eigen::Vector3d& force) override {
+    // xfrc_applied acts at the body's centre of mass, world frame; mj_resetData clears it.
+    mjtNum* f = d_->xfrc_applied + 6 * link_body_[0];
+    for (int k = 0; k < 3; ++k) f[k] = force[k];
+  }
 
   const mjModel* model() const { return m_.get(); }
 
@@ -83,6 +88,7 @@ class MujocoEngine final : public PhysicsEngine {
   int root_qpos_ = 0, root_dof_ = 0;
   int ball_body_ = -1, ball_qpos_ = 0, ball_dof_ = 0;
   int field_geom_ = -1;
+  int ground_geom_ = -1;  ///< the solid ground under the grass (mujoco_solid_ground), or -1
   double robot_mass_ = 0.0;
   std::int64_t steps_ = 0;
   Eigen::Vector3d torso_acc_ = Eigen::Vector3d::Zero();
@@ -153,6 +159,7 @@ Status MujocoEngine::build(const EngineModel& model) {
     ball_dof_ = m_->jnt_dofadr[joint];
   }
   field_geom_ = mj_name2id(m_.get(), mjOBJ_GEOM, "grass");
+  ground_geom_ = mj_name2id(m_.get(), mjOBJ_GEOM, "ground");
   geom_link_.assign(static_cast<std::size_t>(m_->ngeom), -1);
   for (std::size_t l = 0; l < link_body_.size(); ++l)
     for (int g = 0; g < m_->ngeom; ++g)
@@ -250,9 +257,12 @@ ContactReport MujocoEngine::contacts() const {
     const mjContact& c = d_->contact[i];
     int robot_geom = -1;
     double sign = 1.0;  // the force of geom1 on geom2 acts along +normal
-    if (c.geom1 == field_geom_) {
+    // A point on the solid ground is in the grass too: its ground contact adds force only.
+    const bool ground = ground_geom_ >= 0 && (c.geom1 == ground_geom_ || c.geom2 == ground_geom_);
+    const int field = ground ? ground_geom_ : field_geom_;
+    if (c.geom1 == field) {
       robot_geom = c.geom2;
-    } else if (c.geom2 == field_geom_) {
+    } else if (c.geom2 == field) {
       robot_geom = c.geom1;
       sign = -1.0;
     }
@@ -263,14 +273,14 @@ ContactReport MujocoEngine::contacts() const {
                         : link == model_.right_foot ? &out.right
                                                     : nullptr;
     if (foot == nullptr) {
-      ++out.other_contacts;
+      if (!ground) ++out.other_contacts;
       continue;
     }
     mjtNum local[6];
     mj_contactForce(m_.get(), d_.get(), i, local);
     Eigen::Vector3d world = Eigen::Vector3d::Zero();
     for (int k = 0; k < 3; ++k) world += local[k] * vec3(c.frame + 3 * k);
-    ++foot->points_in_contact;
+    if (!ground) ++foot->points_in_contact;
     foot->force += sign * world;
   }
   return out;

@@ -70,6 +70,7 @@ class SimbodyEngine final : public PhysicsEngine {
   ContactReport contacts() const override { return report_; }
   std::uint64_t hash(std::uint64_t seed) const override;
   void set_joint_speed(std::size_t joint, double speed) override;
+  void set_torso_force(const Eigen::Vector3d& force) override { torso_force_ = to_vec3(force); }
 
  private:
   friend class AppliedForces;
@@ -101,6 +102,7 @@ class SimbodyEngine final : public PhysicsEngine {
   SpatialVec ball_force_{Vec3(0), Vec3(0)};
   ContactReport report_;
   Vec3 torso_accel_{0};
+  Vec3 torso_force_{0};  ///< external push on the root link's centre of mass (world frame)
 };
 
 void AppliedForces::calcForce(const SimTK::State&, SimTK::Vector_<SpatialVec>& body_forces,
@@ -213,6 +215,7 @@ Status SimbodyEngine::start(const EngineStart& start) {
   contact_.clear(model_.ball.radius_m);
   report_ = {};
   torso_accel_ = Vec3(0);
+  torso_force_ = Vec3(0);
   torque_ = nullptr;
   steps_ = 0;
   s.updTime() = 0.0;
@@ -238,6 +241,10 @@ void SimbodyEngine::compute_forces() {
     const Vec3 weight(0, 0, -g * link_mass_[l]);
     const Vec3 r = link_x_[l].R() * link_com_[l];
     body_force_[l] = SpatialVec(r % weight, weight);
+  }
+  if (torso_force_ != Vec3(0)) {  // a push (SimWorld's TorsoPush) at the trunk's centre of mass
+    body_force_[0][0] += (link_x_[0].R() * link_com_[0]) % torso_force_;
+    body_force_[0][1] += torso_force_;
   }
   ball_force_ = SpatialVec(Vec3(0), Vec3(0, 0, has_ball_ ? -g * model_.ball.mass_kg : 0.0));
   for (ContactPoint& point : contact_.points()) {

@@ -241,6 +241,7 @@ TEST(TaskConfig, RobotFieldsReachTheWorldsAndNameTheFieldOnError) {
   EXPECT_EQ(RobotTask(c).world_options(0).servo.law, sim::ServoLaw::kSeed);
   EXPECT_TRUE(RobotTask(c).world_options(0).imu.chain.is_ideal());
   EXPECT_EQ(RobotTask(c).world_options(0).physics_step_ns, 2'000'000);
+  EXPECT_DOUBLE_EQ(RobotTask(c).world_options(0).contact.grass_thickness_m, 0.02);
   test::TempDir tmp;
   std::filesystem::create_directories(tmp.path() / "robots");
   std::filesystem::copy_file(sim::RobotModel::igus_path(), tmp.path() / "robots" / "mine.urdf");
@@ -249,6 +250,7 @@ TEST(TaskConfig, RobotFieldsReachTheWorldsAndNameTheFieldOnError) {
   d["servo_law"] = "identified";
   d["imu"] = "cm730";
   d["physics_step_us"] = 500;
+  d["contact"] = "turf";
   d["trials"] = 2;
   tmp.write("config.json", d.dump());
   ASSERT_TRUE(load_task_config(tmp.path() / "config.json", c));
@@ -261,6 +263,8 @@ TEST(TaskConfig, RobotFieldsReachTheWorldsAndNameTheFieldOnError) {
     EXPECT_FALSE(w.imu.chain.is_ideal());
     EXPECT_TRUE(w.imu.chain.noise);  // trials randomise with IMU noise on
     EXPECT_EQ(w.physics_step_ns, 500'000);
+    EXPECT_DOUBLE_EQ(w.contact.grass_thickness_m, sim::ContactOptions::turf().grass_thickness_m);
+    EXPECT_TRUE(w.contact.mujoco_solid_ground);
   }
   TaskConfig back;
   ASSERT_TRUE(parse_task_config(to_json(c), back));
@@ -276,6 +280,9 @@ TEST(TaskConfig, RobotFieldsReachTheWorldsAndNameTheFieldOnError) {
   d = minimal();
   d["imu"] = 3;
   EXPECT_EQ(error_of(d), "imu: must be \"ideal\" or \"cm730\", got 3");
+  d = minimal();
+  d["contact"] = "lawn";
+  EXPECT_EQ(error_of(d), "contact: must be \"seed\" or \"turf\", got \"lawn\"");
   d = minimal();
   d["physics_step_us"] = 3000;
   EXPECT_EQ(error_of(d), "physics_step_us: must divide the 10000 us control period, got 3000");

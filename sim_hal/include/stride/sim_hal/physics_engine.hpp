@@ -109,6 +109,9 @@ class PhysicsEngine {
   virtual std::uint64_t hash(std::uint64_t seed) const = 0;
   /// Test hook: sets the speed of model joint `joint` (to provoke an exploding state).
   virtual void set_joint_speed(std::size_t joint, double speed) = 0;
+  /// An external force [N] (world frame) on the root link at its centre of mass, acting on
+  /// every following step until it is set again (zero: none). start() clears it.
+  virtual void set_torso_force(const Eigen::Vector3d& force) = 0;
 };
 
 /// The engine of the given kind, not yet built.

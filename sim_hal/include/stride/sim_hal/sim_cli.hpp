@@ -2,14 +2,29 @@
 // same simulator options on a CliArgs and turn them into WorldOptions.
 #pragma once
 
+#include <string>
+#include <vector>
+
 #include "stride/firmware/cli_args.hpp"
 #include "stride/sim_hal/sim_world.hpp"
 
 namespace stride::sim {
 
-/// Declares --seed, --noise on|off, --physics-step-us, --urdf, --imu, --servo-law, --engine.
+/// Declares --seed, --noise on|off, --physics-step-us, --urdf, --imu, --servo-law, --engine,
+/// --contact.
 void declare_world_options(fw::CliArgs& args);
 /// Reads them into `out` (whose control period the caller sets). The error names the option.
 Status read_world_options(const fw::CliArgs& args, WorldOptions& out);
+
+/// Largest impulse `--push` accepts [N s] (about 3 m/s of the igus robot's 6.5 kg).
+inline constexpr double kMaxPushImpulse = 20.0;
+/// Reads one `--push T,DIR,IMPULSE`: T [s] in [0, duration_s), DIR forward, backward, left,
+/// right or an angle in degrees in [-360, 360] (anticlockwise from the robot's heading),
+/// IMPULSE [N s] in (0, kMaxPushImpulse]. The error names --push and what is wrong.
+Status parse_push(const std::string& text, double duration_s, TorsoPush& out);
+/// Every value given to the repeatable option `--name` in argv (`--name V` or `--name=V`), in
+/// order (CliArgs keeps only the last).
+std::vector<std::string> repeated_option_values(int argc, const char* const* argv,
+                                                const std::string& name);
 
 }  // namespace stride::sim

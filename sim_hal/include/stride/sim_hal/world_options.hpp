@@ -9,6 +9,7 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "stride/firmware/servo_table.hpp"
 #include "stride/hal/command_frame.hpp"
@@ -39,7 +40,30 @@ struct ContactOptions {
   double tangential_damping_n_s_m = 20.0;    ///< [N s/m]
   double ball_robot_stiffness_n_m = 5000.0;  ///< ball against robot links [N/m]
   double ball_robot_damping_n_s_m = 10.0;
+  /// MuJoCo only: model the solid ground under the grass (a second plane at z = 0, its own
+  /// stiffness per contact). Simbody always has it; MuJoCo's seed world leaves it out (the
+  /// grass spring continues below 2 cm), so that its earlier figures stand.
+  bool mujoco_solid_ground = false;
+
+  /// The seed's Gazebo grass (the defaults above): a 2 cm soft layer.
+  static ContactOptions seed() { return {}; }
+  /// Artificial turf (issue 29, sim_hal/models/README.md "Turf"): the seed's grass spring in a
+  /// 5 mm layer over the solid ground, modelled on both engines, and a stick spring softer than
+  /// the normal spring as in an elastic contact (Mindlin: k_t / k_n = 2(1-nu)/(2-nu), 0.7 for
+  /// rubber infill, nu 0.45; the seed's 5000 N/m is 3.3 times the normal 1500 N/m). A standing
+  /// robot sinks at most about 5 mm and a foot in single support 5.5 mm (seed: 5 and 11 mm):
+  /// turf deforms 4-11 mm under an athlete's impact (FIFA), far less under a 6.5 kg robot.
+  static ContactOptions turf() {
+    ContactOptions c;
+    c.grass_thickness_m = 0.005;
+    c.tangential_stiffness_n_m = 1000.0;
+    c.mujoco_solid_ground = true;
+    return c;
+  }
 };
+
+/// "seed" or "turf" (ContactOptions::seed(), ::turf()); false for anything else.
+bool parse_contact_kind(std::string_view text, ContactOptions& out);
 
 struct BallOptions {
   bool present = true;
@@ -89,6 +113,21 @@ struct Randomisation {
   double latency_probability = 0.0;  ///< chance of one control tick of command latency
 };
 
+/// A push on the trunk (issue 29 point 4, `stride sim walk --push T,DIR,IMPULSE`): the impulse
+/// `impulse_n_s` along the horizontal direction `direction_rad`, measured anticlockwise from the
+/// robot's heading (the torso's yaw when the push starts: 0 forward, pi/2 left), starting
+/// `time_s` after the episode start. It is applied as a constant horizontal force of
+/// impulse / kPushDuration at the trunk's centre of mass over the physics steps of
+/// kPushDuration (rounded to whole steps, the force scaled so that the impulse is exact), so
+/// that each engine passes it through its own multibody dynamics and contact, as a hand or a
+/// pendulum striking the chest would.
+struct TorsoPush {
+  static constexpr double kPushDuration = 0.01;  ///< [s], one control period at 100 Hz
+  double time_s = 0.0;
+  double direction_rad = 0.0;
+  double impulse_n_s = 0.0;
+};
+
 struct WorldOptions {
   EngineKind engine = EngineKind::kSimbody;
   std::filesystem::path urdf = RobotModel::igus_path();
@@ -111,6 +150,8 @@ struct WorldOptions {
   std::uint64_t seed = 1;
   /// A state with a speed above this [rad/s or m/s] counts as exploded.
   double max_speed = 200.0;
+  /// Pushes on the trunk during each episode (times from the episode's reset).
+  std::vector<TorsoPush> pushes;
 };
 
 enum class WorldStatus : std::uint8_t {

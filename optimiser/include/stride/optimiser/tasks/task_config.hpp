@@ -88,6 +88,9 @@ struct TaskConfig {
   sim::ServoLaw servo_law = sim::ServoLaw::kSeed;
   bool imu_cm730 = false;
   std::int64_t physics_step_us = 2000;
+  /// The field contact (issue 29, config `contact`): "seed" (the seed's 2 cm grass) or "turf"
+  /// (sim::ContactOptions::turf(), sim_hal/models/README.md).
+  std::string contact = "seed";
   /// `stride validate` after a run (config `validate` {seeds}): fresh seeds per world.
   int validate_seeds = 10;
   // Hypervolume normalisation (ideal and nadir objective vectors).

@@ -1,0 +1,124 @@
+#!/usr/bin/env python3
+"""Walk speed per direction on each engine (issue 29 point 1): `stride sim walk` forward,
+backward, left, right and turning both ways, 20 s each, seeds 1-3; the speed of one run is
+the torso's displacement from 5 s to 20 s (x, y, or yaw unwrapped) divided by 15 s, and the
+table shows the median over the seeds, with the falls. Runs two simulations at a time under
+`nice`.
+
+  python3 tests/bench/walk_speed_per_direction.py [--engines simbody,mujoco] [--seeds 1,2,3]
+      [--params FILE] [--stride build/release/bin/stride] [--json OUT] [-- extra sim options]
+
+Default parameters: tests/bench/params/balance-identified-wide.json (balance-identified.json
+with the issue's wider velocity limits) on the faithful world (--servo-law identified --imu
+cm730).
+"""
+import argparse
+import concurrent.futures
+import json
+import math
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(os.path.dirname(HERE))
+DIRECTIONS = [  # name, walk command, which coordinate, sign of progress
+    ("forward", ["--vx", "1"], "x", 1),
+    ("backward", ["--vx", "-1"], "x", -1),
+    ("left", ["--vy", "1"], "y", 1),
+    ("right", ["--vy", "-1"], "y", -1),
+    ("turn left", ["--vth", "1"], "yaw", 1),
+    ("turn right", ["--vth", "-1"], "yaw", -1),
+]
+
+
+def yaw_of(q):
+    w, x, y, z = q
+    return math.atan2(2 * (w * z + x * y), 1 - 2 * (y * y + z * z))
+
+
+def run_one(stride, params, engine, seed, command, coordinate, extra, t0=5.0, t1=20.0):
+    with tempfile.TemporaryDirectory() as tmp:
+        record = os.path.join(tmp, "trace.jsonl")
+        cmd = ["nice", stride, "sim", "walk", "--params", params, "--servo-law", "identified",
+               "--imu", "cm730", "--engine", engine, "--seed", str(seed), "--duration", str(t1),
+               "--json", "--record", record] + command + extra
+        out = subprocess.run(cmd, capture_output=True, text=True)
+        if out.returncode not in (0, 1):
+            raise RuntimeError(" ".join(cmd) + ": " + out.stderr.strip())
+        result = json.loads(out.stdout.strip().splitlines()[-1])
+        samples = []
+        with open(record) as f:
+            next(f)
+            for line in f:
+                j = json.loads(line)
+                samples.append((j["t"], j["torso"]["p"], yaw_of(j["torso"]["q"])))
+    yaw = 0.0
+    unwrapped = []
+    prev = None
+    for t, p, y in samples:
+        if prev is not None:
+            yaw += math.remainder(y - prev, 2 * math.pi)
+        else:
+            yaw = y
+        prev = y
+        unwrapped.append((t, p, yaw))
+
+    def at(t):
+        return min(unwrapped, key=lambda s: abs(s[0] - t))
+
+    # A run that fell is measured up to 1 s before the fall (not the fall itself).
+    end = unwrapped[-1][0] - 1.0 if result["fell"] else t1
+    a, b = at(t0), at(min(t1, end))
+    value = {"x": lambda s: s[1][0], "y": lambda s: s[1][1], "yaw": lambda s: s[2]}[coordinate]
+    span = b[0] - a[0]
+    speed = (value(b) - value(a)) / span if span > 1.0 else float("nan")
+    return {"fell": bool(result["fell"]), "fall_time_s": result.get("fall_time_s"),
+            "speed": speed, "state_hash": result["state_hash"]}
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--engines", default="simbody,mujoco")
+    ap.add_argument("--seeds", default="1,2,3")
+    ap.add_argument("--params", default=os.path.join(HERE, "params",
+                                                      "balance-identified-wide.json"))
+    ap.add_argument("--stride", default=os.path.join(ROOT, "build", "release", "bin", "stride"))
+    ap.add_argument("--json", help="write every run's result here")
+    ap.add_argument("--jobs", type=int, default=2)
+    ap.add_argument("extra", nargs="*", help="more `stride sim walk` options (after --)")
+    args = ap.parse_args()
+    engines = args.engines.split(",")
+    seeds = [int(s) for s in args.seeds.split(",")]
+    jobs = {}
+    with concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs) as pool:
+        for engine in engines:
+            for name, command, coordinate, _ in DIRECTIONS:
+                for seed in seeds:
+                    jobs[(engine, name, seed)] = pool.submit(
+                        run_one, args.stride, args.params, engine, seed, command, coordinate,
+                        args.extra)
+    results = {k: v.result() for k, v in jobs.items()}
+    print("| engine | " + " | ".join(d[0] for d in DIRECTIONS) + " |")
+    print("|---|" + "---|" * len(DIRECTIONS))
+    for engine in engines:
+        cells = []
+        for name, _, _, sign in DIRECTIONS:
+            runs = [results[(engine, name, s)] for s in seeds]
+            speeds = [r["speed"] for r in runs if not math.isnan(r["speed"])]
+            falls = sum(r["fell"] for r in runs)
+            cell = "%.3f" % statistics.median(speeds) if speeds else "-"
+            if falls:
+                cell += ", falls %d/%d" % (falls, len(runs))
+            cells.append(cell)
+        print("| %s | %s |" % (engine, " | ".join(cells)))
+    if args.json:
+        with open(args.json, "w") as f:
+            json.dump({"%s/%s/%d" % k: v for k, v in results.items()}, f, indent=1)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
