@@ -93,9 +93,9 @@ int main(int argc, char** argv) {
     fw::RecorderOptions record;
     record.path = args.get("record");
     record.buffer_bytes = static_cast<std::size_t>(record_buffer_kb) * 1024;
-    fw::flight_log::HeaderInputs header{&firmware->params(), &firmware->servos(),
-                                        options.servo_table, firmware->period_ns(),
-                                        std::string(backend->name)};
+    fw::flight_log::HeaderInputs header{
+        &firmware->params(),   &firmware->servos(),        options.servo_table,
+        firmware->period_ns(), std::string(backend->name), options.params_file.value_or("")};
     if (Status s = fw::FlightRecorder::open(record, header, firmware->controller(), recorder); !s) {
       return fail(2, "--record: " + s.message());
     }

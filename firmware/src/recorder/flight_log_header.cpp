@@ -80,6 +80,7 @@ nlohmann::json make_header(const HeaderInputs& in) {
             {"git", std::string(firmware_git())}}},
           {"started_utc", started},
           {"hal", in.hal},
+          {"params_file", in.params_file.string()},
           {"period_ns", in.period_ns},
           {"robot_description",
            {{"kind", "servo-table"},

@@ -76,6 +76,7 @@ TEST(FlightRecorderCli, EveryTickOfATestHalRunWithTheParameterFileInTheHeader) {
   expect_ticks_increase(log);
   EXPECT_EQ(log.header["hal"], "test");
   EXPECT_EQ(log.header["period_ns"], 10'000'000);
+  EXPECT_EQ(log.header["params_file"], params.string());
   EXPECT_EQ(log.header["robot_description"]["hash"],
             fw::flight_log::robot_description_hash(fw::ServoTable::defaults()));
   const int gain = log.parameter_index("stand.gain");

@@ -118,8 +118,12 @@ struct RecordedLoop {
     record.path = log;
     record.buffer_bytes = buffer;
     record.writer_poll_ms = poll_ms;
-    const fl::HeaderInputs header{&firmware->params(), &firmware->servos(),
-                                  ServoTable::default_path(), firmware->period_ns(), "test"};
+    const fl::HeaderInputs header{&firmware->params(),
+                                  &firmware->servos(),
+                                  ServoTable::default_path(),
+                                  firmware->period_ns(),
+                                  "test",
+                                  ""};
     const Status s = FlightRecorder::open(record, header, firmware->controller(), recorder);
     EXPECT_TRUE(s) << s.message();
     loop = std::make_unique<ControlLoop>(*robot, firmware->controller(), firmware->params());
@@ -297,7 +301,8 @@ TEST(FlightRecorder, AnUnwritablePathIsNamed) {
   std::unique_ptr<FlightRecorder> recorder;
   RecorderOptions record;
   record.path = "/nonexistent-stride-dir/run.flog";
-  const fl::HeaderInputs header{&firmware->params(), &firmware->servos(), "", 10'000'000, "test"};
+  const fl::HeaderInputs header{
+      &firmware->params(), &firmware->servos(), "", 10'000'000, "test", ""};
   const Status s = FlightRecorder::open(record, header, firmware->controller(), recorder);
   ASSERT_FALSE(s);
   EXPECT_EQ(s.message(),

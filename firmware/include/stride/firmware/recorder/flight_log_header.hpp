@@ -32,7 +32,8 @@ struct HeaderInputs {
   const ServoTable* servos = nullptr;
   std::filesystem::path servo_table_file;
   std::int64_t period_ns = 0;
-  std::string hal;  ///< HAL backend name (serial, sim, test)
+  std::string hal;                    ///< HAL backend name (serial, sim, test)
+  std::filesystem::path params_file;  ///< --params FILE applied at start-up ("" none)
 };
 
 /// The header block's JSON (see FLIGHT_LOG.md for every field).
