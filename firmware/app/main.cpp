@@ -2,6 +2,7 @@
 // loop until --ticks have run or SIGINT/SIGTERM, then prints the loop statistics.
 #include <csignal>
 #include <cstdio>
+#include <filesystem>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -12,6 +13,7 @@
 #include "stride/firmware/firmware.hpp"
 #include "stride/firmware/hal_registry.hpp"
 #include "stride/firmware/realtime_robot.hpp"
+#include "stride/firmware/recorder/flight_recorder.hpp"
 
 namespace {
 
@@ -47,6 +49,9 @@ int main(int argc, char** argv) {
               true, fw::RobotDescription::default_path().string())
       .option("console", "serve the parameter console on DEV (serial device or pty) or stdio")
       .option("ticks", "stop after N ticks (default: run until SIGINT)")
+      .option("record", "flight recorder: write every tick to LOG (format: FLIGHT_LOG.md)")
+      .option("record-buffer-kb", "flight recorder's ring buffer [KiB]; a full one drops ticks",
+              true, "4096")
       .option("no-rt", "do not ask for SCHED_FIFO and mlockall", false)
       .option("json", "print the final report as one JSON object on stdout", false)
       .option("help", "show this help", false);
@@ -63,6 +68,14 @@ int main(int argc, char** argv) {
   }
   std::int64_t ticks = -1;
   if (Status s = args.get_int("ticks", ticks); !s) return fail(2, s.message());
+  std::int64_t record_buffer_kb = 0;
+  if (Status s = args.get_int("record-buffer-kb", record_buffer_kb); !s) {
+    return fail(2, s.message());
+  }
+  if (record_buffer_kb < 4 || record_buffer_kb > (1 << 22)) {
+    return fail(
+        2, "--record-buffer-kb: must be in [4, 4194304], got " + std::to_string(record_buffer_kb));
+  }
 
   const fw::HalBackend* backend = nullptr;
   for (const auto& b : fw::hal_backends()) {
@@ -79,8 +92,27 @@ int main(int argc, char** argv) {
   std::unique_ptr<fw::Firmware> firmware;
   if (Status s = fw::Firmware::create(options, firmware); !s) return fail(2, s.message());
 
+  // The recorder opens before the HAL, so that a bad --record path fails before a port opens.
+  std::unique_ptr<fw::FlightRecorder> recorder;
+  if (args.has("record")) {
+    fw::RecorderOptions record;
+    record.path = args.get("record");
+    record.buffer_bytes = static_cast<std::size_t>(record_buffer_kb) * 1024;
+    fw::flight_log::HeaderInputs header{
+        &firmware->params(),   &firmware->servos(),        options.servo_table,
+        firmware->period_ns(), std::string(backend->name), options.params_file.value_or("")};
+    if (Status s = fw::FlightRecorder::open(record, header, firmware->controller(), recorder); !s) {
+      return fail(2, "--record: " + s.message());
+    }
+  }
+
   fw::HalInstance instance;
   if (Status s = backend->make(args, firmware->period_ns(), instance); !s) {
+    if (recorder) {
+      (void)recorder->close();
+      std::error_code ignored;
+      std::filesystem::remove(args.get("record"), ignored);  // no log of a run that never ran
+    }
     return fail(1, s.message());
   }
   hal::Robot* robot = instance.robot.get();
@@ -102,6 +134,7 @@ int main(int argc, char** argv) {
                rate_hz, ticks >= 0 ? ("ticks=" + std::to_string(ticks)).c_str() : "(Ctrl-C stops)");
 
   fw::ControlLoop loop(*robot, firmware->controller(), firmware->params());
+  loop.set_recorder(recorder.get());
   std::unique_ptr<fw::console::ConsoleServer> console;
   if (args.has("console")) {
     fw::console::ConsoleContext context;
@@ -115,6 +148,8 @@ int main(int argc, char** argv) {
   }
   loop.run(ticks, &g_stop);
   if (console) console->stop();
+  fw::RecorderTotals recorded;
+  if (recorder) recorded = recorder->close();
 
   const auto& c = loop.counters();
   const auto status = firmware->controller().status();
@@ -139,6 +174,19 @@ int main(int argc, char** argv) {
                    {"max_tx_us", us(d.max_tx_ns)},
                    {"max_rx_us", us(d.max_rx_ns)}};
   if (instance.report) instance.report(report);
+  if (recorder) {
+    report["record"] = {{"path", args.get("record")},
+                        {"ticks_recorded", recorded.ticks_recorded},
+                        {"ticks_dropped", recorded.ticks_dropped},
+                        {"bytes", recorded.bytes_written},
+                        {"write_error", recorded.write_error}};
+    if (!recorded.write_error.empty()) {
+      std::fprintf(stderr,
+                   "stride-fw: warning: --record: writing %s failed (%s); the log ends "
+                   "at the failure\n",
+                   args.get("record").c_str(), recorded.write_error.c_str());
+    }
+  }
 
   if (args.has("json")) {
     std::printf("%s\n", report.dump().c_str());
@@ -158,6 +206,13 @@ int main(int argc, char** argv) {
                   report["compute_us"]["max"].get<double>());
     }
     std::printf("bus: last tx %.1f us, last rx %.1f us\n", us(d.last_tx_ns), us(d.last_rx_ns));
+    if (recorder) {
+      std::printf("record: %llu ticks, %llu dropped, %llu bytes in %s\n",
+                  static_cast<unsigned long long>(recorded.ticks_recorded),
+                  static_cast<unsigned long long>(recorded.ticks_dropped),
+                  static_cast<unsigned long long>(recorded.bytes_written),
+                  args.get("record").c_str());
+    }
   }
   return 0;
 }

@@ -7,9 +7,10 @@ void ControlLoop::run_once() noexcept {
   const hal::Tick woke = robot_.sleep_until(next_);
   if (woke > next_) counters_.missed_ticks += static_cast<std::uint64_t>(woke - next_);
   robot_.read(sensors_);
-  if (params_.apply_staged()) ++counters_.param_batches;
+  if (params_.apply_staged(recorder_)) ++counters_.param_batches;
   commands_ = controller_.step(sensors_, woke);
   robot_.write(commands_);
+  if (recorder_ != nullptr) recorder_->on_tick(woke, sensors_, commands_);
   counters_.last_tick = woke;
   ++counters_.cycles;
   next_ = woke + 1;

@@ -139,13 +139,15 @@ Status ParameterStore::stage(std::string_view name, double value) {
   return stage(std::vector<ParamWrite>{{std::string(name), value}});
 }
 
-bool ParameterStore::apply_staged() noexcept {
+bool ParameterStore::apply_staged(ParamChangeSink* changes) noexcept {
   std::unique_lock lock(staging_mutex_, std::try_to_lock);
   if (!lock.owns_lock() || !staged_pending_) return false;
   for (std::size_t i = 0; i < live_.size(); ++i) {
     if (staged_dirty_[i] != 0) {
       live_[i].store(staged_values_[i], std::memory_order_relaxed);
       staged_dirty_[i] = 0;
+      if (changes != nullptr)
+        changes->on_param_change(static_cast<ParamHandle>(i), staged_values_[i]);
     }
   }
   staged_pending_ = false;

@@ -5,10 +5,12 @@
 //   params.apply_staged()               // staged parameter batches land at a tick boundary
 //   commands = controller.step(sensors, woke)
 //   robot.write(commands)
+//   recorder.on_tick(...)               // optional: hands the cycle to the flight recorder
 //   next = woke + 1                     // missed ticks are counted and skipped
 //
 // The loop itself allocates nothing and reads no clock; timing statistics come from the
-// RealtimeRobot wrapper when the robot is paced by the real clock.
+// RealtimeRobot wrapper when the robot is paced by the real clock. A recorder (LoopRecorder)
+// must keep the same rules: it copies the cycle into preallocated memory and returns.
 #pragma once
 
 #include <atomic>
@@ -27,6 +29,16 @@ struct LoopCounters {
   hal::Tick last_tick = -1;
 };
 
+/// Hears every cycle of the loop on the control thread: the parameter changes applied at its
+/// start (ParamChangeSink), then the sensors as read and the commands as sent. Real-time: an
+/// implementation must not block, allocate, do I/O or throw.
+class LoopRecorder : public ParamChangeSink {
+ public:
+  virtual void on_tick(hal::Tick tick, const hal::SensorFrame& sensors,
+                       const hal::CommandFrame& commands) noexcept = 0;
+  virtual ~LoopRecorder() = default;
+};
+
 class ControlLoop {
  public:
   ControlLoop(hal::Robot& robot, Controller& controller, ParameterStore& params)
@@ -37,6 +49,9 @@ class ControlLoop {
   /// Runs `cycles` cycles (negative: forever) or until `stop` becomes true.
   void run(std::int64_t cycles, const std::atomic<bool>* stop = nullptr) noexcept;
 
+  /// Attaches a recorder (null: none) before the loop runs; it must outlive the loop.
+  void set_recorder(LoopRecorder* recorder) noexcept { recorder_ = recorder; }
+
   const LoopCounters& counters() const noexcept { return counters_; }
   const hal::SensorFrame& last_sensors() const noexcept { return sensors_; }
   const hal::CommandFrame& last_commands() const noexcept { return commands_; }
@@ -45,6 +60,7 @@ class ControlLoop {
   hal::Robot& robot_;
   Controller& controller_;
   ParameterStore& params_;
+  LoopRecorder* recorder_ = nullptr;
   hal::SensorFrame sensors_{};
   hal::CommandFrame commands_{};
   hal::Tick next_ = 0;

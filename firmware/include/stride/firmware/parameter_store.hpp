@@ -57,6 +57,14 @@ using ParamHandle = std::uint32_t;
 /// One write of a batch: parameter name and new value (bool as 0/1).
 using ParamWrite = std::pair<std::string, double>;
 
+/// Told by apply_staged() about each live value it changes (the flight recorder logs them).
+/// Called on the control thread: implementations must not block, allocate or throw.
+class ParamChangeSink {
+ public:
+  virtual void on_param_change(ParamHandle handle, double value) noexcept = 0;
+  virtual ~ParamChangeSink() = default;
+};
+
 class ParameterStore {
  public:
   ParameterStore() = default;
@@ -95,8 +103,8 @@ class ParameterStore {
 
   /// Applies everything staged since the last call, atomically. Returns true if values
   /// changed. Real-time: yes (no allocation, never blocks; if a writer holds the lock the
-  /// batch is applied at the next call).
-  bool apply_staged() noexcept;
+  /// batch is applied at the next call). `changes`, if given, hears of every value written.
+  bool apply_staged(ParamChangeSink* changes = nullptr) noexcept;
   /// True while a staged batch waits for apply_staged().
   bool has_staged() const;
   /// Number of batches applied since construction (for tests and the console's status).
