@@ -98,9 +98,15 @@ int main(int argc, char** argv) {
     fw::RecorderOptions record;
     record.path = args.get("record");
     record.buffer_bytes = static_cast<std::size_t>(record_buffer_kb) * 1024;
-    fw::flight_log::HeaderInputs header{
-        &firmware->params(),   &firmware->servos(),        options.servo_table,
-        firmware->period_ns(), std::string(backend->name), options.params_file.value_or("")};
+    fw::flight_log::HeaderInputs header;
+    header.params = &firmware->params();
+    header.servos = &firmware->servos();
+    header.servo_table_file = options.servo_table;
+    header.robot = &firmware->robot();
+    header.robot_description_file = options.robot_description;
+    header.period_ns = firmware->period_ns();
+    header.hal = std::string(backend->name);
+    header.params_file = options.params_file.value_or("");
     if (Status s = fw::FlightRecorder::open(record, header, firmware->controller(), recorder); !s) {
       return fail(2, "--record: " + s.message());
     }
@@ -156,7 +162,7 @@ int main(int argc, char** argv) {
   nlohmann::json report = {{"hal", std::string(backend->name)},
                            {"rate_hz", rate_hz},
                            {"cycles", c.cycles},
-                           {"missed_ticks", c.missed_ticks + (paced ? paced->skipped_ticks() : 0)},
+                           {"missed_ticks", c.missed_ticks},
                            {"param_batches", c.param_batches},
                            {"motion_state", std::string(fw::to_string(status.state))},
                            {"fallen", status.safety.fallen}};

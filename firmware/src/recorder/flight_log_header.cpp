@@ -38,9 +38,11 @@ nlohmann::json servo_table_json(const ServoTable& servos) {
   return list;
 }
 
-std::string robot_description_hash(const ServoTable& servos) {
+std::string robot_description_hash(const ServoTable& servos, const RobotDescription& robot) {
+  char model[17];
+  std::snprintf(model, sizeof model, "%016llx", static_cast<unsigned long long>(robot.hash()));
   std::uint64_t hash = 0xcbf29ce484222325ULL;
-  for (const char c : servo_table_json(servos).dump()) {
+  for (const char c : servo_table_json(servos).dump() + model) {
     hash ^= static_cast<std::uint8_t>(c);
     hash *= 0x100000001b3ULL;
   }
@@ -83,10 +85,10 @@ nlohmann::json make_header(const HeaderInputs& in) {
           {"params_file", in.params_file.string()},
           {"period_ns", in.period_ns},
           {"robot_description",
-           {{"kind", "servo-table"},
-            {"note", "the firmware loads no URDF; the hash covers the servo table"},
-            {"file", in.servo_table_file.string()},
-            {"hash", robot_description_hash(*in.servos)}}},
+           {{"kind", "servo-table+rigid-body"},
+            {"servo_table_file", in.servo_table_file.string()},
+            {"file", in.robot_description_file.string()},
+            {"hash", robot_description_hash(*in.servos, *in.robot)}}},
           {"servo_table", servo_table_json(*in.servos)},
           {"parameters", params},
           {"motion_states", motion_states},

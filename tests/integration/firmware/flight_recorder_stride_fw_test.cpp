@@ -78,7 +78,8 @@ TEST(FlightRecorderCli, EveryTickOfATestHalRunWithTheParameterFileInTheHeader) {
   EXPECT_EQ(log.header["period_ns"], 10'000'000);
   EXPECT_EQ(log.header["params_file"], params.string());
   EXPECT_EQ(log.header["robot_description"]["hash"],
-            fw::flight_log::robot_description_hash(fw::ServoTable::defaults()));
+            fw::flight_log::robot_description_hash(fw::ServoTable::defaults(),
+                                                   fw::RobotDescription::defaults()));
   const int gain = log.parameter_index("stand.gain");
   ASSERT_GE(gain, 0);
   EXPECT_EQ(log.header["parameters"][gain]["value"], 50.0);  // from --params

@@ -123,7 +123,9 @@ struct RecordedLoop {
                                   ServoTable::default_path(),
                                   firmware->period_ns(),
                                   "test",
-                                  ""};
+                                  "",
+                                  &firmware->robot(),
+                                  RobotDescription::default_path()};
     const Status s = FlightRecorder::open(record, header, firmware->controller(), recorder);
     EXPECT_TRUE(s) << s.message();
     loop = std::make_unique<ControlLoop>(*robot, firmware->controller(), firmware->params());
@@ -157,7 +159,7 @@ TEST(FlightRecorder, RecordsEveryTickAsTheLoopRanIt) {
   EXPECT_EQ(log.header["hal"], "test");
   EXPECT_EQ(log.header["firmware"]["version"], std::string(fl::firmware_version()));
   EXPECT_EQ(log.header["robot_description"]["hash"],
-            fl::robot_description_hash(run.firmware->servos()));
+            fl::robot_description_hash(run.firmware->servos(), run.firmware->robot()));
   EXPECT_EQ(log.header["servo_table"].size(), hal::kServoCount);
   EXPECT_EQ(log.header["servo_table"][19]["name"], run.firmware->servos()[19].name);
   ASSERT_EQ(log.header["parameters"].size(), run.firmware->params().size());
@@ -302,7 +304,7 @@ TEST(FlightRecorder, AnUnwritablePathIsNamed) {
   RecorderOptions record;
   record.path = "/nonexistent-stride-dir/run.flog";
   const fl::HeaderInputs header{
-      &firmware->params(), &firmware->servos(), "", 10'000'000, "test", ""};
+      &firmware->params(), &firmware->servos(), "", 10'000'000, "test", "", &firmware->robot(), ""};
   const Status s = FlightRecorder::open(record, header, firmware->controller(), recorder);
   ASSERT_FALSE(s);
   EXPECT_EQ(s.message(),

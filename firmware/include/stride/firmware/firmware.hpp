@@ -55,6 +55,7 @@ class Firmware {
   ParameterStore& params() noexcept { return params_; }
   Controller& controller() noexcept { return *controller_; }
   const ServoTable& servos() const noexcept { return servos_; }
+  const RobotDescription& robot() const noexcept { return robot_; }
   /// Loop period from loop.rate_hz at start-up [ns].
   std::int64_t period_ns() const noexcept { return period_ns_; }
 

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "stride/firmware/parameter_store.hpp"
+#include "stride/firmware/robot_description.hpp"
 #include "stride/firmware/servo_table.hpp"
 
 namespace stride::fw::flight_log {
@@ -22,18 +23,21 @@ std::string_view firmware_git() noexcept;
 /// The servo table as JSON: [{id, name, model, direction, offset_rad, min_rad, max_rad}, ...].
 nlohmann::json servo_table_json(const ServoTable& servos);
 
-/// Hash of the robot description the firmware runs with. The firmware loads no URDF (its leg
-/// geometry is compiled in), so this is the servo table: "fnv1a64:" and 16 hex digits of the
-/// FNV-1a 64-bit hash of servo_table_json(servos).dump() (compact, keys sorted).
-std::string robot_description_hash(const ServoTable& servos);
+/// Hash of the robot description the firmware runs with: its servo table and its rigid-body
+/// model (robot_description.json, RobotDescription). "fnv1a64:" and 16 hex digits of the FNV-1a
+/// 64-bit hash of servo_table_json(servos).dump() (compact, keys sorted) followed by the 16 hex
+/// digits of robot.hash() (FNV-1a of the description file's text).
+std::string robot_description_hash(const ServoTable& servos, const RobotDescription& robot);
 
 struct HeaderInputs {
   const ParameterStore* params = nullptr;
   const ServoTable* servos = nullptr;
   std::filesystem::path servo_table_file;
   std::int64_t period_ns = 0;
-  std::string hal;                    ///< HAL backend name (serial, sim, test)
-  std::filesystem::path params_file;  ///< --params FILE applied at start-up ("" none)
+  std::string hal;                          ///< HAL backend name (serial, sim, test)
+  std::filesystem::path params_file;        ///< --params FILE applied at start-up ("" none)
+  const RobotDescription* robot = nullptr;  ///< the rigid-body model (required)
+  std::filesystem::path robot_description_file;
 };
 
 /// The header block's JSON (see FLIGHT_LOG.md for every field).
