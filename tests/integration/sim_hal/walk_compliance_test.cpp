@@ -1,10 +1,13 @@
-// Compliance compensation in the faithful world (identified MX servos, CM730 IMU, noise on):
+// Closed-loop stepping in the faithful world (identified MX servos, CM730 IMU, noise on):
 // walking sideways with balance-identified.json, the soft servos let the swing foot drag through
-// the grass in nearly every step; with walk.compliance.gain 1 it clears the grass. Deterministic
+// the grass in nearly every step; with walk.compliance.gain 1 it clears the grass. On turf,
+// firmware/config/stepping-turf.json (compensation and support exchange at touchdown) walks
+// forward faster than balance-identified.json, backward the right way and turns. Deterministic
 // (seed 1, 2 ms), so the figures are asserted as measured.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 
 #include <nlohmann/json.hpp>
@@ -22,16 +25,21 @@ namespace {
 const std::filesystem::path kBalance =
     std::filesystem::path(STRIDE_SOURCE_DIR) / "firmware/config/balance-identified.json";
 
-struct Sideways {
+const std::filesystem::path kSteppingTurf =
+    std::filesystem::path(STRIDE_SOURCE_DIR) / "firmware/config/stepping-turf.json";
+
+struct Walk {
   bool fell = true;
   double median_clearance = 0.0;
   int steps = 0, grazing = 0;
+  Eigen::Vector3d moved = Eigen::Vector3d::Zero();  ///< torso displacement [m]
+  double yaw = 0.0;                                 ///< torso yaw turned, unwrapped [rad]
 };
 
-Sideways walk_left(double compliance_gain) {
+/// A 12 s walk (seed 1) with `params` (a parameter file's JSON) and a normalised command.
+Walk walk(const nlohmann::json& params, double vx, double vy, double vth, bool turf,
+          double duration = 12.0) {
   test::TempDir dir;
-  nlohmann::json params = nlohmann::json::parse(test::read_file(kBalance));
-  params["walk.compliance.gain"] = compliance_gain;
   fw::FirmwareOptions options;
   options.params_file = dir.write("params.json", params.dump());
   std::unique_ptr<fw::Firmware> firmware;
@@ -43,21 +51,31 @@ Sideways walk_left(double compliance_gain) {
   world_options.imu.chain.noise = true;
   world_options.servo.law = ServoLaw::kIdentified;
   world_options.control_period_ns = firmware->period_ns();
+  if (turf) world_options.contact = ContactOptions::turf();
   std::unique_ptr<SimWorld> world;
   EXPECT_TRUE(SimWorld::create(world_options, world));
   SimRobot robot(std::move(world));
   fw::Controller& controller = firmware->controller();
-  controller.request(fw::MotionRequest::walk(0.0, 1.0, 0.0));
+  controller.request(fw::MotionRequest::walk(vx, vy, vth));
+  const Eigen::Vector3d start = robot.world().torso_pose().translation();
   SwingClearance clearance;
   const double period = static_cast<double>(firmware->period_ns()) * 1e-9;
+  double yaw = 0.0, previous_yaw = 0.0;  // unwrapped torso yaw
   const StepFunction step = [&](const hal::SensorFrame& sensors, hal::Tick tick) {
-    clearance.observe(static_cast<double>(tick) * period, robot.world().ground_truth());
+    const GroundTruth truth = robot.world().ground_truth();
+    clearance.observe(static_cast<double>(tick) * period, truth);
+    const double now = std::atan2(truth.torso.linear()(1, 0), truth.torso.linear()(0, 0));
+    if (tick > 0) yaw += std::remainder(now - previous_yaw, 2.0 * M_PI);
+    previous_yaw = now;
     return controller.step(sensors, tick);
   };
   EpisodeOptions episode;
-  episode.duration_s = 12.0;
-  Sideways out;
+  episode.duration_s = duration;
+  Walk out;
   out.fell = run_episode(robot, step, episode).fell;
+  const Eigen::Isometry3d end = robot.world().torso_pose();
+  out.moved = end.translation() - start;
+  out.yaw = yaw;
   std::vector<double> c = clearance.clearance();
   std::sort(c.begin(), c.end());
   out.median_clearance = c.empty() ? 0.0 : c[c.size() / 2];
@@ -66,9 +84,15 @@ Sideways walk_left(double compliance_gain) {
   return out;
 }
 
+nlohmann::json balance_identified(double compliance_gain) {
+  nlohmann::json params = nlohmann::json::parse(test::read_file(kBalance));
+  params["walk.compliance.gain"] = compliance_gain;
+  return params;
+}
+
 TEST(WalkCompliance, TheSwingFootClearsTheGrassWalkingSideways) {
-  const Sideways sagging = walk_left(0.0);
-  const Sideways compensated = walk_left(1.0);
+  const Walk sagging = walk(balance_identified(0.0), 0.0, 1.0, 0.0, false);
+  const Walk compensated = walk(balance_identified(1.0), 0.0, 1.0, 0.0, false);
   ASSERT_FALSE(sagging.fell);
   ASSERT_FALSE(compensated.fell);
   SCOPED_TRACE("sagging: " + std::to_string(sagging.grazing) + " of " +
@@ -83,6 +107,26 @@ TEST(WalkCompliance, TheSwingFootClearsTheGrassWalkingSideways) {
   EXPECT_GT(sagging.grazing, 0.8 * sagging.steps);
   EXPECT_GT(compensated.median_clearance, 0.028);
   EXPECT_LT(compensated.grazing, 0.2 * compensated.steps);
+}
+
+TEST(WalkSteppingTurf, ForwardFasterBackwardAndTurningOnTurf) {
+  const nlohmann::json stepping = nlohmann::json::parse(test::read_file(kSteppingTurf));
+  const Walk clock = walk(balance_identified(0.0), 1.0, 0.0, 0.0, true, 20.0);
+  const Walk forward = walk(stepping, 1.0, 0.0, 0.0, true, 20.0);
+  const Walk backward = walk(stepping, -1.0, 0.0, 0.0, true, 20.0);
+  const Walk right = walk(stepping, 0.0, 0.0, -1.0, true, 20.0);
+  SCOPED_TRACE("forward " + std::to_string(forward.moved.x()) + " m (clock-driven " +
+               std::to_string(clock.moved.x()) + " m), backward " +
+               std::to_string(backward.moved.x()) + " m, turning right to yaw " +
+               std::to_string(right.yaw) + " rad");
+  ASSERT_FALSE(forward.fell);
+  ASSERT_FALSE(backward.fell);
+  ASSERT_FALSE(right.fell);
+  EXPECT_GT(forward.moved.x(), 1.3 * clock.moved.x());
+  EXPECT_GT(forward.median_clearance, 0.05);  // planned lift 70 mm at walking speed
+  EXPECT_EQ(forward.grazing, 0);
+  EXPECT_LT(backward.moved.x(), -0.1);
+  EXPECT_LT(right.yaw, -2.0);  // about -0.2 rad/s (bench_sim_hal_walk_directions)
 }
 
 }  // namespace
