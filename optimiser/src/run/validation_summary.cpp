@@ -399,8 +399,9 @@ std::string validation_words(const json& result) {
   std::snprintf(legend, sizeof legend,
                 "pass (holds): at least %.0f %% of the seeds %s without a fall, and the median %s "
                 "is at most %.0f %% worse than the individual's own value in the run.\n"
-                "fail: not so in that world; the gait tuned in the run's world does not carry "
-                "over to it. A finding about the gait, not an error of the program.\n",
+                "fail: not so in that world: the walk does not carry over to it (for a pick: "
+                "what the run tuned does not hold there). A finding about the walk in that "
+                "world, not an error of the program.\n",
                 100.0 * min_reached, words.reach.c_str(), words.measure.c_str(), 100.0 * max_worse);
   out << legend;
   return out.str();
