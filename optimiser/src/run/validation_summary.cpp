@@ -390,6 +390,8 @@ std::string validation_words(const json& result) {
       best_falls = falls;
     }
   }
+  // toolchain/demo.sh reads the front file from the end of this line (pinned by
+  // validation_summary_test.cpp).
   if (best_held > 0)
     out << "  the pick that holds in most worlds: " << best_name << " (" << best_held << " of "
         << worlds_count << " worlds), " << best_file << "\n";
