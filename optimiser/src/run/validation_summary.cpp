@@ -86,18 +86,20 @@ std::string fixed(const json& v, int decimals) {
 
 /// How the plain-language summary names a task's goal and its gate measure.
 struct TaskWords {
-  std::string reach, reaches, misses, measure, worse;
+  std::string reach, reaches, misses, measure;
+  std::string worse;  ///< "{} % slower than in the run": {} is the percentage
 };
 
 TaskWords task_words(const std::string& task) {
   if (task == "kick")
     return {"kick the ball at least 0.5 m", "kicks the ball at least 0.5 m",
-            "kicks the ball less than 0.5 m", "1 / ball distance", "kicks shorter than in the run"};
+            "kicks the ball less than 0.5 m", "1 / ball distance",
+            "its median 1 / ball distance is {} % worse than in the run"};
   if (task == "walk-omni")
     return {"walk every segment", "walks every segment", "does not walk every segment",
-            "speed score", "slower than in the run"};
+            "speed score", "its median speed score is {} % worse than in the run"};
   return {"reach the goal", "reaches the goal", "does not reach the goal in time",
-          "time to the goal", "slower than in the run"};
+          "time to the goal", "{} % slower than in the run"};
 }
 
 /// "on MuJoCo", "on fresh seeds", "with wider randomisation", "at half the physics step".
@@ -134,9 +136,11 @@ std::string fail_reason(const TaskWords& words, const json& cell, int seeds, int
     if (median.is_number() && own.is_number() && std::abs(own.get<double>()) > 1e-12) {
       const double worse =
           100.0 * (median.get<double>() - own.get<double>()) / std::abs(own.get<double>());
-      return text + fixed(json(worse), 0) + " % " + words.worse;
+      std::string phrase = words.worse;  // "{} % slower than in the run"
+      phrase.replace(phrase.find("{}"), 2, fixed(json(worse), 0));
+      return text + phrase;
     }
-    return text + words.worse;
+    return text + "worse than in the run";
   }
   if (falls > 0 && misses > 0)
     return "falls in " + std::to_string(falls) + " and " + words.misses + " in " +

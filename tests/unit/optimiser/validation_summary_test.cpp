@@ -193,5 +193,33 @@ TEST(ValidationSummary, WordsSayWhereEachHoldsAndWhyItFailsAndWhatFailMeans) {
   EXPECT_NE(validation_text(v).find(words), std::string::npos);  // the table ends with them
 }
 
+TEST(ValidationSummary, WordsNameTheKicksGoalAndMeasure) {
+  TaskConfig config;
+  config.task = "kick";
+  std::vector<ValidationIndividual> individuals(1);
+  individuals[0].name = "Ind_O";
+  individuals[0].run_objectives = {20.0, 0.5};  // a 2 m kick in the run
+  std::vector<ValidationWorld> worlds(1);
+  worlds[0].name = "fresh seeds";
+  worlds[0].seeds = {1001, 1002, 1003};
+  std::vector<std::vector<std::vector<EpisodeOutcome>>> outcomes(1);
+  outcomes[0].resize(1);
+  for (int s = 0; s < 3; ++s) {
+    EpisodeOutcome e;
+    e.score.ball_distance_m = 1.0;
+    e.score.objectives = {20.0, 1.0};
+    outcomes[0][0].push_back(e);
+  }
+  const std::string words =
+      validation_words(summarise_validation("run", config, individuals, worlds, outcomes));
+  EXPECT_NE(words.find("  Ind_O: fails on fresh seeds (kicks the ball at least 0.5 m in 3 of 3 "
+                       "seeds but its median 1 / ball distance is 100 % worse than in the run)\n"),
+            std::string::npos)
+      << words;
+  EXPECT_NE(words.find("  no pick holds in any world\n"), std::string::npos) << words;
+  EXPECT_NE(words.find("the median 1 / ball distance is at most 25 % worse"), std::string::npos)
+      << words;
+}
+
 }  // namespace
 }  // namespace stride::opt
