@@ -38,7 +38,7 @@ cat <<NEXT
    On the robot, with stride-fw --hal serial --port /dev/ttyUSB0 --console /dev/ttyS1 running:
      $bin/stride console --port /dev/ttyS1 flash $out/$pick --verify
 3. Run the full task, the seed's walk run (pop 40, 50 generations, 10 seeds per world in the
-   validation; about 10 minutes on 2 cores):
+   validation; about 5 minutes on 2 cores):
      $bin/stride optimise --config optimiser/configs/walk.json --out runs/walk --jobs 2
      $bin/stride report runs/walk
 NEXT
