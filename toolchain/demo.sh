@@ -36,7 +36,7 @@ cat <<NEXT
      $bin/stride-fw --hal serial --port /tmp/stride-robot --console stdio
    then type: load $out/$pick, walk 1 0 0, status, stop; Ctrl-C ends stride-fw, kill %1 the bus.
    (The run scored walking to the goal, not stopping: a pick may fall on stop where Ind_O does
-   not; it then gets up.)
+   not; the firmware then starts its get-up.)
    On the robot, with stride-fw --hal serial --port /dev/ttyUSB0 --console /dev/ttyS1 running:
      $bin/stride console --port /dev/ttyS1 flash $out/$pick --verify
 3. Run the full task, the seed's walk run (pop 40, 50 generations, 10 seeds per world in the
