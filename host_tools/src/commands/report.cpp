@@ -68,7 +68,8 @@ int run_report(int argc, char** argv) {
         "A walk-omni run also gets a table of the speed per direction of Ind_O, the\n"
         "picks and each direction's best front member (simulated again in the run's\n"
         "worlds) beside the reference figures (Bit-Bots, NUgus in simulation).\n"
-        "With DIR/validation.json (stride validate) also the validation table.\n\n%s",
+        "With DIR/validation.json (stride validate) also the validation table and the\n"
+        "same in words (where each individual holds, why it fails elsewhere).\n\n%s",
         args.help().c_str());
     return 0;
   }

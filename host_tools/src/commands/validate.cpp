@@ -75,7 +75,9 @@ int run_validate(int argc, char** argv) {
         "latency in half of the worlds) and half the physics step. Per individual and world:\n"
         "reached fraction, falls, median objectives, the gate (>= 80 %% of the seeds reached\n"
         "without a fall, median within 25 %% of its own value in the run) and the gain kept\n"
-        "against Ind_O. Writes RUN/validation.json; `stride report RUN` shows it.\n\n%s",
+        "against Ind_O; then the same in words: where each holds (passes the gate), why it\n"
+        "fails elsewhere, the pick that holds in most worlds. Writes RUN/validation.json;\n"
+        "`stride report RUN` shows it.\n\n%s",
         args.help().c_str());
     return 0;
   }

@@ -106,6 +106,23 @@ TEST(RobotTask, TheGenomeIsFlashedIntoTheFirmware) {
   EXPECT_GT(original.max_accel, 5.0);
 }
 
+// The README demo (toolchain/demo.sh, walk-demo.json) must be able to say "reaches": its
+// Ind_O reaches the 2.5 m goal within the time limit in the run's world, without a fall and
+// within the straightness constraints, with a margin for the validation's noisier worlds.
+TEST(RobotTask, TheDemoConfigsIndOReachesTheGoalInItsWorld) {
+  const TaskConfig c = load("walk-demo.json");
+  EXPECT_EQ(c.goal_distance_m, 2.5);
+  const RobotTask task(c);
+  EpisodeScore s;
+  ASSERT_TRUE(task.run_trial(task.start_genome(), 0, s));
+  EXPECT_FALSE(s.fell);
+  ASSERT_GT(s.time_to_goal_s, 0.0)
+      << "Ind_O walked " << s.distance_m << " m in " << c.duration_s << " s";
+  EXPECT_LT(s.time_to_goal_s, 0.8 * c.duration_s);  // 20 % to spare
+  EXPECT_EQ(s.objectives[0], s.time_to_goal_s);
+  for (double g : s.constraints) EXPECT_GE(g, 0.0);
+}
+
 TEST(RobotTask, KickEpisodeMovesTheBallAndScoresTheSeedsObjectives) {
   TaskConfig c = load("kick.json");
   c.duration_s = 5.0;

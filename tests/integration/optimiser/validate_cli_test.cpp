@@ -141,6 +141,12 @@ TEST(ValidateCli, TinyWalkRunValidatesTheSameForAnyThreadCountAndReportShowsIt) 
   ASSERT_EQ(code, 0) << test::read_file(err);
   EXPECT_NE(text.find("validation of a walk run"), std::string::npos) << text;
   EXPECT_NE(text.find("wider randomisation"), std::string::npos) << text;
+  // ... then in words: a line per individual, what pass and fail mean.
+  EXPECT_NE(text.find("in words:\n  Ind_O: "), std::string::npos) << text;
+  EXPECT_NE(text.find("\npass (holds): at least 80 % of the seeds reach the goal"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("\nfail: "), std::string::npos) << text;
   const json summary = json::parse(stride("report " + run.string() + " --json", err, code));
   EXPECT_EQ(summary["validation"], v);
   const std::string html = test::read_file(run / "report.html");

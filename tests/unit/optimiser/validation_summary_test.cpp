@@ -110,6 +110,115 @@ TEST(ValidationSummary, GateAndGainKeptFollowTheMediansOfEachWorld) {
   const std::string text = validation_text(v);
   EXPECT_NE(text.find("UNAVAILABLE, MuJoCo is not in this build"), std::string::npos) << text;
   EXPECT_NE(text.find("fastest"), std::string::npos);
+  // In words: where each holds, why Ind_O fails "hard", the untested world, the best pick.
+  EXPECT_NE(text.find("  Ind_O: holds in good (reaches the goal in 10 of 10 seeds); fails in "
+                      "hard (falls in 3 of 10 seeds); not tested on MuJoCo (MuJoCo is not in "
+                      "this build)\n"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("  fastest: holds in every world tested (reaches the goal in 18 of 20 "
+                      "seeds); not tested on MuJoCo"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("the pick that holds in most worlds: fastest (2 of 2 worlds), "
+                      "front/000.json\n"),
+            std::string::npos)
+      << text;
+}
+
+TEST(ValidationSummary, WordsSayWhereEachHoldsAndWhyItFailsAndWhatFailMeans) {
+  TaskConfig config;
+  config.task = "walk";
+  std::vector<ValidationIndividual> individuals(3);
+  individuals[0].name = "Ind_O";
+  individuals[0].run_objectives = {20.0, 20.0};
+  individuals[1].name = "fastest";
+  individuals[1].file = "front/002.json";
+  individuals[1].run_objectives = {10.0, 18.0};
+  individuals[2].name = "knee";
+  individuals[2].file = "front/005.json";
+  individuals[2].run_objectives = {12.0, 16.0};
+  std::vector<ValidationWorld> worlds(3);
+  worlds[0].name = "engine mujoco";
+  worlds[1].name = "fresh seeds";
+  worlds[2].name = "half step";
+  for (auto& w : worlds) w.seeds = {1001, 1002, 1003};
+  auto ran_out_of_time = [] {
+    EpisodeOutcome e;
+    e.score.objectives = {30.0, 15.0};
+    e.score.time_to_goal_s = -1.0;
+    return e;
+  };
+  std::vector<std::vector<std::vector<EpisodeOutcome>>> outcomes(3);
+  // Ind_O: 26 s on MuJoCo (30 % slower than its 20 s: fails), holds on fresh seeds, falls in
+  // all three at half the step.
+  outcomes[0] = {seeds(3, 26.0, 20.0, 0, 0, 0), seeds(3, 20.0, 20.0, 0, 0, 0),
+                 seeds(0, 0, 0, 3, 60.0, 30.0)};
+  // fastest: runs out of time in 2 of 3 on MuJoCo, holds on fresh seeds, one fall and one
+  // miss at half the step.
+  outcomes[1] = {seeds(1, 10.0, 18.0, 0, 0, 0), seeds(3, 10.0, 18.0, 0, 0, 0),
+                 seeds(1, 10.0, 18.0, 1, 60.0, 30.0)};
+  outcomes[1][0].push_back(ran_out_of_time());
+  outcomes[1][0].push_back(ran_out_of_time());
+  outcomes[1][2].push_back(ran_out_of_time());
+  // knee: holds on MuJoCo and on fresh seeds, falls at half the step.
+  outcomes[2] = {seeds(3, 12.0, 16.0, 0, 0, 0), seeds(3, 12.0, 16.0, 0, 0, 0),
+                 seeds(0, 0, 0, 3, 60.0, 30.0)};
+  const json v = summarise_validation("run", config, individuals, worlds, outcomes);
+  const std::string words = validation_words(v);
+  EXPECT_NE(words.find("  Ind_O: holds on fresh seeds (reaches the goal in 3 of 3 seeds); fails "
+                       "on MuJoCo (reaches the goal in 3 of 3 seeds but 30 % slower than in the "
+                       "run) and at half the physics step (falls in 3 of 3 seeds)\n"),
+            std::string::npos)
+      << words;
+  EXPECT_NE(words.find("  fastest: holds on fresh seeds (reaches the goal in 3 of 3 seeds); "
+                       "fails on MuJoCo (does not reach the goal in time in 2 of 3 seeds) and at "
+                       "half the physics step (falls in 1 and does not reach the goal in time in "
+                       "1 of 3 seeds)\n"),
+            std::string::npos)
+      << words;
+  EXPECT_NE(words.find("  knee: holds on MuJoCo and on fresh seeds (reaches the goal in 6 of 6 "
+                       "seeds); fails at half the physics step (falls in 3 of 3 seeds)\n"),
+            std::string::npos)
+      << words;
+  EXPECT_NE(words.find("  the pick that holds in most worlds: knee (2 of 3 worlds), "
+                       "front/005.json\n"),
+            std::string::npos)
+      << words;
+  EXPECT_NE(words.find("pass (holds): at least 80 % of the seeds reach the goal without a fall, "
+                       "and the median time to the goal is at most 25 % worse"),
+            std::string::npos)
+      << words;
+  EXPECT_NE(words.find("fail: "), std::string::npos) << words;
+  EXPECT_NE(validation_text(v).find(words), std::string::npos);  // the table ends with them
+}
+
+TEST(ValidationSummary, WordsNameTheKicksGoalAndMeasure) {
+  TaskConfig config;
+  config.task = "kick";
+  std::vector<ValidationIndividual> individuals(1);
+  individuals[0].name = "Ind_O";
+  individuals[0].run_objectives = {20.0, 0.5};  // a 2 m kick in the run
+  std::vector<ValidationWorld> worlds(1);
+  worlds[0].name = "fresh seeds";
+  worlds[0].seeds = {1001, 1002, 1003};
+  std::vector<std::vector<std::vector<EpisodeOutcome>>> outcomes(1);
+  outcomes[0].resize(1);
+  for (int s = 0; s < 3; ++s) {
+    EpisodeOutcome e;
+    e.score.ball_distance_m = 1.0;
+    e.score.objectives = {20.0, 1.0};
+    outcomes[0][0].push_back(e);
+  }
+  const std::string words =
+      validation_words(summarise_validation("run", config, individuals, worlds, outcomes));
+  EXPECT_NE(words.find("  Ind_O: fails on fresh seeds (kicks the ball at least 0.5 m in 3 of 3 "
+                       "seeds but its median 1 / ball distance is 100 % worse than in the run)\n"),
+            std::string::npos)
+      << words;
+  EXPECT_NE(words.find("  no pick holds in any world\n"), std::string::npos) << words;
+  EXPECT_NE(words.find("the median 1 / ball distance is at most 25 % worse"), std::string::npos)
+      << words;
 }
 
 }  // namespace

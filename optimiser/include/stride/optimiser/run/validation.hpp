@@ -102,7 +102,12 @@ Status write_validation_file(const std::filesystem::path& dir, const nlohmann::j
 /// terminal, else a line at every tenth of the work.
 std::function<void(std::size_t, std::size_t)> validation_progress_printer(bool terminal);
 
-/// The human table of a validation result.
+/// The human table of a validation result, followed by validation_words.
 std::string validation_text(const nlohmann::json& result);
+
+/// The same result in plain words: per individual one line saying in which worlds it holds
+/// (passes the gate) and where and why it fails (falls, misses the goal, slower than in the
+/// run); the pick that holds in most worlds and its front file; what pass and fail mean.
+std::string validation_words(const nlohmann::json& result);
 
 }  // namespace stride::opt
