@@ -129,5 +129,28 @@ TEST(WalkSteppingTurf, ForwardFasterBackwardAndTurningOnTurf) {
   EXPECT_LT(right.yaw, -2.0);  // about -0.2 rad/s (bench_sim_hal_walk_directions)
 }
 
+TEST(WalkSteppingTurf, TheOmniFileWalksEveryDirectionAtItsSpeed) {
+  // stepping-turf-omni.json: stepping-turf.json with 0.5 s steps and wider step and velocity
+  // limits. Seed 1, 20 s each; the figures of 10 seeds are in firmware/src/walk/README.md.
+  const nlohmann::json omni = nlohmann::json::parse(test::read_file(
+      std::filesystem::path(STRIDE_SOURCE_DIR) / "firmware/config/stepping-turf-omni.json"));
+  const Walk forward = walk(omni, 1.0, 0.0, 0.0, true, 20.0);
+  const Walk backward = walk(omni, -1.0, 0.0, 0.0, true, 20.0);
+  const Walk left = walk(omni, 0.0, 1.0, 0.0, true, 20.0);
+  const Walk right = walk(omni, 0.0, -1.0, 0.0, true, 20.0);
+  const Walk turn_left = walk(omni, 0.0, 0.0, 1.0, true, 20.0);
+  SCOPED_TRACE("forward " + std::to_string(forward.moved.x()) + ", backward " +
+               std::to_string(backward.moved.x()) + ", left " + std::to_string(left.moved.y()) +
+               ", right " + std::to_string(right.moved.y()) + " m, turning left " +
+               std::to_string(turn_left.yaw) + " rad in 20 s");
+  for (const Walk* w : {&forward, &backward, &left, &right, &turn_left}) ASSERT_FALSE(w->fell);
+  // The speeds (forward 0.25, backward 0.15, sideways 0.10 m/s) over 20 s from standing.
+  EXPECT_GT(forward.moved.x(), 0.25 * 15.0);
+  EXPECT_LT(backward.moved.x(), -0.15 * 15.0);
+  EXPECT_GT(left.moved.y(), 0.10 * 15.0);
+  EXPECT_LT(right.moved.y(), -0.10 * 15.0);
+  EXPECT_GT(turn_left.yaw, 0.6 * 15.0);
+}
+
 }  // namespace
 }  // namespace stride::sim
