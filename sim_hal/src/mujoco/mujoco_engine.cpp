@@ -3,6 +3,7 @@
 #include "mujoco_engine.hpp"
 
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstring>
 #include <mutex>
@@ -27,6 +28,10 @@ struct VfsDeleter {
     delete v;
   }
 };
+
+/// Test and benchmark hooks (mujoco_engine.hpp): compiles so far, and the old path.
+std::atomic<std::int64_t> compiles{0};
+std::atomic<bool> always_compile{false};
 
 /// MuJoCo's default warning handler prints and appends to MUJOCO_LOG.TXT in the working
 /// directory; the engine reads the warning counters instead (step()).
@@ -80,6 +85,7 @@ class MujocoEngine final : public PhysicsEngine {
 
  private:
   EngineModel model_;
+  std::string xml_;  ///< the MJCF m_ was compiled from (empty: none)
   std::unique_ptr<mjModel, ModelDeleter> m_;
   std::unique_ptr<mjData, DataDeleter> d_;
   std::vector<int> link_body_;  // per link: MuJoCo body id
@@ -112,10 +118,20 @@ Status MujocoEngine::build(const EngineModel& model) {
   model_ = model;
   static std::once_flag quiet;  // a global of MuJoCo: set once, whatever the threads
   std::call_once(quiet, [] { mju_user_warning = quiet_warning; });
+
+  // Compiled once per model: everything the compiler reads is in the MJCF text (the episode's
+  // randomised masses and friction among it), so the same text gives the same mjModel, bit for
+  // bit, and only the data is reset. The contact parameters are set again (they depend on the
+  // stiffnesses, which are not in the text, and on the compiled inverse weights, which are).
+  std::string xml = mujoco::write_mjcf(model);
+  if (m_ && d_ && xml == xml_ && !always_compile.load(std::memory_order_relaxed)) {
+    mujoco::set_contact_params(m_.get(), model);
+    mj_resetData(m_.get(), d_.get());  // as a fresh mj_makeData leaves it
+    return Status::ok();
+  }
   d_.reset();
   m_.reset();
-
-  const std::string xml = mujoco::write_mjcf(model);
+  xml_.clear();
   const char* file = "stride.xml";
   std::unique_ptr<mjVFS, VfsDeleter> vfs(new mjVFS);  // ~2 MB: not on the stack
   mj_defaultVFS(vfs.get());
@@ -129,6 +145,7 @@ Status MujocoEngine::build(const EngineModel& model) {
     const std::lock_guard<std::mutex> lock(loading);
     m_.reset(mj_loadXML(file, vfs.get(), error, sizeof error));
   }
+  compiles.fetch_add(1, std::memory_order_relaxed);
   if (!m_) {
     std::string text = error;
     for (char& c : text)
@@ -167,6 +184,7 @@ Status MujocoEngine::build(const EngineModel& model) {
         geom_link_[static_cast<std::size_t>(g)] = static_cast<int>(l);
   robot_mass_ = 0.0;
   for (int b : link_body_) robot_mass_ += m_->body_mass[b];
+  xml_ = std::move(xml);
   return Status::ok();
 }
 
@@ -305,6 +323,14 @@ std::unique_ptr<PhysicsEngine> make_mujoco_engine() {
 const mjModel* mujoco_model_of(const PhysicsEngine& engine) {
   const auto* mujoco = dynamic_cast<const MujocoEngine*>(&engine);
   return mujoco ? mujoco->model() : nullptr;
+}
+
+std::int64_t mujoco_compile_count() {
+  return compiles.load(std::memory_order_relaxed);
+}
+
+void mujoco_set_always_compile(bool on) {
+  always_compile.store(on, std::memory_order_relaxed);
 }
 
 }  // namespace stride::sim
