@@ -5,6 +5,7 @@
 #include <array>
 #include <atomic>
 #include <cmath>
+#include <cstddef>
 #include <cstring>
 #include <mutex>
 #include <string>
@@ -32,6 +33,14 @@ struct VfsDeleter {
 /// Test and benchmark hooks (mujoco_engine.hpp): compiles so far, and the old path.
 std::atomic<std::int64_t> compiles{0};
 std::atomic<bool> always_compile{false};
+
+/// True when two models have the same sizes (mjModel's leading block of counts, nq to nbuffer):
+/// an mjData made for one has the layout of one made for the other.
+bool same_sizes(const mjModel& a, const mjModel& b) {
+  const std::size_t first = offsetof(mjModel, nq), end = offsetof(mjModel, nbuffer) + sizeof(int);
+  return std::memcmp(reinterpret_cast<const char*>(&a) + first,
+                     reinterpret_cast<const char*>(&b) + first, end - first) == 0;
+}
 
 /// MuJoCo's default warning handler prints and appends to MUJOCO_LOG.TXT in the working
 /// directory; the engine reads the warning counters instead (step()).
@@ -125,12 +134,21 @@ Status MujocoEngine::build(const EngineModel& model) {
   // stiffnesses, which are not in the text, and on the compiled inverse weights, which are).
   std::string xml = mujoco::write_mjcf(model);
   if (m_ && d_ && xml == xml_ && !always_compile.load(std::memory_order_relaxed)) {
+    // mjData stays as the last episode left it: start() resets it (mj_resetData clears the
+    // whole buffer, as mj_makeData does), so the episode starts from a fresh engine's bits.
     mujoco::set_contact_params(m_.get(), model);
-    mj_resetData(m_.get(), d_.get());  // as a fresh mj_makeData leaves it
     return Status::ok();
   }
-  d_.reset();
-  m_.reset();
+  // Another text (randomised masses or friction): compile it, but keep the mjData if the new
+  // model has the old one's sizes (the layout of mjData's buffer depends on nothing else, and
+  // start() clears it all). The old path (mujoco_set_always_compile) allocates it afresh.
+  const bool old_path = always_compile.load(std::memory_order_relaxed);
+  std::unique_ptr<mjModel, ModelDeleter> old_model = std::move(m_);
+  std::unique_ptr<mjData, DataDeleter> old_data = std::move(d_);
+  if (old_path) {
+    old_data.reset();
+    old_model.reset();
+  }
   xml_.clear();
   const char* file = "stride.xml";
   std::unique_ptr<mjVFS, VfsDeleter> vfs(new mjVFS);  // ~2 MB: not on the stack
@@ -153,7 +171,12 @@ Status MujocoEngine::build(const EngineModel& model) {
     return Status::error("MuJoCo engine: loading the generated MJCF failed: " + text);
   }
   mujoco::set_contact_params(m_.get(), model);
-  d_.reset(mj_makeData(m_.get()));
+  if (old_data && same_sizes(*old_model, *m_))
+    d_ = std::move(old_data);
+  else
+    d_.reset(mj_makeData(m_.get()));
+  old_data.reset();
+  old_model.reset();
   if (!d_) return Status::error("MuJoCo engine: allocating mjData failed");
 
   link_body_.assign(robot.links().size(), -1);

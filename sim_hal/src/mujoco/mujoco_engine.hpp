@@ -5,10 +5,11 @@
 // system, sets the soft-contact parameters (contact_params.hpp) and allocates mjData once.
 // A build() whose MJCF text is that of the engine's current model (SimWorld rebuilds at every
 // reset; without mass or friction randomisation the text repeats) skips the compile: it keeps
-// mjModel and mjData, sets the contact parameters again and resets the data (mj_resetData).
+// mjModel and mjData and sets the contact parameters again; start() resets the data
+// (mj_resetData clears its whole buffer, as mj_makeData does).
 // Everything MuJoCo's compiler reads is in that text, so the results are bit for bit those of
 // a fresh compile. With randomised masses or friction the text changes and every build
-// compiles, as before.
+// compiles, as before, but keeps the mjData when the new model's sizes are the old one's.
 // step() puts the joint torques into qfrc_applied (and the ball's rolling damping), runs one
 // mj_step (Euler: v' = v + h a, q' = q + h v', as Simbody's fixed-step loop), then recomputes
 // the link poses for the new positions. Single-threaded and deterministic: the state hash
