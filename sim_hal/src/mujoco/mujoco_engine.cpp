@@ -3,7 +3,9 @@
 #include "mujoco_engine.hpp"
 
 #include <array>
+#include <atomic>
 #include <cmath>
+#include <cstddef>
 #include <cstring>
 #include <mutex>
 #include <string>
@@ -27,6 +29,18 @@ struct VfsDeleter {
     delete v;
   }
 };
+
+/// Test and benchmark hooks (mujoco_engine.hpp): compiles so far, and the old path.
+std::atomic<std::int64_t> compiles{0};
+std::atomic<bool> always_compile{false};
+
+/// True when two models have the same sizes (mjModel's leading block of counts, nq to nbuffer):
+/// an mjData made for one has the layout of one made for the other.
+bool same_sizes(const mjModel& a, const mjModel& b) {
+  const std::size_t first = offsetof(mjModel, nq), end = offsetof(mjModel, nbuffer) + sizeof(int);
+  return std::memcmp(reinterpret_cast<const char*>(&a) + first,
+                     reinterpret_cast<const char*>(&b) + first, end - first) == 0;
+}
 
 /// MuJoCo's default warning handler prints and appends to MUJOCO_LOG.TXT in the working
 /// directory; the engine reads the warning counters instead (step()).
@@ -80,6 +94,7 @@ class MujocoEngine final : public PhysicsEngine {
 
  private:
   EngineModel model_;
+  std::string xml_;  ///< the MJCF m_ was compiled from (empty: none)
   std::unique_ptr<mjModel, ModelDeleter> m_;
   std::unique_ptr<mjData, DataDeleter> d_;
   std::vector<int> link_body_;  // per link: MuJoCo body id
@@ -112,10 +127,29 @@ Status MujocoEngine::build(const EngineModel& model) {
   model_ = model;
   static std::once_flag quiet;  // a global of MuJoCo: set once, whatever the threads
   std::call_once(quiet, [] { mju_user_warning = quiet_warning; });
-  d_.reset();
-  m_.reset();
 
-  const std::string xml = mujoco::write_mjcf(model);
+  // Compiled once per model: everything the compiler reads is in the MJCF text (the episode's
+  // randomised masses and friction among it), so the same text gives the same mjModel, bit for
+  // bit, and only the data is reset. The contact parameters are set again (they depend on the
+  // stiffnesses, which are not in the text, and on the compiled inverse weights, which are).
+  std::string xml = mujoco::write_mjcf(model);
+  if (m_ && d_ && xml == xml_ && !always_compile.load(std::memory_order_relaxed)) {
+    // mjData stays as the last episode left it: start() resets it (mj_resetData clears the
+    // whole buffer, as mj_makeData does), so the episode starts from a fresh engine's bits.
+    mujoco::set_contact_params(m_.get(), model);
+    return Status::ok();
+  }
+  // Another text (randomised masses or friction): compile it, but keep the mjData if the new
+  // model has the old one's sizes (the layout of mjData's buffer depends on nothing else, and
+  // start() clears it all). The old path (mujoco_set_always_compile) allocates it afresh.
+  const bool old_path = always_compile.load(std::memory_order_relaxed);
+  std::unique_ptr<mjModel, ModelDeleter> old_model = std::move(m_);
+  std::unique_ptr<mjData, DataDeleter> old_data = std::move(d_);
+  if (old_path) {
+    old_data.reset();
+    old_model.reset();
+  }
+  xml_.clear();
   const char* file = "stride.xml";
   std::unique_ptr<mjVFS, VfsDeleter> vfs(new mjVFS);  // ~2 MB: not on the stack
   mj_defaultVFS(vfs.get());
@@ -129,6 +163,7 @@ Status MujocoEngine::build(const EngineModel& model) {
     const std::lock_guard<std::mutex> lock(loading);
     m_.reset(mj_loadXML(file, vfs.get(), error, sizeof error));
   }
+  compiles.fetch_add(1, std::memory_order_relaxed);
   if (!m_) {
     std::string text = error;
     for (char& c : text)
@@ -136,7 +171,12 @@ Status MujocoEngine::build(const EngineModel& model) {
     return Status::error("MuJoCo engine: loading the generated MJCF failed: " + text);
   }
   mujoco::set_contact_params(m_.get(), model);
-  d_.reset(mj_makeData(m_.get()));
+  if (old_data && same_sizes(*old_model, *m_))
+    d_ = std::move(old_data);
+  else
+    d_.reset(mj_makeData(m_.get()));
+  old_data.reset();
+  old_model.reset();
   if (!d_) return Status::error("MuJoCo engine: allocating mjData failed");
 
   link_body_.assign(robot.links().size(), -1);
@@ -167,6 +207,7 @@ Status MujocoEngine::build(const EngineModel& model) {
         geom_link_[static_cast<std::size_t>(g)] = static_cast<int>(l);
   robot_mass_ = 0.0;
   for (int b : link_body_) robot_mass_ += m_->body_mass[b];
+  xml_ = std::move(xml);
   return Status::ok();
 }
 
@@ -305,6 +346,14 @@ std::unique_ptr<PhysicsEngine> make_mujoco_engine() {
 const mjModel* mujoco_model_of(const PhysicsEngine& engine) {
   const auto* mujoco = dynamic_cast<const MujocoEngine*>(&engine);
   return mujoco ? mujoco->model() : nullptr;
+}
+
+std::int64_t mujoco_compile_count() {
+  return compiles.load(std::memory_order_relaxed);
+}
+
+void mujoco_set_always_compile(bool on) {
+  always_compile.store(on, std::memory_order_relaxed);
 }
 
 }  // namespace stride::sim

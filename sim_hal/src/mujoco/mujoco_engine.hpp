@@ -3,6 +3,13 @@
 //
 // build() writes the episode's MJCF (mjcf_model.hpp), loads it through MuJoCo's virtual file
 // system, sets the soft-contact parameters (contact_params.hpp) and allocates mjData once.
+// A build() whose MJCF text is that of the engine's current model (SimWorld rebuilds at every
+// reset; without mass or friction randomisation the text repeats) skips the compile: it keeps
+// mjModel and mjData and sets the contact parameters again; start() resets the data
+// (mj_resetData clears its whole buffer, as mj_makeData does).
+// Everything MuJoCo's compiler reads is in that text, so the results are bit for bit those of
+// a fresh compile. With randomised masses or friction the text changes and every build
+// compiles, as before, but keeps the mjData when the new model's sizes are the old one's.
 // step() puts the joint torques into qfrc_applied (and the ball's rolling damping), runs one
 // mj_step (Euler: v' = v + h a, q' = q + h v', as Simbody's fixed-step loop), then recomputes
 // the link poses for the new positions. Single-threaded and deterministic: the state hash
@@ -17,6 +24,7 @@
 
 #include <mujoco/mujoco.h>
 
+#include <cstdint>
 #include <memory>
 
 #include "stride/sim_hal/physics_engine.hpp"
@@ -28,5 +36,12 @@ std::unique_ptr<PhysicsEngine> make_mujoco_engine();
 /// The compiled model of a built MuJoCo engine (null before build() or for another engine):
 /// for tests that read masses, inertias and joint axes back.
 const mjModel* mujoco_model_of(const PhysicsEngine& engine);
+
+/// Test and benchmark hooks. The number of MJCF compiles (mj_loadXML) in this process so far,
+/// over all MuJoCo engines and threads.
+std::int64_t mujoco_compile_count();
+/// On: every build() compiles, as before the compiled model was kept (the old path, for the
+/// benchmark's side-by-side figure). Process-wide; off by default.
+void mujoco_set_always_compile(bool on);
 
 }  // namespace stride::sim

@@ -4,6 +4,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
 
 #include "engine_test_models.hpp"
 #include "mujoco/mujoco_engine.hpp"
@@ -268,6 +272,120 @@ TEST(MujocoEngine, SameInputsGiveTheSameHashAndAnotherTorqueAnother) {
   const std::uint64_t a = drop_hash(robot, 0.5);
   EXPECT_EQ(drop_hash(robot, 0.5), a);
   EXPECT_NE(drop_hash(robot, 0.5000001), a);
+}
+
+/// One dropping episode (as drop_hash) on an engine that may have run others before.
+std::uint64_t drop_episode(PhysicsEngine& engine, const EngineModel& model, double pulse) {
+  EXPECT_TRUE(engine.build(model));
+  const std::size_t joints = model.robot->joints().size();
+  EngineStart start;
+  start.joint_angles.assign(joints, 0.0);
+  start.torso_position = Eigen::Vector3d(0, 0, 0.5);
+  start.ball_position = Eigen::Vector3d(0.2, 0.0, 0.2);
+  start.ball_velocity = Eigen::Vector3d(-1.0, 0.0, 0.0);
+  EXPECT_TRUE(engine.start(start));
+  engine.set_torso_force(Eigen::Vector3d(3.0, 0.0, 0.0));  // start() of the next one clears it
+  std::vector<double> torque(joints, 0.0);
+  std::string reason;
+  for (int k = 0; k < 300; ++k) {
+    torque[3] = k < 10 ? pulse : 0.0;
+    for (std::size_t j = 0; j < torque.size(); ++j)
+      if (j != 3) torque[j] = -2.0 * engine.joint_angle(j) - 0.05 * engine.joint_speed(j);
+    EXPECT_EQ(engine.step(torque, reason), WorldStatus::kRunning) << reason;
+  }
+  return engine.hash(14695981039346656037ULL);
+}
+
+TEST(MujocoEngine, ARebuildOfTheSameModelCompilesNothingAndGivesAFreshEnginesBits) {
+  RobotModel robot;
+  ASSERT_TRUE(RobotModel::load_file(RobotModel::igus_path(), robot));
+  EngineModel model = igus_model(robot);
+  model.ball.present = true;
+  EngineModel heavier = model;
+  heavier.link_mass_scale[2] = 1.05;
+  heavier.friction = 0.8;
+  // Fresh engines: the reference bits of each model.
+  const std::uint64_t fresh = drop_episode(*make_mujoco_engine(), model, 0.5);
+  const std::uint64_t fresh_heavier = drop_episode(*make_mujoco_engine(), heavier, 0.5);
+  EXPECT_NE(fresh, fresh_heavier);
+
+  auto engine = make_mujoco_engine();
+  const std::int64_t before = mujoco_compile_count();
+  EXPECT_EQ(drop_episode(*engine, model, 0.5), fresh);
+  EXPECT_EQ(mujoco_compile_count(), before + 1);
+  EXPECT_EQ(drop_episode(*engine, model, 0.5), fresh);  // the kept model, its data reset
+  EXPECT_EQ(drop_episode(*engine, model, 0.5), fresh);
+  EXPECT_EQ(mujoco_compile_count(), before + 1);
+  EXPECT_EQ(drop_episode(*engine, heavier, 0.5), fresh_heavier);  // another text: compiles
+  EXPECT_EQ(mujoco_compile_count(), before + 2);
+  EXPECT_EQ(drop_episode(*engine, model, 0.5), fresh);
+  EXPECT_EQ(mujoco_compile_count(), before + 3);
+  // The contact stiffness is not in the MJCF text: a kept model takes the new one.
+  EngineModel stiffer = model;
+  stiffer.contact.grass_stiffness_n_m *= 2.0;
+  const std::uint64_t fresh_stiffer = drop_episode(*make_mujoco_engine(), stiffer, 0.5);
+  EXPECT_NE(fresh_stiffer, fresh);
+  const std::int64_t kept = mujoco_compile_count();
+  EXPECT_EQ(drop_episode(*engine, stiffer, 0.5), fresh_stiffer);
+  EXPECT_EQ(drop_episode(*engine, model, 0.5), fresh);
+  EXPECT_EQ(mujoco_compile_count(), kept);
+  // The old path (a compile at every build) gives the same bits.
+  mujoco_set_always_compile(true);
+  EXPECT_EQ(drop_episode(*engine, model, 0.5), fresh);
+  EXPECT_EQ(mujoco_compile_count(), kept + 1);
+  mujoco_set_always_compile(false);
+}
+
+/// Hashes after each of `episodes` walking-free episodes (Stand pose held 1 s) of one world,
+/// reset between them, and the compiles the world made.
+std::vector<std::uint64_t> world_episodes(const WorldOptions& options, int episodes,
+                                          std::int64_t& compiles) {
+  const std::int64_t before = mujoco_compile_count();
+  std::unique_ptr<SimWorld> world;
+  const Status s = SimWorld::create(options, world);
+  EXPECT_TRUE(s) << s.message();
+  std::vector<std::uint64_t> hashes;
+  for (int e = 0; e < episodes; ++e) {
+    if (e > 0) {
+      EXPECT_TRUE(world->reset(ResetSpec::standing()));
+    }
+    for (std::size_t i = 0; i < hal::kServoCount; ++i) {
+      hal::ServoCommand c;
+      c.position_rad = igus_stand_pose()[i] + 0.1 * static_cast<double>(e % 2);
+      c.p_gain = 32;
+      c.torque_enable = true;
+      world->set_servo_command(i, c);
+    }
+    for (int k = 0; k < 100; ++k) EXPECT_TRUE(world->advance_period());
+    hashes.push_back(world->state_hash());
+  }
+  compiles = mujoco_compile_count() - before;
+  return hashes;
+}
+
+TEST(MujocoEngine, ResetsOfOneWorldCompileOnceAndGiveTheOldPathsBits) {
+  WorldOptions options;
+  options.engine = EngineKind::kMujoco;
+  options.seed = 5;
+  std::int64_t compiles = 0;
+  const std::vector<std::uint64_t> kept = world_episodes(options, 4, compiles);
+  EXPECT_EQ(compiles, 1);           // without randomised masses and friction: once per world
+  mujoco_set_always_compile(true);  // the old path: a compile at every reset, the same bits
+  const std::vector<std::uint64_t> old_path = world_episodes(options, 4, compiles);
+  mujoco_set_always_compile(false);
+  EXPECT_EQ(compiles, 4);
+  EXPECT_EQ(kept, old_path);
+  // A fresh world's first episode is the same as any world's first.
+  EXPECT_EQ(world_episodes(options, 1, compiles).front(), kept.front());
+
+  // Randomised masses and friction change the model at every reset: a compile each time.
+  options.randomise.mass_range = 0.05;
+  options.randomise.friction_range = 0.2;
+  const std::vector<std::uint64_t> randomised = world_episodes(options, 3, compiles);
+  EXPECT_EQ(compiles, 3);
+  mujoco_set_always_compile(true);
+  EXPECT_EQ(world_episodes(options, 3, compiles), randomised);
+  mujoco_set_always_compile(false);
 }
 
 TEST(MujocoEngine, AnExplodingStateEndsTheStepWithAReason) {

@@ -7,9 +7,11 @@
 // other) and the integration of one fixed physics step.
 //
 // Model/data split, as in MuJoCo: EngineModel is what is fixed for one episode (SimWorld
-// rebuilds the engine at every reset because the randomised masses change it); the engine's
-// state changes per step. The sequence is build(), start(), then step() repeatedly, reading
-// joint_angle()/joint_speed() before each step and the outputs after it.
+// rebuilds the engine at every reset because the randomised masses change it; an engine may
+// keep what an equal model built before, as MuJoCo keeps its compiled mjModel, as long as the
+// results are those of a fresh build bit for bit); the engine's state changes per step. The
+// sequence is build(), start(), then step() repeatedly, reading joint_angle()/joint_speed()
+// before each step and the outputs after it; the state is defined only after start().
 //
 // Units: SI. World frame: x forward, y left, z up; the solid ground is at z = 0 and the top of
 // the grass layer at z = ContactOptions::grass_thickness_m. Joint angle 0 is the URDF zero;
