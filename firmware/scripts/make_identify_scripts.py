@@ -49,12 +49,12 @@ def pose(squat=0.0, shift_left=0.0, lean=0.0, lift_right=0.0, lift_left=0.0):
     return p
 
 
-def frame(duration_ms, p):
+def frame(duration_ms, p, leg_gain=LEG_GAIN):
     return {
         "duration_ms": duration_ms,
         "targets": [
             {"servo": s, "position": round(p[s], 4),
-             "gain": ARM_GAIN if "shoulder" in s or "elbow" in s else LEG_GAIN, "torque": 100}
+             "gain": ARM_GAIN if "shoulder" in s or "elbow" in s else leg_gain, "torque": 100}
             for s in SERVOS
         ],
     }
@@ -87,11 +87,12 @@ SWAY_MS = 1500
 SQUAT = 0.70       # knee 0.256 -> 0.956 rad, hip and ankle pitch -0.35 each: trunk about 4.5 cm lower
 SQUAT_SLOW_MS = 2000
 SQUAT_FAST_MS = 1200
-SHIFT = 0.15       # weight shift: hip roll -+0.15, ankle roll +-0.15 rad, trunk about 6 cm sideways
+SHIFT = 0.20       # weight shift: hip roll -+0.20, ankle roll +-0.20 rad, trunk about 8 cm sideways
 SHIFT_MS = 1500
-STEP_SHIFT = 0.17  # steps in place: shift before lifting
-LIFT = 0.50        # swing leg knee +0.5 rad, hip and ankle pitch -0.25: foot about 2.5 cm up
-LIFT_MS = 1000
+STEP_SHIFT = 0.25  # steps in place: shift before lifting (0.22..0.28 played in the simulator)
+LIFT = 0.60        # swing leg knee +0.6 rad, hip and ankle pitch -0.3: foot about 1 cm up (measured)
+LIFT_MS = 1500
+STEP_LEG_GAIN = 40  # (60 tilted the trunk more in the simulator)
 
 stand = pose()
 frames = [frame(1000, stand)]
@@ -123,14 +124,15 @@ write("identify_shift",
       "Written by make_identify_scripts.py." % (SHIFT, SHIFT, SHIFT_MS, SHIFT_MS, LEG_GAIN, ARM_GAIN),
       frames)
 
-frames = [frame(1000, stand)]
+frames = [frame(1000, stand, STEP_LEG_GAIN)]
 for _ in range(2):  # slow steps in place: shift, lift, hold, lower, back; each side
     for side in (1, -1):
         shifted = pose(shift_left=side * STEP_SHIFT)
         lifted = pose(shift_left=side * STEP_SHIFT,
                       lift_right=LIFT if side > 0 else 0.0, lift_left=LIFT if side < 0 else 0.0)
-        frames += [frame(SHIFT_MS, shifted), frame(700, shifted), frame(LIFT_MS, lifted),
-                   frame(800, lifted), frame(LIFT_MS, shifted), frame(SHIFT_MS, stand)]
+        g = STEP_LEG_GAIN
+        frames += [frame(SHIFT_MS, shifted, g), frame(700, shifted, g), frame(LIFT_MS, lifted, g),
+                   frame(800, lifted, g), frame(LIFT_MS, shifted, g), frame(SHIFT_MS, stand, g)]
 frames += [frame(1000, stand)]
 write("identify_steps",
       "Identification routine part 3 (issue 30, IDENTIFICATION.md): slow steps in place, "
