@@ -26,6 +26,9 @@ std::string_view to_string(MotionState state) {
 }
 
 namespace {
+// want_script_ while a script plays: a stand request (the console's `stop`) ends it at once.
+constexpr int kStopScript = -2;
+
 void copy_name(std::array<char, 32>& to, std::string_view name) {
   to.fill('\0');
   std::memcpy(to.data(), name.data(), std::min(name.size(), to.size() - 1));
@@ -100,6 +103,7 @@ void MotionManager::step(const hal::SensorFrame& sensors, hal::Tick tick, bool f
         want_walk_ = false;
         want_script_ = -1;
         if (state_ == MotionState::kWalk) walk_->request_stop();
+        if (state_ == MotionState::kScript) want_script_ = kStopScript;  // stand from here
         break;
       case MotionRequest::Kind::kWalk:
         if (walk_ == nullptr) {
@@ -167,7 +171,8 @@ void MotionManager::step(const hal::SensorFrame& sensors, hal::Tick tick, bool f
       return;
 
     case MotionState::kScript:
-      if (script_->done()) {
+      if (script_->done() || want_script_ == kStopScript) {
+        if (want_script_ == kStopScript) want_script_ = -1;
         enter(MotionState::kStand, stand_, sensors, last, tick);
         stand_.step(sensors, tick, out);
         return;

@@ -164,18 +164,29 @@ TEST(FlightRecorderCli, ConsoleParameterChangesAreRecordedAtTheTickTheyApplied) 
 
 TEST(FlightRecorderCli, AKilledStrideFwLeavesALogThatReadsToItsLastCompleteBlock) {
   TempDir dir;
+  // The header holds every parameter, so its size grows with the scripts: measure it (a log of
+  // one tick) and wait for about 150 ticks more.
+  const auto one_tick = dir.path() / "one.flog";
+  int code = -1;
+  run_command(kBin + "/stride-fw --hal test --ticks 1 --no-rt --record " + one_tick.string() +
+                  " >/dev/null 2>&1",
+              code);
+  ASSERT_EQ(code, 0);
+  const auto wait_for_bytes = std::filesystem::file_size(one_tick) + 150 * 1419;
   const auto log_path = dir.path() / "run.flog";
   const pid_t pid =
       spawn({kBin + "/stride-fw", "--hal", "test", "--no-rt", "--record", log_path.string()},
             dir.path() / "out", dir.path() / "err");
   ASSERT_GT(pid, 0);
-  // Wait for about a second of ticks on disk (the test HAL runs at 100 Hz on the clock).
+  // Wait for about 1.5 s of ticks on disk (the test HAL runs at 100 Hz on the clock).
   const auto bytes_on_disk = [&] {
     std::error_code error;
     const auto size = std::filesystem::file_size(log_path, error);
     return error ? 0 : size;
   };
-  for (int i = 0; i < 1000 && bytes_on_disk() < 250'000; ++i) std::this_thread::sleep_for(10ms);
+  for (int i = 0; i < 1000 && bytes_on_disk() < wait_for_bytes; ++i) {
+    std::this_thread::sleep_for(10ms);
+  }
   ::kill(pid, SIGKILL);
   EXPECT_EQ(wait_exit(pid), 128 + SIGKILL);
 

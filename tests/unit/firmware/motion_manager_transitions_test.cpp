@@ -159,6 +159,32 @@ TEST(MotionManager, KickFromStandPlaysTheScriptThenStands) {
   EXPECT_TRUE(r.manager->stand().done());
 }
 
+TEST(MotionManager, AStandRequestStopsAScriptAndStandsFromWhereItIs) {
+  // The console's `stop` during a long script (the 33 s identify_stand): stand at once, ramping
+  // from the pose the script reached, and a later script plays whole.
+  Rig r;
+  r.settle_stand();
+  r.manager->request(MotionRequest::play("identify_stand"));
+  r.run(1);
+  ASSERT_EQ(r.manager->state(), MotionState::kScript);
+  r.run(300);  // into the sway
+  const double ankle = r.out.servos[idx("l_ankle_pitch")].position_rad;
+  r.manager->request(MotionRequest::stand());
+  r.run(1);
+  EXPECT_EQ(r.manager->state(), MotionState::kStand);
+  EXPECT_EQ(r.manager->active_script(), "");
+  EXPECT_FALSE(r.manager->stand().done());
+  EXPECT_NEAR(r.out.servos[idx("l_ankle_pitch")].position_rad, ankle, 0.01) << "no jump";
+  r.run(kStandRampTicks + 1);
+  EXPECT_TRUE(r.manager->stand().done());
+  r.manager->request(MotionRequest::play("kick_right"));
+  r.run(1);
+  ASSERT_EQ(r.manager->state(), MotionState::kScript);
+  const hal::Tick kick = r.run_until(MotionState::kStand, 400);
+  EXPECT_GT(kick, 300) << "the 3.1 s kick plays whole after an aborted script";
+  EXPECT_LE(kick, 400);
+}
+
 TEST(MotionManager, KickWaitsForASettledStand) {
   Rig r;
   r.run(1);

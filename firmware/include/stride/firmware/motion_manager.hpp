@@ -6,7 +6,8 @@
 //   kWalk    -> kStand    on a stand request: the walk finishes its step, stops, then stand
 //   kStand   -> kScript   on a script request once the stand pose is reached; a script request
 //                         while walking first stops the walk (kWalk -> kStand -> kScript)
-//   kScript  -> kStand    when the script has finished
+//   kScript  -> kStand    when the script has finished, or at once on a stand request (the
+//                         console's `stop`: the stand engine ramps from the pose reached)
 //   any      -> kFallen   when the safety layer reports a fall (not during a get-up)
 //   kFallen  -> kGetUp    after motion.fallen_settle_time, with get_up_front (lying on the
 //                         front: torso x axis down, accel x < 0) or get_up_back (accel x > 0);
@@ -74,7 +75,7 @@ class MotionManager {
   MotionRequest pending_{};
   bool want_walk_ = false;
   double walk_vx_ = 0.0, walk_vy_ = 0.0, walk_vtheta_ = 0.0;
-  int want_script_ = -1;  // script index to play once standing, -1 for none
+  int want_script_ = -1;  // script index to play once standing, -1 for none, -2 stop the script
   hal::Tick fallen_since_ = 0;
   std::uint32_t refused_ = 0;
   // Script names the manager itself plays; resolved once at construction.
