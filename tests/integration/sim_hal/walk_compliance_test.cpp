@@ -9,10 +9,13 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <functional>
+#include <optional>
 
 #include <nlohmann/json.hpp>
 
 #include "read_file.hpp"
+#include "robot_variants.hpp"
 #include "stride/firmware/firmware.hpp"
 #include "stride/sim_hal/episode.hpp"
 #include "stride/sim_hal/sim_robot.hpp"
@@ -34,11 +37,15 @@ struct Walk {
   int steps = 0, grazing = 0;
   Eigen::Vector3d moved = Eigen::Vector3d::Zero();  ///< torso displacement [m]
   double yaw = 0.0;                                 ///< torso yaw turned, unwrapped [rad]
+  std::optional<double> time_to_goal_s;             ///< 2.5 m ahead
 };
+
+/// Changes to the world of walk(): physics step, engine, robot model.
+using WorldChange = std::function<void(WorldOptions&)>;
 
 /// A 12 s walk (seed 1) with `params` (a parameter file's JSON) and a normalised command.
 Walk walk(const nlohmann::json& params, double vx, double vy, double vth, bool turf,
-          double duration = 12.0) {
+          double duration = 12.0, const WorldChange& change = {}) {
   test::TempDir dir;
   fw::FirmwareOptions options;
   options.params_file = dir.write("params.json", params.dump());
@@ -52,6 +59,7 @@ Walk walk(const nlohmann::json& params, double vx, double vy, double vth, bool t
   world_options.servo.law = ServoLaw::kIdentified;
   world_options.control_period_ns = firmware->period_ns();
   if (turf) world_options.contact = ContactOptions::turf();
+  if (change) change(world_options);
   std::unique_ptr<SimWorld> world;
   EXPECT_TRUE(SimWorld::create(world_options, world));
   SimRobot robot(std::move(world));
@@ -72,7 +80,9 @@ Walk walk(const nlohmann::json& params, double vx, double vy, double vth, bool t
   EpisodeOptions episode;
   episode.duration_s = duration;
   Walk out;
-  out.fell = run_episode(robot, step, episode).fell;
+  const EpisodeResult result = run_episode(robot, step, episode);
+  out.fell = result.fell;
+  out.time_to_goal_s = result.time_to_goal_s;
   const Eigen::Isometry3d end = robot.world().torso_pose();
   out.moved = end.translation() - start;
   out.yaw = yaw;
@@ -127,6 +137,25 @@ TEST(WalkSteppingTurf, ForwardFasterBackwardAndTurningOnTurf) {
   EXPECT_EQ(forward.grazing, 0);
   EXPECT_LT(backward.moved.x(), -0.1);
   EXPECT_LT(right.yaw, -2.0);  // about -0.2 rad/s (bench_sim_hal_walk_directions)
+}
+
+TEST(WalkSteppingTurf, ForwardReachesTheGoalAtHalfAMillisecondOnMujocoAndOnTheRobotVariants) {
+  const nlohmann::json stepping = nlohmann::json::parse(test::read_file(kSteppingTurf));
+  auto reaches = [&](const std::string& label, const WorldChange& change) {
+    const Walk w = walk(stepping, 1.0, 0.0, 0.0, true, 25.0, change);
+    EXPECT_FALSE(w.fell) << label;
+    ASSERT_TRUE(w.time_to_goal_s.has_value()) << label;
+    EXPECT_LT(*w.time_to_goal_s, 22.0) << label;  // 18.7-20.8 s measured (walk README)
+  };
+  reaches("0.5 ms", [](WorldOptions& o) { o.physics_step_ns = 500'000; });
+  reaches("MuJoCo", [](WorldOptions& o) { o.engine = EngineKind::kMujoco; });
+  test::TempDir dir;
+  int code = -1;
+  test::write_robot_variants(dir.path(), code);
+  ASSERT_EQ(code, 0);
+  for (const char* name : test::kRobotVariants) {
+    reaches(name, [&](WorldOptions& o) { o.urdf = dir.path() / (std::string(name) + ".urdf"); });
+  }
 }
 
 TEST(WalkSteppingTurf, TheOmniFileWalksEveryDirectionAtItsSpeed) {
