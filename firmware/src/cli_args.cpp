@@ -37,6 +37,7 @@ Status CliArgs::parse(int argc, const char* const* argv, int first) {
         if (i + 1 >= argc) return Status::error("option --" + name + " needs a value");
         values_[name] = argv[++i];
       }
+      every_value_[name].push_back(values_[name]);
     } else {
       positional_.push_back(std::move(word));
     }
@@ -54,6 +55,11 @@ std::string CliArgs::get(const std::string& name, const std::string& fallback) c
     return *it->second.default_value;
   }
   return fallback;
+}
+
+std::vector<std::string> CliArgs::get_all(const std::string& name) const {
+  if (const auto it = every_value_.find(name); it != every_value_.end()) return it->second;
+  return {};
 }
 
 Status CliArgs::get_double(const std::string& name, double& out) const {

@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <memory>
 #include <sstream>
 #include <system_error>
@@ -12,6 +13,11 @@
 namespace stride::sim {
 
 void declare_world_options(fw::CliArgs& args) {
+  args.option("push",
+              "T,DIR,IMPULSE: push the trunk T s after the start, DIR forward|backward|left|right "
+              "or degrees anticlockwise from the robot's heading, IMPULSE in N s (a force over "
+              "10 ms at the trunk's centre of mass); repeatable",
+              true);
   args.option("seed", "world random seed (randomisation and sensor noise)", true, "1");
   args.option("noise", "sensor noise and per-episode IMU bias: on|off", true, "on");
   args.option("physics-step-us", "fixed physics step [us], must divide the control period", true,
@@ -79,6 +85,12 @@ Status read_world_options(const fw::CliArgs& args, WorldOptions& out) {
   } else {
     return Status::error("--servo-law: expected seed or identified, got '" + law + "'");
   }
+  // Pushes (repeatable); their times are checked against the episode by its runner.
+  for (const std::string& text : args.get_all("push")) {
+    TorsoPush push;
+    if (Status s = parse_push(text, std::numeric_limits<double>::infinity(), push); !s) return s;
+    out.pushes.push_back(push);
+  }
   return Status::ok();
 }
 
@@ -133,21 +145,6 @@ Status parse_push(const std::string& text, double duration_s, TorsoPush& out) {
     return bad("impulse must be in (0, " + std::to_string(static_cast<int>(kMaxPushImpulse)) +
                "] N s");
   return Status::ok();
-}
-
-std::vector<std::string> repeated_option_values(int argc, const char* const* argv,
-                                                const std::string& name) {
-  std::vector<std::string> out;
-  const std::string flag = "--" + name;
-  for (int i = 1; i < argc; ++i) {
-    const std::string word = argv[i];
-    if (word == flag && i + 1 < argc) {
-      out.emplace_back(argv[++i]);
-    } else if (word.rfind(flag + "=", 0) == 0) {
-      out.push_back(word.substr(flag.size() + 1));
-    }
-  }
-  return out;
 }
 
 }  // namespace stride::sim

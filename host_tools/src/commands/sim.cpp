@@ -120,11 +120,6 @@ int run_sim(int argc, char** argv) {
   args.option("snapshot-times", "comma-separated times [s] for --snapshot", true, "0,1,2,5,10");
   args.option("html", "write a self-contained replay page (accelerometer, poses, animation)", true);
   args.option("json", "print the result as one JSON object", false);
-  args.option("push",
-              "T,DIR,IMPULSE: push the trunk T s after the start, DIR forward|backward|left|right "
-              "or degrees anticlockwise from the robot's heading, IMPULSE in N s (a force over "
-              "10 ms at the trunk's centre of mass); repeatable",
-              true);
   sim::declare_world_options(args);
   if (Status s = args.parse(argc, argv); !s) return bad_input(s.message());
   if (args.has("help")) {
@@ -147,13 +142,13 @@ int run_sim(int argc, char** argv) {
   std::vector<double> snapshot_times;
   if (Status s = parse_times(args.get("snapshot-times"), snapshot_times); !s)
     return bad_input(s.message());
-  sim::WorldOptions world_options;
-  if (Status s = sim::read_world_options(args, world_options); !s) return bad_input(s.message());
-  for (const std::string& text : sim::repeated_option_values(argc, argv, "push")) {
+  // The pushes must fall within the episode (read_world_options takes them below).
+  for (const std::string& text : args.get_all("push")) {
     sim::TorsoPush push;
     if (Status s = sim::parse_push(text, duration, push); !s) return bad_input(s.message());
-    world_options.pushes.push_back(push);
   }
+  sim::WorldOptions world_options;
+  if (Status s = sim::read_world_options(args, world_options); !s) return bad_input(s.message());
   if (motion == "walk")
     for (double v : {vx, vy, vth})
       if (!(v >= -1.0 && v <= 1.0)) return bad_input("--vx/--vy/--vth: must be in [-1, 1]");

@@ -86,6 +86,30 @@ TEST(StrideSimPush, APushChangesTheOutcomeDeterministicallyOnBothEngines) {
   }
 }
 
+TEST(StrideFwSimPush, TheFirmwareOnTheSimHalTakesPushesToo) {
+  // stride-fw --hal sim reads the same world options (sim_cli): the push lands in its report's
+  // state hash, deterministically; a bad one is one line naming --push.
+  auto fw_hash = [](const std::string& extra) {
+    int code = -1;
+    const std::string out = stride::test::run_command(
+        std::string(STRIDE_BIN_DIR) + "/stride-fw --hal sim --ticks 400 --no-rt --json " + extra +
+            " 2>/dev/null",
+        code);
+    EXPECT_EQ(code, 0) << extra;
+    return nlohmann::json::parse(out)["sim"]["state_hash"].get<std::string>();
+  };
+  const std::string pushed = fw_hash("--push 2,forward,2");
+  EXPECT_EQ(pushed, fw_hash("--push 2,forward,2"));
+  EXPECT_NE(pushed, fw_hash(""));
+  int code = -1;
+  const std::string err = stride::test::run_command(
+      std::string(STRIDE_BIN_DIR) + "/stride-fw --hal sim --ticks 10 --no-rt --push 1,up,1 2>&1",
+      code);
+  EXPECT_NE(code, 0);
+  EXPECT_NE(err.find("--push: direction must be"), std::string::npos) << err;
+  EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
+}
+
 TEST(StrideSimPush, MalformedOrOutOfRangeIsOneLineNamingTheOptionAndExitTwo) {
   for (const char* push : {"1,forward", "1,forward,1,2", "x,forward,1", "1,up,1", "1,forward,0",
                            "1,forward,-1", "1,forward,21", "-1,forward,1", "10,forward,1",

@@ -44,6 +44,21 @@ TEST(CliArgs, ParsesOptionsFlagsAndPositionals) {
   EXPECT_EQ(args.positional(), (std::vector<std::string>{"scan", "extra"}));
 }
 
+TEST(CliArgs, ARepeatedOptionKeepsEveryValueInOrder) {
+  CliArgs args;
+  args.option("push", "repeatable").option("seed", "one value", true, "1");
+  const char* argv[] = {"x", "--push", "1,left,1", "--push=2,right,0.5", "--seed", "3"};
+  ASSERT_TRUE(args.parse(6, argv));
+  EXPECT_EQ(args.get_all("push"), (std::vector<std::string>{"1,left,1", "2,right,0.5"}));
+  EXPECT_EQ(args.get("push"), "2,right,0.5");  // get() is the last
+  EXPECT_TRUE(args.get_all("seed") == std::vector<std::string>{"3"});
+  CliArgs defaults;
+  defaults.option("seed", "one value", true, "1");
+  const char* none[] = {"x"};
+  ASSERT_TRUE(defaults.parse(1, none));
+  EXPECT_TRUE(defaults.get_all("seed").empty());  // a default is not a value given
+}
+
 TEST(CliArgs, BadInputIsNamed) {
   CliArgs args;
   args.option("port", "device").option("json", "json", false).option("vx", "speed");

@@ -2,6 +2,7 @@
 //
 // Grammar: `--name value`, `--name=value`, `--flag`, and positional words. Options are declared
 // first, so an unknown option, a missing value or a bad number is a one-line error naming it.
+// An option given more than once keeps its last value for get() and every value for get_all().
 #pragma once
 
 #include <cstdint>
@@ -24,6 +25,9 @@ class CliArgs {
 
   bool has(const std::string& name) const;
   std::string get(const std::string& name, const std::string& fallback = {}) const;
+  /// Every value given for `name`, in order (a repeatable option such as --push); the default
+  /// is not included. get() returns the last one.
+  std::vector<std::string> get_all(const std::string& name) const;
   /// Typed getters: the error names the option and the bad text.
   Status get_double(const std::string& name, double& out) const;
   Status get_int(const std::string& name, std::int64_t& out) const;
@@ -41,6 +45,7 @@ class CliArgs {
   std::map<std::string, Spec> specs_;
   std::vector<std::string> order_;
   std::map<std::string, std::string> values_;
+  std::map<std::string, std::vector<std::string>> every_value_;
   std::vector<std::string> positional_;
 };
 

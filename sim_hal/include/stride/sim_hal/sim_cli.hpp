@@ -22,9 +22,5 @@ inline constexpr double kMaxPushImpulse = 20.0;
 /// right or an angle in degrees in [-360, 360] (anticlockwise from the robot's heading),
 /// IMPULSE [N s] in (0, kMaxPushImpulse]. The error names --push and what is wrong.
 Status parse_push(const std::string& text, double duration_s, TorsoPush& out);
-/// Every value given to the repeatable option `--name` in argv (`--name V` or `--name=V`), in
-/// order (CliArgs keeps only the last).
-std::vector<std::string> repeated_option_values(int argc, const char* const* argv,
-                                                const std::string& name);
 
 }  // namespace stride::sim
