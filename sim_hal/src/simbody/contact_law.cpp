@@ -45,7 +45,7 @@ void ContactLaw::clear(Real ball_radius) {
 }
 
 void ContactLaw::ground(ContactPoint& point, const Transform& x, const SpatialVec& v, Real friction,
-                        SpatialVec& out, ContactReport& report) const {
+                        Real h, SpatialVec& out, ContactReport& report) const {
   const ContactOptions& c = options_;
   const Vec3 centre = x * point.station;
   const Vec3 at(centre[0], centre[1], centre[2] - point.radius);  // lowest point of the sphere
@@ -63,21 +63,21 @@ void ContactLaw::ground(ContactPoint& point, const Transform& x, const SpatialVe
   fn = std::max<Real>(0.0, fn);
   if (!point.touching) {
     point.touching = true;
-    point.anchor_x = at[0];
-    point.anchor_y = at[1];
+    point.stretch_x = 0.0;
+    point.stretch_y = 0.0;
   }
-  Real fx =
-      -c.tangential_stiffness_n_m * (at[0] - point.anchor_x) - c.tangential_damping_n_s_m * vel[0];
-  Real fy =
-      -c.tangential_stiffness_n_m * (at[1] - point.anchor_y) - c.tangential_damping_n_s_m * vel[1];
+  point.stretch_x += vel[0] * h;  // the material point's slip over this step
+  point.stretch_y += vel[1] * h;
+  Real fx = -c.tangential_stiffness_n_m * point.stretch_x - c.tangential_damping_n_s_m * vel[0];
+  Real fy = -c.tangential_stiffness_n_m * point.stretch_y - c.tangential_damping_n_s_m * vel[1];
   const Real ft = std::sqrt(fx * fx + fy * fy);
   const Real max_ft = friction * fn;
-  if (ft > max_ft) {  // sliding: scale to the cone and drag the anchor along
+  if (ft > max_ft) {  // sliding: scale to the cone and cut the stretch to it
     const Real s = ft > 0 ? max_ft / ft : 0.0;
     fx *= s;
     fy *= s;
-    point.anchor_x = at[0] + fx / c.tangential_stiffness_n_m;
-    point.anchor_y = at[1] + fy / c.tangential_stiffness_n_m;
+    point.stretch_x = -fx / c.tangential_stiffness_n_m;
+    point.stretch_y = -fy / c.tangential_stiffness_n_m;
   }
   const Vec3 force(fx, fy, fn);
   out[0] += r % force;

@@ -4,9 +4,14 @@
 //
 // Normal force per point, depth d below the grass top (thickness T):
 //   fn = max(0, k_g min(d, T) - c_g vz + [d > T] (k_s (d - T) - c_s vz))
-// Tangential: a spring from the point to its anchor (set where the point touched down) and a
-// damper, f_t = -k_t (p - anchor) - c_t v, clipped to the cone |f_t| <= mu fn; when clipped
-// the anchor is dragged along, so the point slides at the Coulomb force. Figures are the
+// Tangential: a spring stretched by the slip of the body's material point at the contact (the
+// stretch s starts at 0 at touchdown and grows by v h per step of length h, v the material
+// point's horizontal velocity) and a damper, f_t = -k_t s - c_t v, clipped to the cone
+// |f_t| <= mu fn; when clipped the stretch is cut to the cone, so the point slides at the
+// Coulomb force. A body that rolls without slipping (the ball; a foot rocking onto its edge)
+// stretches nothing: the spring follows material slip, not the lowest point of a sphere, which
+// moves with a rolling ball's centre (issue 29: that slowed a rolling ball to 0.976 m/s where
+// v0 / (1 + I / (m r^2)) is 1.201). Figures are the
 // seed's Gazebo grass (ContactOptions in world_options.hpp; sim_hal/models/README.md).
 #pragma once
 
@@ -26,7 +31,7 @@ struct ContactPoint {
   SimTK::Real radius = 0.0;
   int foot = 0;  ///< 0 none, 1 left, 2 right
   bool touching = false;
-  SimTK::Real anchor_x = 0.0, anchor_y = 0.0;
+  SimTK::Real stretch_x = 0.0, stretch_y = 0.0;  ///< tangential spring stretch [m]
 };
 
 /// A sphere or box of a link, for the ball against the robot.
@@ -57,8 +62,10 @@ class ContactLaw {
 
   /// Force of the field on `point` of a body at pose `x` moving at `v` (spatial velocity of
   /// the body origin), added to `out` about the body origin; counted in `report`.
+  /// `h` is the step [s] over which the stretch grows (one call per step).
   void ground(ContactPoint& point, const SimTK::Transform& x, const SimTK::SpatialVec& v,
-              SimTK::Real friction, SimTK::SpatialVec& out, ContactReport& report) const;
+              SimTK::Real friction, SimTK::Real h, SimTK::SpatialVec& out,
+              ContactReport& report) const;
   /// Ball (radius, pose xb, velocity vb) against every link shape near it; the forces are
   /// added to `ball_force` and to `link_force` (per link, about the link origin).
   void ball_robot(SimTK::Real radius, const SimTK::Transform& xb, const SimTK::SpatialVec& vb,

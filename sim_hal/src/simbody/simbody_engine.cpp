@@ -253,13 +253,15 @@ void SimbodyEngine::compute_forces() {
       point.touching = false;
       continue;
     }
-    contact_.ground(point, link_x_[l], link_v_[l], model_.friction, body_force_[l], report_);
+    contact_.ground(point, link_x_[l], link_v_[l], model_.friction, model_.step_s, body_force_[l],
+                    report_);
   }
   if (has_ball_) {
     const SpatialVec& vb = ball_.getBodyVelocity(state_);
     const Transform& xb = ball_.getBodyTransform(state_);
     ContactReport ball_report;  // the ball's own field contact is not the robot's
-    contact_.ground(contact_.ball_point(), xb, vb, model_.friction, ball_force_, ball_report);
+    contact_.ground(contact_.ball_point(), xb, vb, model_.friction, model_.step_s, ball_force_,
+                    ball_report);
     ball_force_[0] -= model_.ball.rolling_damping * vb[0];
     contact_.ball_robot(model_.ball.radius_m, xb, vb, link_x_, link_v_, ball_force_, body_force_);
   }
@@ -334,8 +336,8 @@ std::uint64_t SimbodyEngine::hash(std::uint64_t h) const {
   auto fold = [&h](const ContactPoint& p) {
     const unsigned char touching = p.touching ? 1 : 0;
     h = fnv1a(h, &touching, 1);
-    h = fnv1a(h, &p.anchor_x, sizeof(Real));
-    h = fnv1a(h, &p.anchor_y, sizeof(Real));
+    h = fnv1a(h, &p.stretch_x, sizeof(Real));
+    h = fnv1a(h, &p.stretch_y, sizeof(Real));
   };
   for (const ContactPoint& p : contact_.points()) fold(p);
   fold(contact_.ball_point());

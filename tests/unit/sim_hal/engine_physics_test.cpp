@@ -60,12 +60,12 @@ TEST_P(EnginePhysics, ABoxFallsFreelyUntilItTouches) {
   EXPECT_EQ(engine->contacts().other_contacts, 4);  // the four bottom corners
 }
 
-// The cases Simbody misses today (run on MuJoCo only until it is fixed, then add kSimbody):
-// - the large swing: Simbody loses 5.7 % of the energy in 3 s (MuJoCo under 3 %);
-// - the sliding ball: Simbody's rolls on at 0.976 m/s instead of 1.201 m/s (both mu), having
-//   slowed at mu g while sliding: Stride's contact law anchors the stick spring at the sphere's
-//   geometric lowest point, which moves with the centre while the ball rolls, not at a
-//   material point, so the spring keeps pulling on a ball that no longer slips.
+// The case Simbody misses today (run on MuJoCo only until it is fixed, then add kSimbody):
+// the large swing: Simbody loses 5.7 % of the energy in 3 s (MuJoCo under 3 %).
+// (The sliding ball passes on both since issue 29: Stride's contact law anchored the stick
+// spring at the sphere's geometric lowest point, which moves with the centre while the ball
+// rolls, and the ball rolled on at 0.976 m/s instead of 1.201 m/s; the spring now stretches
+// with the material point's slip.)
 class EnginePhysicsSimbodyMisses : public EnginePhysics {};
 
 /// The pendulum's energy in the world: the bob's height above its lowest point and the arm's
@@ -130,7 +130,7 @@ TEST_P(EnginePhysicsSimbodyMisses, ALargeSwingKeepsItsEnergy) {
   EXPECT_NEAR(highest, 1.5, 0.04);
 }
 
-TEST_P(EnginePhysicsSimbodyMisses, ASlidingBallDeceleratesAtMuGThenRolls) {
+TEST_P(EnginePhysics, ASlidingBallDeceleratesAtMuGThenRolls) {
   auto robot = engine_test::load_urdf(engine_test::kBoxUrdf);
   for (double mu : {0.3, 0.6}) {
     EngineModel model = engine_test::neutral_model(*robot);
