@@ -82,14 +82,19 @@ for g in genes:
     omni_genes.append(g)
 balance_src = open('firmware/src/walk/balance_feedback.cpp').read() + open('firmware/src/walk/heading_hold.cpp').read()
 gain_pat = re.compile(r'add_real\(\s*"(walk\.balance\.[a-z_]*gain)",\s*([-\d.e]+),\s*([-\d.e]+),\s*([-\d.e]+)', re.S)
+# The run starts from the firmware's defaults (the faithful world's gains since issue 29); each
+# gain's range spans +-50 % of both that default and the seed world's (firmware/config/
+# seed-walk.json, the gains the issue-22 run started from), so that it holds both tunings.
+seed_walk = json.load(open('firmware/config/seed-walk.json'))
 for n, d, lo, hi in gain_pat.findall(balance_src):
     d, lo, hi = float(d), float(lo), float(hi)
+    old = seed_walk.get(n, d)
     if n.startswith('walk.balance.heading'):
         # The heading hold: from off to strong.
         bounds = (0.0, 1.0) if n.endswith('heading_gain') else (0.0, 0.5)
     else:
-        # The UPenn joint and tilt gains: +-50 % of the defaults the walk was tuned with.
-        bounds = (round(max(lo, 0.5 * d), 6), round(min(hi, 1.5 * d), 6))
+        # The UPenn joint and tilt gains.
+        bounds = (round(max(lo, 0.5 * min(d, old)), 6), round(min(hi, 1.5 * max(d, old)), 6))
     omni_genes.append({"parameter": n, "min": bounds[0], "max": bounds[1], "start": d})
 assert len(omni_genes) == 54, len(omni_genes)
 omni = {"_comment": [

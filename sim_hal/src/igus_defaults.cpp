@@ -41,14 +41,12 @@ ResetSpec ResetSpec::standing() {
   return spec;
 }
 
-ImuOptions ImuOptions::noisy() {
-  ImuOptions o;
-  o.accel_noise_std = 0.05;  // m/s^2 per sample
-  o.gyro_noise_std = 0.005;  // rad/s per sample
-  o.accel_bias_std = 0.1;    // m/s^2 per episode
-  o.gyro_bias_std = 0.01;    // rad/s per episode
-  o.chain.noise = true;      // used when the chain is not ideal
-  return o;
+void ImuOptions::set_noise(bool on) {
+  accel_noise_std = on ? 0.05 : 0.0;  // m/s^2 per sample
+  gyro_noise_std = on ? 0.005 : 0.0;  // rad/s per sample
+  accel_bias_std = on ? 0.1 : 0.0;    // m/s^2 per episode
+  gyro_bias_std = on ? 0.01 : 0.0;    // rad/s per episode
+  chain.noise = on;                   // used when the chain is not ideal
 }
 
 }  // namespace stride::sim

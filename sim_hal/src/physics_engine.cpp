@@ -37,6 +37,34 @@ bool parse_contact_kind(std::string_view text, ContactOptions& out) {
   return true;
 }
 
+const char* to_string(WorldPreset preset) {
+  return preset == WorldPreset::kSeed ? "seed" : "faithful";
+}
+
+bool parse_world_preset(std::string_view text, WorldPreset& out) {
+  if (text == "faithful") {
+    out = WorldPreset::kFaithful;
+  } else if (text == "seed") {
+    out = WorldPreset::kSeed;
+  } else {
+    return false;
+  }
+  return true;
+}
+
+void WorldOptions::use_cm730_imu(bool cm730) {
+  const bool noise = imu.chain.noise;
+  imu.chain = cm730 ? ImuChain{} : ImuChain::ideal();
+  imu.chain.noise = noise;
+}
+
+void WorldOptions::apply(WorldPreset preset) {
+  const bool thesis = preset == WorldPreset::kSeed;
+  servo.law = thesis ? ServoLaw::kSeed : ServoLaw::kIdentified;
+  use_cm730_imu(!thesis);
+  contact = thesis ? ContactOptions::seed() : ContactOptions::turf();
+}
+
 std::uint64_t fnv1a(std::uint64_t hash, const void* data, std::size_t bytes) {
   const auto* p = static_cast<const unsigned char*>(data);
   for (std::size_t i = 0; i < bytes; ++i) {

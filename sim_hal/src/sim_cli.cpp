@@ -23,16 +23,21 @@ void declare_world_options(fw::CliArgs& args) {
   args.option("physics-step-us", "fixed physics step [us], must divide the control period", true,
               "2000");
   args.option("urdf", "robot description (URDF) to simulate instead of the igus model", true);
+  args.option("world",
+              "named world: faithful (identified servo law, CM730 IMU, turf) or seed (the "
+              "thesis's: seed servo law, ideal IMU, 2 cm grass); --servo-law, --imu and "
+              "--contact override its parts",
+              true, "faithful");
   args.option("imu", "IMU model: ideal (true value plus white noise) or cm730 (chips and CM730)",
-              true, "ideal");
+              true, "the world's");
   args.option("engine", "physics engine: simbody (Stride's contact) or mujoco (MuJoCo's)", true,
               "simbody");
   args.option("servo-law", "servo model: seed (Gazebo figures) or identified (MX, BAM M6)", true,
-              "seed");
+              "the world's");
   args.option("contact",
               "field contact: seed (the seed's 2 cm grass) or turf (a 5 mm layer over solid "
               "ground, sim_hal/models/README.md)",
-              true, "seed");
+              true, "the world's");
 }
 
 Status read_world_options(const fw::CliArgs& args, WorldOptions& out) {
@@ -42,7 +47,7 @@ Status read_world_options(const fw::CliArgs& args, WorldOptions& out) {
   out.seed = static_cast<std::uint64_t>(seed);
   const std::string noise = args.get("noise", "on");
   if (noise == "on") {
-    out.imu = ImuOptions::noisy();
+    out.imu.set_noise(true);
   } else if (noise == "off") {
     out.imu = ImuOptions{};
   } else {
@@ -63,27 +68,34 @@ Status read_world_options(const fw::CliArgs& args, WorldOptions& out) {
       return Status::error("--urdf: " + s.message());
     out.model = std::move(model);
   }
-  const std::string imu = args.get("imu", "ideal");
-  if (imu == "cm730") {
-    const bool noisy = out.imu.accel_noise_std > 0.0;
-    out.imu.chain = ImuChain{};
-    out.imu.chain.noise = noisy;
-  } else if (imu != "ideal") {
-    return Status::error("--imu: expected ideal or cm730, got '" + imu + "'");
+  const std::string world = args.get("world", "faithful");
+  WorldPreset preset = WorldPreset::kFaithful;
+  if (!parse_world_preset(world, preset))
+    return Status::error("--world: expected faithful or seed, got '" + world + "'");
+  out.apply(preset);
+  if (args.has("imu")) {
+    const std::string imu = args.get("imu");
+    if (imu != "cm730" && imu != "ideal")
+      return Status::error("--imu: expected ideal or cm730, got '" + imu + "'");
+    out.use_cm730_imu(imu == "cm730");
   }
   const std::string engine = args.get("engine", "simbody");
   if (!parse_engine_kind(engine, out.engine))
     return Status::error("--engine: expected simbody or mujoco, got '" + engine + "'");
-  const std::string contact = args.get("contact", "seed");
-  if (!parse_contact_kind(contact, out.contact))
-    return Status::error("--contact: expected seed or turf, got '" + contact + "'");
-  const std::string law = args.get("servo-law", "seed");
-  if (law == "seed") {
-    out.servo.law = ServoLaw::kSeed;
-  } else if (law == "identified") {
-    out.servo.law = ServoLaw::kIdentified;
-  } else {
-    return Status::error("--servo-law: expected seed or identified, got '" + law + "'");
+  if (args.has("contact")) {
+    const std::string contact = args.get("contact");
+    if (!parse_contact_kind(contact, out.contact))
+      return Status::error("--contact: expected seed or turf, got '" + contact + "'");
+  }
+  if (args.has("servo-law")) {
+    const std::string law = args.get("servo-law");
+    if (law == "seed") {
+      out.servo.law = ServoLaw::kSeed;
+    } else if (law == "identified") {
+      out.servo.law = ServoLaw::kIdentified;
+    } else {
+      return Status::error("--servo-law: expected seed or identified, got '" + law + "'");
+    }
   }
   // Pushes (repeatable); their times are checked against the episode by its runner.
   for (const std::string& text : args.get_all("push")) {
@@ -92,6 +104,16 @@ Status read_world_options(const fw::CliArgs& args, WorldOptions& out) {
     out.pushes.push_back(push);
   }
   return Status::ok();
+}
+
+std::string describe_world(const WorldOptions& o) {
+  const ContactOptions turf = ContactOptions::turf();
+  const bool is_turf = o.contact.grass_thickness_m == turf.grass_thickness_m &&
+                       o.contact.mujoco_solid_ground == turf.mujoco_solid_ground;
+  return std::string(to_string(o.engine)) + ", " +
+         (o.servo.law == ServoLaw::kIdentified ? "identified" : "seed") + " servo law, " +
+         (o.imu.chain.is_ideal() ? "ideal" : "cm730") + " IMU, " + (is_turf ? "turf" : "seed grass") +
+         ", step " + std::to_string(o.physics_step_ns / 1000) + " us";
 }
 
 namespace {

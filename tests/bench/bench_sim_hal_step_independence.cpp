@@ -106,8 +106,7 @@ int main(int argc, char** argv) {
   std::int64_t seeds = 3;
   if (!args.get_int("seeds", seeds) || seeds < 1) return 2;
   const std::vector<std::int64_t> steps = parse_steps(args.get("steps-us"));
-  std::printf("engine %s, servo law %s, IMU %s, noise %s, %lld seeds, parameters %s\n",
-              sim::to_string(base.engine), args.get("servo-law").c_str(), args.get("imu").c_str(),
+  std::printf("%s, noise %s, %lld seeds, parameters %s\n", sim::describe_world(base).c_str(),
               args.get("noise").c_str(), static_cast<long long>(seeds),
               args.has("params") ? args.get("params").c_str() : "default");
   std::printf("%8s %6s %9s %9s %6s %6s %7s %7s %7s %8s %8s %8s %6s\n", "step_us", "stand",

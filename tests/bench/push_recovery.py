@@ -14,8 +14,10 @@ centre of mass, sim_hal/include/stride/sim_hal/world_options.hpp TorsoPush).
       [--at 8] [--after 4] [--max 4] [--resolution 0.05] [--params FILE]
       [--stride build/release/bin/stride] [--json OUT] [-- extra sim options]
 
-Default: the faithful world (--servo-law identified --imu cm730) with
-firmware/config/balance-identified.json. Two simulations at a time, under `nice`.
+Default: the default (faithful) world with the firmware's defaults (the closed-loop walk of
+issue 29); --params FILE overlays a parameter file (the "before" figures of tests/bench/README.md
+are firmware/config/seed-walk.json then balance-identified.json: merge them into one file).
+Two simulations at a time, under `nice`.
 Prints, per direction, the largest impulse survived in every seed and per seed.
 """
 import argparse
@@ -31,9 +33,9 @@ ROOT = os.path.dirname(os.path.dirname(HERE))
 
 
 def sim(args, seed, extra, duration, record=None):
-    cmd = ["nice", args.stride, "sim", "walk", "--vx", "1", "--params", args.params,
-           "--servo-law", "identified", "--imu", "cm730", "--seed", str(seed), "--duration",
-           "%.3f" % duration, "--json"] + extra + args.extra
+    cmd = ["nice", args.stride, "sim", "walk", "--vx", "1"] + \
+        (["--params", args.params] if args.params else []) + \
+        ["--seed", str(seed), "--duration", "%.3f" % duration, "--json"] + extra + args.extra
     if record:
         cmd += ["--record", record]
     out = subprocess.run(cmd, capture_output=True, text=True)
@@ -92,8 +94,7 @@ def main():
     ap.add_argument("--after", type=float, default=4.0, help="survive this long after it [s]")
     ap.add_argument("--max", type=float, default=4.0, help="largest impulse tried [N s]")
     ap.add_argument("--resolution", type=float, default=0.05, help="[N s]")
-    ap.add_argument("--params", default=os.path.join(ROOT, "firmware", "config",
-                                                      "balance-identified.json"))
+    ap.add_argument("--params", help="parameter file over the firmware's defaults")
     ap.add_argument("--stride", default=os.path.join(ROOT, "build", "release", "bin", "stride"))
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--json", help="write the results here")

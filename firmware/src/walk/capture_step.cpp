@@ -36,10 +36,10 @@ CaptureStep::CaptureStep(ParameterStore& store, double period_s)
                                      "low-pass time constant of the tilt deviation's rate");
   tilt_filter_time_ = store.add_real("walk.capture.tilt_filter_time", 0.3, 0.02, 5.0, "s",
                                      "complementary filter time constant of the trunk tilt");
-  touchdown_load_ = store.add_real("walk.capture.touchdown_load", 0.0, 0.0, 1.0, "1",
+  touchdown_load_ = store.add_real("walk.capture.touchdown_load", 0.08, 0.0, 1.0, "1",
                                    "swing knee load (fraction of stall torque) that ends a step "
                                    "late in its phase (0: the clock ends every step)");
-  touchdown_phase_ = store.add_real("walk.capture.touchdown_phase", 0.9, 0.5, 1.0, "1",
+  touchdown_phase_ = store.add_real("walk.capture.touchdown_phase", 0.7, 0.5, 1.0, "1",
                                     "earliest step phase a touchdown may end the step at");
 }
 

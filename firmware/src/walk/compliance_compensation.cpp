@@ -36,7 +36,7 @@ Eigen::Vector3d perpendicular(const Eigen::Vector3d& v, const Eigen::Vector3d& u
 ComplianceCompensation::ComplianceCompensation(ParameterStore& store, const RobotDescription& robot,
                                                const ServoTable& servos, double period_s)
     : store_(store), robot_(robot), period_s_(period_s) {
-  gain_ = store.add_real("walk.compliance.gain", 0.0, 0.0, 1.5, "1",
+  gain_ = store.add_real("walk.compliance.gain", 1.0, 0.0, 1.5, "1",
                          "share of the servos' predicted deflection under the expected joint "
                          "torque added to the leg goals (0: off)");
   back_emf_gain_ = store.add_real("walk.compliance.back_emf_gain", 0.0, 0.0, 1.5, "1",

@@ -8,7 +8,7 @@ namespace stride::fw::walk {
 
 HeadingHold::HeadingHold(ParameterStore& store, double period_s)
     : store_(store), period_s_(period_s) {
-  gain_ = store.add_real("walk.balance.heading_gain", 0.0, 0.0, 2.0, "1/step",
+  gain_ = store.add_real("walk.balance.heading_gain", 0.5, 0.0, 2.0, "1/step",
                          "turn velocity (rad/step) added per rad of heading error while no turn "
                          "is commanded (0: heading hold off)");
   rate_gain_ = store.add_real("walk.balance.heading_rate_gain", 0.0, 0.0, 2.0, "s/step",

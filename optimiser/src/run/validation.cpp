@@ -113,12 +113,7 @@ Status validation_worlds(const RobotTask& task, const ValidationOptions& options
     return Status::error("--seeds: " + std::to_string(options.seeds) + " is outside [1, 1000]");
   const TaskConfig& config = task.config();
   sim::WorldOptions base = task.world_options(0);
-  const sim::ImuChain chain = base.imu.chain;  // the run's IMU model, with its noise on
-  base.imu = sim::ImuOptions::noisy();
-  if (!chain.is_ideal()) {
-    base.imu.chain = chain;
-    base.imu.chain.noise = true;
-  }
+  base.imu.set_noise(true);  // the run's IMU model, with its noise on
   const std::int64_t period_ns = sim::WorldOptions{}.control_period_ns;
   const std::int64_t step_ns =
       options.physics_step_ns > 0 ? options.physics_step_ns : base.physics_step_ns / 2;

@@ -26,7 +26,7 @@ sim::WorldOptions world_for_trial(const TaskConfig& config, int world) {
       config.engines[static_cast<std::size_t>(world / config.trials) % config.engines.size()];
   w.seed = config.trial_seed + static_cast<std::uint64_t>(trial);
   if (config.trials > 1) {
-    if (config.randomisation.imu_noise) w.imu = sim::ImuOptions::noisy();
+    if (config.randomisation.imu_noise) w.imu.set_noise(true);
     w.randomise.friction_range = config.randomisation.friction_range;
     w.randomise.mass_range = config.randomisation.mass_range;
     w.randomise.strength_range = config.randomisation.strength_range;
@@ -34,11 +34,7 @@ sim::WorldOptions world_for_trial(const TaskConfig& config, int world) {
   if (config.task != "kick") w.ball.present = false;
   if (!config.urdf.empty()) w.urdf = config.urdf;
   w.servo.law = config.servo_law;
-  if (config.imu_cm730) {
-    const bool noisy = w.imu.accel_noise_std > 0.0;
-    w.imu.chain = sim::ImuChain{};
-    w.imu.chain.noise = noisy;
-  }
+  w.use_cm730_imu(config.imu_cm730);
   w.physics_step_ns = config.physics_step_us * 1000;
   sim::parse_contact_kind(config.contact, w.contact);  // checked when the config was read
   return w;

@@ -81,6 +81,7 @@ const char* const kKnownFields[] = {"task",
                                     "engine",
                                     "engines",
                                     "urdf",
+                                    "world",
                                     "servo_law",
                                     "imu",
                                     "contact",
@@ -92,8 +93,19 @@ const char* const kKnownFields[] = {"task",
 
 // `engine` ("simbody" | "mujoco") or `engines` (a list of distinct engines), not both.
 // The simulated robot: `urdf` (parsed here, so that a broken file is named at load time),
-// `servo_law`, `imu`, `contact`, `physics_step_us`.
+// `world` (a named world: its servo law, IMU and contact), then `servo_law`, `imu`, `contact`
+// (each overriding the world's), `physics_step_us`.
 Status parse_robot(const nlohmann::json& doc, TaskConfig& c) {
+  if (doc.contains("world")) {
+    const auto& w = doc.at("world");
+    sim::WorldPreset preset = sim::WorldPreset::kFaithful;
+    if (!w.is_string() || !sim::parse_world_preset(w.get<std::string>(), preset))
+      return Status::error("world: must be \"faithful\" or \"seed\", got " + w.dump());
+    const bool seed = preset == sim::WorldPreset::kSeed;
+    c.servo_law = seed ? sim::ServoLaw::kSeed : sim::ServoLaw::kIdentified;
+    c.imu_cm730 = !seed;
+    c.contact = seed ? "seed" : "turf";
+  }
   if (doc.contains("urdf")) {
     const auto& u = doc.at("urdf");
     if (!u.is_string() || u.get<std::string>().empty())

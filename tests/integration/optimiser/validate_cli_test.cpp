@@ -29,9 +29,10 @@ std::string stride(const std::string& args, const fs::path& err, int& code) {
 }
 
 /// walk.json with 2 s episodes, a 0.3 m goal, pop 4, 2 generations, 3 validation seeds.
-fs::path tiny_walk_config(const fs::path& dir) {
+fs::path tiny_walk_config(const fs::path& dir, const char* world = "faithful") {
   std::ifstream in(kConfigs + "walk.json");
   json c = json::parse(in);
+  c["world"] = world;
   c["pop"] = 4;
   c["generations"] = 2;
   c["duration_s"] = 2.0;
@@ -159,8 +160,10 @@ TEST(ValidateCli, AnExplodingWorldIsAFallWithItsReasonAndNoValidateWritesNothing
   test::TempDir tmp;
   const fs::path run = tmp.path() / "run", err = tmp.path() / "stderr";
   int code = -1;
-  stride("optimise --config " + tiny_walk_config(tmp.path()).string() + " --out " + run.string() +
-             " --jobs 2 --no-validate",
+  // Pins the seed's world: its servo law explodes at a 10 ms step (the identified one, whose
+  // back-EMF damps the motor, does not).
+  stride("optimise --config " + tiny_walk_config(tmp.path(), "seed").string() + " --out " +
+             run.string() + " --jobs 2 --no-validate",
          err, code);
   ASSERT_EQ(code, 0) << test::read_file(err);
   EXPECT_FALSE(fs::exists(run / "validation.json"));

@@ -30,7 +30,7 @@ WorldOptions faithful_world(std::uint64_t seed) {
     options.randomise.latency_probability = 0.05;
   }
   options.servo.law = ServoLaw::kIdentified;
-  options.imu = ImuOptions::noisy();
+  options.imu.set_noise(true);
   options.imu.chain = ImuChain{};
   options.imu.chain.noise = true;
   return options;

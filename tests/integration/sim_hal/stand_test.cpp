@@ -24,7 +24,7 @@ EpisodeResult stand(std::uint64_t seed, double seconds, bool randomise = false) 
   EXPECT_TRUE(f) << f.message();
   WorldOptions options;
   options.seed = seed;
-  options.imu = ImuOptions::noisy();
+  options.imu.set_noise(true);
   options.control_period_ns = firmware->period_ns();
   if (randomise) options.randomise = {0.2, 0.05, 0.1, 0.5};
   std::unique_ptr<SimWorld> world;

@@ -98,8 +98,12 @@ TEST(WalkCaptureStep, ATiltMovesTheFootstepAndTheTimingTowardsTheFall) {
 
 TEST(WalkCaptureStep, TouchdownNeedsALateEnoughPhaseAndLoad) {
   Rig rig;
-  EXPECT_FALSE(rig.capture.touchdown(0.95, 0.9));  // off by default
+  EXPECT_TRUE(rig.capture.touchdown(0.95, 0.9));  // on by default (load 0.08, phase 0.7)
+  EXPECT_FALSE(rig.capture.touchdown(0.65, 0.9));
+  rig.set("walk.capture.touchdown_load", 0.0);
+  EXPECT_FALSE(rig.capture.touchdown(0.95, 0.9));  // load 0: off
   rig.set("walk.capture.touchdown_load", 0.2);
+  rig.set("walk.capture.touchdown_phase", 0.9);
   EXPECT_FALSE(rig.capture.touchdown(0.8, 0.9));   // before walk.capture.touchdown_phase 0.9
   EXPECT_FALSE(rig.capture.touchdown(0.95, 0.1));  // no weight on the foot yet
   EXPECT_TRUE(rig.capture.touchdown(0.95, -0.3));  // either sign of load
@@ -109,7 +113,10 @@ TEST(WalkCaptureStep, TouchdownNeedsALateEnoughPhaseAndLoad) {
 int steps_taken(double touchdown_load, double knee_load, double seconds) {
   ParameterStore store;
   WalkEngine engine(store, ServoTable::defaults(), 10'000'000);
-  EXPECT_TRUE(store.set_now({{"walk.capture.touchdown_load", touchdown_load}}).is_ok());
+  EXPECT_TRUE(store
+                  .set_now({{"walk.capture.touchdown_load", touchdown_load},
+                            {"walk.capture.touchdown_phase", 0.9}})
+                  .is_ok());
   hal::SensorFrame sensors;
   sensors.cm730.accel_mps2 = {0.0, 0.0, 9.81};
   for (auto& servo : sensors.servos) servo.load = knee_load;

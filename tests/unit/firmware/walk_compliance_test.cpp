@@ -35,8 +35,10 @@ std::size_t index(const char* name) {
 
 const Eigen::Vector3d kGravity(0.0, 0.0, -9.81);
 
-TEST(WalkCompliance, OffByDefaultLeavesTheGoalsAlone) {
+TEST(WalkCompliance, OnByDefaultAndGainZeroLeavesTheGoalsAlone) {
   Rig rig;
+  EXPECT_TRUE(rig.compensation.enabled());  // the faithful world's default (issue 29 point 6)
+  rig.set("walk.compliance.gain", 0.0);
   EXPECT_FALSE(rig.compensation.enabled());
   const auto before = rig.targets;
   rig.compensation.apply(rig.targets, kGravity, {true, true}, rig.gains, rig.sensors);
@@ -93,6 +95,7 @@ TEST(WalkCompliance, OffsetsAreBoundedAndZeroGainIsIgnored) {
 
 TEST(WalkCompliance, BackEmfFeedForwardFollowsTheGoalsSpeed) {
   Rig rig;
+  rig.set("walk.compliance.gain", 0.0);  // the back-EMF term alone
   rig.set("walk.compliance.back_emf_gain", 1.0);
   rig.compensation.apply(rig.targets, kGravity, {true, true}, rig.gains, rig.sensors);
   auto moved = kStandPoseRad;

@@ -29,13 +29,23 @@ hal::Cm730State gyro(double gx, double gz) {
   return s;
 }
 
-TEST(HeadingHold, IsOffByDefault) {
-  ParameterStore store;
-  walk::HeadingHold hold(store, kPeriod);
-  hold.update(gyro(0.0, 0.0), 0.0, true, true);
-  for (int i = 0; i < 100; ++i) hold.update(gyro(0.0, 0.5), 0.0, false, true);
-  EXPECT_NEAR(hold.heading_error(), 0.5, 1e-9);  // it still measures
-  EXPECT_EQ(hold.begin_step(), 0.0);
+TEST(HeadingHold, IsOnByDefaultAndGainZeroIsOff) {
+  for (const bool off : {false, true}) {
+    ParameterStore store;
+    walk::HeadingHold hold(store, kPeriod);
+    // The faithful world's default: on at 0.5 rad/step per rad (issue 29 point 6).
+    if (off) {
+      ASSERT_TRUE(store.set_now({{"walk.balance.heading_gain", 0.0}}).is_ok());
+    }
+    hold.update(gyro(0.0, 0.0), 0.0, true, true);
+    for (int i = 0; i < 100; ++i) hold.update(gyro(0.0, 0.5), 0.0, false, true);
+    EXPECT_NEAR(hold.heading_error(), 0.5, 1e-9);  // it measures either way
+    if (off) {
+      EXPECT_EQ(hold.begin_step(), 0.0);
+    } else {
+      EXPECT_LT(hold.begin_step(), -0.05);  // turns back right
+    }
+  }
 }
 
 TEST(HeadingHold, LearnsTheBiasWhileStandingAndFeedsBackTheTwoStepMeanError) {
@@ -139,9 +149,10 @@ double foot_yaw_difference(const WalkEngine::Snapshot& s) {
 }
 
 TEST(WalkHeadingHold, AYawToTheLeftTurnsTheStepsToTheRightAndGainZeroIsOpenLoop) {
-  Rig still, yawing, open_loop;  // open_loop: the default, heading_gain 0
+  Rig still, yawing, open_loop;  // open_loop: heading_gain 0
   ASSERT_TRUE(still.store.set_now(kOn).is_ok());
   ASSERT_TRUE(yawing.store.set_now(kOn).is_ok());
+  ASSERT_TRUE(open_loop.store.set_now({{"walk.balance.heading_gain", 0.0}}).is_ok());
   for (Rig* r : {&still, &yawing, &open_loop}) {
     r->engine.set_velocity(1.0, 0.0, 0.0);
     r->engine.start(r->sensors, r->out, 0);

@@ -232,16 +232,31 @@ TEST(TaskConfig, EnginesAndValidateSeedsParseRoundTripAndNameTheFieldOnError) {
   EXPECT_EQ(error_of(d), "validate.worlds: unknown field");
 }
 
-// The simulated robot (issue 20): another URDF (relative to the config file), the servo law,
-// the IMU and the physics step reach every trial's world and survive run.json.
+// The simulated robot (issue 20): another URDF (relative to the config file), the named world
+// (issue 29: faithful by default, seed by name), the servo law, the IMU and the physics step
+// reach every trial's world and survive run.json.
 TEST(TaskConfig, RobotFieldsReachTheWorldsAndNameTheFieldOnError) {
   TaskConfig c;
   ASSERT_TRUE(parse_task_config(minimal(), c));
   EXPECT_TRUE(c.urdf.empty());
+  EXPECT_EQ(RobotTask(c).world_options(0).servo.law, sim::ServoLaw::kIdentified);
+  EXPECT_FALSE(RobotTask(c).world_options(0).imu.chain.is_ideal());
+  EXPECT_FALSE(RobotTask(c).world_options(0).imu.chain.noise);  // one trial: no noise
+  EXPECT_EQ(RobotTask(c).world_options(0).physics_step_ns, 2'000'000);
+  EXPECT_DOUBLE_EQ(RobotTask(c).world_options(0).contact.grass_thickness_m, 0.005);
+  // The thesis's world by name; a part named beside it overrides it.
+  auto seed = minimal();
+  seed["world"] = "seed";
+  ASSERT_TRUE(parse_task_config(seed, c));
   EXPECT_EQ(RobotTask(c).world_options(0).servo.law, sim::ServoLaw::kSeed);
   EXPECT_TRUE(RobotTask(c).world_options(0).imu.chain.is_ideal());
-  EXPECT_EQ(RobotTask(c).world_options(0).physics_step_ns, 2'000'000);
   EXPECT_DOUBLE_EQ(RobotTask(c).world_options(0).contact.grass_thickness_m, 0.02);
+  seed["imu"] = "cm730";
+  ASSERT_TRUE(parse_task_config(seed, c));
+  EXPECT_FALSE(RobotTask(c).world_options(0).imu.chain.is_ideal());
+  EXPECT_EQ(RobotTask(c).world_options(0).servo.law, sim::ServoLaw::kSeed);
+  seed["world"] = "gazebo";
+  EXPECT_EQ(error_of(seed), "world: must be \"faithful\" or \"seed\", got \"gazebo\"");
   test::TempDir tmp;
   std::filesystem::create_directories(tmp.path() / "robots");
   std::filesystem::copy_file(sim::RobotModel::igus_path(), tmp.path() / "robots" / "mine.urdf");

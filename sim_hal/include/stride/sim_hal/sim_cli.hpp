@@ -10,11 +10,15 @@
 
 namespace stride::sim {
 
-/// Declares --seed, --noise on|off, --physics-step-us, --urdf, --imu, --servo-law, --engine,
-/// --contact.
+/// Declares --seed, --noise on|off, --physics-step-us, --urdf, --world faithful|seed, --imu,
+/// --servo-law, --engine, --contact, --push.
 void declare_world_options(fw::CliArgs& args);
 /// Reads them into `out` (whose control period the caller sets). The error names the option.
 Status read_world_options(const fw::CliArgs& args, WorldOptions& out);
+
+/// One line naming the world's engine, servo law, IMU, contact and physics step, e.g.
+/// "simbody, identified servo law, cm730 IMU, turf, step 2000 us".
+std::string describe_world(const WorldOptions& options);
 
 /// Largest impulse `--push` accepts [N s] (about 3 m/s of the igus robot's 6.5 kg).
 inline constexpr double kMaxPushImpulse = 20.0;

@@ -82,9 +82,10 @@ struct ImuOptions {
   double gyro_bias_std = 0.0;   ///< [rad/s]
   /// The sensor chain (imu_model.hpp): ideal (true value at the period's end plus the white
   /// noise above) or the chips and CM730 of the robot (their own noise; the stds above unused).
-  ImuChain chain = ImuChain::ideal();
-  /// Typical values of the igus' CM730 IMU (used by `--noise on`).
-  static ImuOptions noisy();
+  ImuChain chain{};
+  /// Typical noise of the igus' CM730 IMU on (`--noise on`) or every noise off: the white noise
+  /// and biases above, and the chain's own chip noise. The chain itself is kept.
+  void set_noise(bool on);
 };
 
 /// Which servo law drives the joints: the seed's (Gazebo figures, ServoModel) or the MX servo
@@ -93,7 +94,7 @@ struct ImuOptions {
 enum class ServoLaw { kSeed, kIdentified };
 
 struct ServoOptions {
-  ServoLaw law = ServoLaw::kSeed;
+  ServoLaw law = ServoLaw::kIdentified;
   // ServoLaw::kIdentified: the published MX parameters (mx_servo_params) with these options.
   MxFrictionModel friction_model = MxFrictionModel::kM6;
   double backlash_rad = 0.33 * 3.14159265358979323846 / 180.0;  ///< e-manual: 20 arcmin
@@ -128,6 +129,18 @@ struct TorsoPush {
   double impulse_n_s = 0.0;
 };
 
+/// A named world (issue 29 point 6): the robot's servo law, IMU chain and field contact.
+/// kFaithful is the default everywhere: the identified MX servo law, the CM730 IMU chain and
+/// turf. kSeed is the thesis's world, kept by name to reproduce it: the seed's servo law (its
+/// Gazebo figures), an ideal IMU and its 2 cm grass. The firmware's walk defaults belong to the
+/// faithful world; the thesis's are firmware/config/seed-walk.json.
+enum class WorldPreset : std::uint8_t { kFaithful, kSeed };
+const char* to_string(WorldPreset preset);
+/// "faithful" or "seed"; false for anything else.
+bool parse_world_preset(std::string_view text, WorldPreset& out);
+
+/// The world options are the defaults of a WorldOptions (the faithful world); WorldPreset
+/// kSeed is the thesis's world.
 struct WorldOptions {
   EngineKind engine = EngineKind::kSimbody;
   std::filesystem::path urdf = RobotModel::igus_path();
@@ -143,7 +156,7 @@ struct WorldOptions {
   double battery_voltage_v = 14.8;
   double gravity_mps2 = 9.81;
   ServoOptions servo;
-  ContactOptions contact;
+  ContactOptions contact = ContactOptions::turf();
   BallOptions ball;
   ImuOptions imu;
   Randomisation randomise;
@@ -152,6 +165,17 @@ struct WorldOptions {
   double max_speed = 200.0;
   /// Pushes on the trunk during each episode (times from the episode's reset).
   std::vector<TorsoPush> pushes;
+
+  /// Sets the servo law, the IMU chain (keeping its noise switch) and the contact of `preset`.
+  void apply(WorldPreset preset);
+  /// The IMU chain: the CM730's (true) or the ideal sensor, keeping the chain's noise switch.
+  void use_cm730_imu(bool cm730);
+  /// The thesis's world (WorldPreset::kSeed) with every other option at its default.
+  static WorldOptions seed_world() {
+    WorldOptions o;
+    o.apply(WorldPreset::kSeed);
+    return o;
+  }
 };
 
 enum class WorldStatus : std::uint8_t {

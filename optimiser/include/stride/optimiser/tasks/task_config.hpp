@@ -81,16 +81,17 @@ struct TaskConfig {
   std::vector<sim::EngineKind> engines{sim::EngineKind::kSimbody};
   int world_count() const { return trials * static_cast<int>(engines.size()); }
   // The simulated robot (issue 20): another robot description (config `urdf`, a path relative
-  // to the config file; empty: the igus model), the servo law (`servo_law`: "seed" or
-  // "identified"), the IMU (`imu`: "ideal" or "cm730") and the physics step
-  // (`physics_step_us`, dividing the 10 ms control period).
+  // to the config file; empty: the igus model), the named world (`world`: "faithful", the
+  // default, or "seed", the thesis's; sim::WorldPreset), whose parts the servo law
+  // (`servo_law`: "seed" or "identified"), the IMU (`imu`: "ideal" or "cm730") and the contact
+  // override, and the physics step (`physics_step_us`, dividing the 10 ms control period).
   std::filesystem::path urdf;
-  sim::ServoLaw servo_law = sim::ServoLaw::kSeed;
-  bool imu_cm730 = false;
+  sim::ServoLaw servo_law = sim::ServoLaw::kIdentified;
+  bool imu_cm730 = true;
   std::int64_t physics_step_us = 2000;
   /// The field contact (issue 29, config `contact`): "seed" (the seed's 2 cm grass) or "turf"
   /// (sim::ContactOptions::turf(), sim_hal/models/README.md).
-  std::string contact = "seed";
+  std::string contact = "turf";
   /// `stride validate` after a run (config `validate` {seeds}): fresh seeds per world.
   int validate_seeds = 10;
   // Hypervolume normalisation (ideal and nadir objective vectors).
