@@ -109,8 +109,13 @@ Status RobotTask::run_world(const Genome& genome, sim::WorldOptions options, Epi
   if (Status s = world->reset(spec); !s) return s;
   sim::SimRobot robot(std::move(world));
 
-  // Flash the genome: one validated batch, staged, applied atomically at tick 0.
+  // The config's base parameters first (set now: the firmware's start-up values), then the
+  // genome: one validated batch, staged, applied atomically at tick 0.
   fw::ParameterStore& params = firmware->params();
+  if (!config_.base_params.empty()) {
+    if (Status s = params.set_now(config_.base_params); !s)
+      return Status::error("params: " + s.message());
+  }
   std::vector<fw::ParamWrite> batch;
   for (std::size_t i = 0; i < config_.genes.size(); ++i)
     batch.push_back({config_.genes[i].parameter, genome.reals[i]});

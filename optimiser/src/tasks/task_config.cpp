@@ -82,6 +82,7 @@ const char* const kKnownFields[] = {"task",
                                     "engines",
                                     "urdf",
                                     "world",
+                                    "params",
                                     "servo_law",
                                     "imu",
                                     "contact",
@@ -136,6 +137,24 @@ Status parse_robot(const nlohmann::json& doc, TaskConfig& c) {
     if (!k.is_string() || !sim::parse_contact_kind(k.get<std::string>(), parsed))
       return Status::error("contact: must be \"seed\" or \"turf\", got " + k.dump());
     c.contact = k.get<std::string>();
+  }
+  if (doc.contains("params")) {
+    nlohmann::json values = doc.at("params");
+    if (values.is_string()) {
+      const std::string file = values.get<std::string>();
+      std::ifstream in(file);
+      if (!in) return Status::error("params: cannot open '" + file + "'");
+      values = nlohmann::json::parse(in, nullptr, false);
+      if (values.is_discarded()) return Status::error("params: '" + file + "' is not valid JSON");
+    }
+    if (!values.is_object())
+      return Status::error("params: must be a parameter file's path or an object {name: number}");
+    c.base_params.clear();
+    for (const auto& [name, value] : values.items()) {
+      if (!value.is_number())
+        return Status::error("params: " + name + " must be a number, got " + value.dump());
+      c.base_params.emplace_back(name, value.get<double>());
+    }
   }
   std::int64_t step = c.physics_step_us;
   if (Status s = integer(doc, "physics_step_us", 1, 10000, step, false); !s) return s;
@@ -327,12 +346,12 @@ Status load_task_config(const std::filesystem::path& path, TaskConfig& out) {
   if (!in) return Status::error(path.string() + ": cannot open");
   nlohmann::json doc = nlohmann::json::parse(in, nullptr, false);
   if (doc.is_discarded()) return Status::error(path.string() + ": not valid JSON");
-  // A relative robot description is relative to the config file.
-  if (doc.is_object() && doc.contains("urdf") && doc.at("urdf").is_string()) {
-    const std::filesystem::path urdf = doc.at("urdf").get<std::string>();
-    if (urdf.is_relative() && !urdf.empty())
-      doc["urdf"] =
-          (std::filesystem::absolute(path).parent_path() / urdf).lexically_normal().string();
+  // A relative robot description or parameter file is relative to the config file.
+  for (const char* key : {"urdf", "params"}) {
+    if (!doc.is_object() || !doc.contains(key) || !doc.at(key).is_string()) continue;
+    const std::filesystem::path file = doc.at(key).get<std::string>();
+    if (file.is_relative() && !file.empty())
+      doc[key] = (std::filesystem::absolute(path).parent_path() / file).lexically_normal().string();
   }
   if (Status s = parse_task_config(doc, out); !s)
     return Status::error(path.string() + ": " + s.message());
@@ -373,6 +392,11 @@ nlohmann::json to_json(const TaskConfig& c) {
   j["engines"] = engines;
   j["validate"] = {{"seeds", c.validate_seeds}};
   if (!c.urdf.empty()) j["urdf"] = std::filesystem::absolute(c.urdf).string();
+  if (!c.base_params.empty()) {
+    nlohmann::json params = nlohmann::json::object();
+    for (const auto& [name, value] : c.base_params) params[name] = value;
+    j["params"] = params;  // the values, so that run.json stands alone
+  }
   j["servo_law"] = c.servo_law == sim::ServoLaw::kIdentified ? "identified" : "seed";
   j["imu"] = c.imu_cm730 ? "cm730" : "ideal";
   j["contact"] = c.contact;

@@ -106,6 +106,39 @@ TEST(RobotTask, TheGenomeIsFlashedIntoTheFirmware) {
   EXPECT_GT(original.max_accel, 5.0);
 }
 
+// The thesis's world by name (issue 29 point 6): "world": "seed" with the firmware's walk
+// defaults of then as base parameters (firmware/config/seed-walk.json) walks Ind_O as the
+// seed's world did (2.5 m in about 27 s, noise off), slower than the faithful default world
+// (about 19 s); a base parameter the firmware does not know is named.
+TEST(RobotTask, TheSeedsWorldAndWalkByNameAndBaseParameters) {
+  TaskConfig c = load("walk.json");
+  const RobotTask faithful(c);
+  EpisodeScore now, seed_world;
+  ASSERT_TRUE(faithful.run_trial(faithful.start_genome(), 0, now));
+  nlohmann::json doc = to_json(c);
+  doc["world"] = "seed";
+  doc.erase("servo_law");
+  doc.erase("imu");
+  doc.erase("contact");
+  doc["params"] = STRIDE_SOURCE_DIR "/firmware/config/seed-walk.json";
+  TaskConfig seed;
+  ASSERT_TRUE(parse_task_config(doc, seed));
+  const RobotTask thesis(seed);
+  ASSERT_TRUE(thesis.run_trial(thesis.start_genome(), 0, seed_world));
+  std::printf("  Ind_O to 2.5 m: faithful world %.2f s, seed world and walk %.2f s\n",
+              now.time_to_goal_s, seed_world.time_to_goal_s);
+  EXPECT_GT(now.time_to_goal_s, 17.0);
+  EXPECT_LT(now.time_to_goal_s, 21.0);
+  EXPECT_GT(seed_world.time_to_goal_s, 25.0);
+  EXPECT_LT(seed_world.time_to_goal_s, 29.0);
+  seed.base_params = {{"walk.no_such_gain", 1.0}};
+  EpisodeScore bad;
+  const Status s = RobotTask(seed).run_trial(RobotTask(seed).start_genome(), 0, bad);
+  ASSERT_FALSE(s);
+  EXPECT_EQ(s.message().rfind("params: ", 0), 0u) << s.message();
+  EXPECT_NE(s.message().find("walk.no_such_gain"), std::string::npos) << s.message();
+}
+
 // The README demo (toolchain/demo.sh, walk-demo.json) must be able to say "reaches": its
 // Ind_O reaches the 2.5 m goal within the time limit in the run's world, without a fall and
 // within the straightness constraints, with a margin for the validation's noisier worlds.

@@ -303,6 +303,33 @@ TEST(TaskConfig, RobotFieldsReachTheWorldsAndNameTheFieldOnError) {
   EXPECT_EQ(error_of(d), "physics_step_us: must divide the 10000 us control period, got 3000");
 }
 
+// Base parameters (issue 29 point 6): a file relative to the config or an object, stored by
+// value in run.json; a bad one is named.
+TEST(TaskConfig, BaseParametersFromAFileOrAnObject) {
+  test::TempDir tmp;
+  std::filesystem::create_directories(tmp.path() / "walk");
+  tmp.write("walk/base.json",
+            R"({"walk.compliance.gain": 0.0, "walk.balance.heading_gain": 0.25})");
+  auto d = minimal();
+  d["params"] = "base.json";
+  tmp.write("walk/config.json", d.dump());
+  TaskConfig c;
+  ASSERT_TRUE(load_task_config(tmp.path() / "walk" / "config.json", c));
+  ASSERT_EQ(c.base_params.size(), 2u);
+  EXPECT_EQ(c.base_params[0].first, "walk.balance.heading_gain");  // sorted by name
+  EXPECT_EQ(c.base_params[0].second, 0.25);
+  EXPECT_EQ(to_json(c)["params"]["walk.compliance.gain"], 0.0);
+  TaskConfig back;
+  ASSERT_TRUE(parse_task_config(to_json(c), back));
+  EXPECT_EQ(back.base_params, c.base_params);
+  d["params"] = {{"walk.compliance.gain", "high"}};
+  EXPECT_EQ(error_of(d), "params: walk.compliance.gain must be a number, got \"high\"");
+  d["params"] = 3;
+  EXPECT_EQ(error_of(d), "params: must be a parameter file's path or an object {name: number}");
+  d["params"] = (tmp.path() / "none.json").string();
+  EXPECT_EQ(error_of(d), "params: cannot open '" + (tmp.path() / "none.json").string() + "'");
+}
+
 TEST(TaskConfig, RoundTripsThroughJson) {
   TaskConfig a, b;
   ASSERT_TRUE(load_task_config(kConfigs + "walk.json", a));

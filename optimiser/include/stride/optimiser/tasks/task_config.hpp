@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -92,6 +93,11 @@ struct TaskConfig {
   /// The field contact (issue 29, config `contact`): "seed" (the seed's 2 cm grass) or "turf"
   /// (sim::ContactOptions::turf(), sim_hal/models/README.md).
   std::string contact = "turf";
+  /// Parameter values every episode's firmware takes before the genome (config `params`: a
+  /// parameter file's path, relative to the config, or an object {name: number}); genes
+  /// override them. Sorted by name. E.g. firmware/config/seed-walk.json with `"world": "seed"`
+  /// reproduces the thesis's world and walk.
+  std::vector<std::pair<std::string, double>> base_params;
   /// `stride validate` after a run (config `validate` {seeds}): fresh seeds per world.
   int validate_seeds = 10;
   // Hypervolume normalisation (ideal and nadir objective vectors).
