@@ -112,8 +112,9 @@ std::string describe_world(const WorldOptions& o) {
                        o.contact.mujoco_solid_ground == turf.mujoco_solid_ground;
   return std::string(to_string(o.engine)) + ", " +
          (o.servo.law == ServoLaw::kIdentified ? "identified" : "seed") + " servo law, " +
-         (o.imu.chain.is_ideal() ? "ideal" : "cm730") + " IMU, " + (is_turf ? "turf" : "seed grass") +
-         ", step " + std::to_string(o.physics_step_ns / 1000) + " us";
+         (o.imu.chain.is_ideal() ? "ideal" : "cm730") + " IMU, " +
+         (is_turf ? "turf" : "seed grass") + ", step " + std::to_string(o.physics_step_ns / 1000) +
+         " us";
 }
 
 namespace {

@@ -155,7 +155,8 @@ int main(int argc, char** argv) {
   std::stringstream list(args.get("directions"));
   for (std::string item; std::getline(list, item, ',');) wanted.push_back(item);
   std::printf("%s, %lld seeds, %.0f s, params %s\n", sim::describe_world(base).c_str(),
-              static_cast<long long>(seeds), duration, args.has("params") ? args.get("params").c_str() : "default");
+              static_cast<long long>(seeds), duration,
+              args.has("params") ? args.get("params").c_str() : "default");
   std::printf("%-7s %5s %10s %7s %9s %9s %9s %7s\n", "dir", "falls", "speed_med", "drift",
               "heading", "clear_med", "clear_p10", "grazing");
   for (const Direction& d : kDirections) {

@@ -39,8 +39,8 @@ sim::EpisodeResult walk_in_sim(std::uint64_t seed, WalkCommand command, double d
   EXPECT_TRUE(fw::Firmware::create({}, firmware));
   // seed_world: the thesis's world and the firmware's walk defaults of then.
   if (seed_world) {
-    EXPECT_TRUE(firmware->params().load_file_now(STRIDE_SOURCE_DIR
-                                                 "/firmware/config/seed-walk.json"));
+    EXPECT_TRUE(
+        firmware->params().load_file_now(STRIDE_SOURCE_DIR "/firmware/config/seed-walk.json"));
   }
   if (!overrides.empty()) {
     EXPECT_TRUE(firmware->params().set_now(overrides));

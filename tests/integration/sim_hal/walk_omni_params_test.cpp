@@ -19,7 +19,8 @@ const char* const kParams = STRIDE_SOURCE_DIR "/firmware/config/walk-omni.json";
 sim::EpisodeResult walk(std::uint64_t seed, double vx, double vy, double vth) {
   std::unique_ptr<fw::Firmware> firmware;
   EXPECT_TRUE(fw::Firmware::create({}, firmware));
-  EXPECT_TRUE(firmware->params().load_file_now(STRIDE_SOURCE_DIR "/firmware/config/seed-walk.json"));
+  EXPECT_TRUE(
+      firmware->params().load_file_now(STRIDE_SOURCE_DIR "/firmware/config/seed-walk.json"));
   const Status loaded = firmware->params().load_file_now(kParams);
   EXPECT_TRUE(loaded) << loaded.message();
   sim::WorldOptions options = sim::WorldOptions::seed_world();

@@ -89,8 +89,10 @@ TEST(ContactLaw, ARollingStudStretchesNothing) {
     for (int k = 0; k < 50; ++k) {
       const double x = v * Stud::kStep * k;
       EXPECT_NEAR(stud.force(0.002, x, v, 0.0, spin)[0], 0.0, 1e-12) << "step " << k;
-      if (k > 20) EXPECT_NEAR(sliding.force(0.002, x, v)[0], -options.grass_stiffness_n_m * 0.002, 1e-9);
-      else sliding.force(0.002, x, v);
+      if (k > 20)
+        EXPECT_NEAR(sliding.force(0.002, x, v)[0], -options.grass_stiffness_n_m * 0.002, 1e-9);
+      else
+        sliding.force(0.002, x, v);
     }
   }
 }
