@@ -221,13 +221,35 @@ void SimWorld::reseed(std::uint64_t seed) {
 
 namespace {
 
+/// How deep a robot of weight `weight_n` whose collision spheres' bottoms are at `bottom`
+/// (lowest: the lowest of them) sinks into the grass until the contact springs (grass over the
+/// solid ground, contact_law.cpp) carry it standing still [m].
+double sinking(const ContactOptions& c, const std::vector<double>& bottom, double lowest,
+               double weight_n) {
+  const auto force = [&](double sink) {
+    double f = 0.0;
+    for (double b : bottom) {
+      const double depth = sink - (b - lowest);
+      if (depth <= 0.0) continue;
+      f += c.grass_stiffness_n_m * std::min(depth, c.grass_thickness_m) +
+           c.ground_stiffness_n_m * std::max(0.0, depth - c.grass_thickness_m);
+    }
+    return f;
+  };
+  double lo = 0.0, hi = 0.1;
+  if (!(weight_n > 0.0) || bottom.empty() || force(hi) < weight_n) return 0.0;
+  for (int k = 0; k < 60; ++k) (force(0.5 * (lo + hi)) < weight_n ? lo : hi) = 0.5 * (lo + hi);
+  return 0.5 * (lo + hi);
+}
+
 /// Places the robot for a reset on `engine`: the given orientation, tilted so that the mean
 /// sole normal points up if asked, lowered until the lowest collision point rests on the grass
 /// top unless a height is given. The feet and points are read from the engine itself, so the
 /// placement is exact in the engine's own kinematics.
 Status place_robot(PhysicsEngine& engine, const std::vector<CollisionPoint>& points,
-                   const ResetSpec& spec, int left_foot, int right_foot, double grass_top,
-                   EngineStart& start) {
+                   const ResetSpec& spec, int left_foot, int right_foot,
+                   const ContactOptions& contact, double weight_n, EngineStart& start) {
+  const double grass_top = contact.grass_thickness_m;
   start.torso_orientation = spec.torso_orientation.normalized();
   start.torso_position = Eigen::Vector3d(spec.torso_position.x(), spec.torso_position.y(), 0.0);
   start.tilt_angle = 0.0;
@@ -248,12 +270,38 @@ Status place_robot(PhysicsEngine& engine, const std::vector<CollisionPoint>& poi
     return engine.start(start);
   }
   if (Status s = engine.start(start); !s) return s;
-  double lowest = std::numeric_limits<double>::infinity();
+  std::vector<double> bottom;  // of every collision sphere [m]
   for (const CollisionPoint& p : points) {
     const Eigen::Isometry3d x = engine.link_pose(static_cast<std::size_t>(p.link));
-    lowest = std::min(lowest, (x * p.station).z() - p.radius);
+    bottom.push_back((x * p.station).z() - p.radius);
   }
+  const double lowest = *std::min_element(bottom.begin(), bottom.end());
   start.torso_position.z() = grass_top - lowest;
+  if (spec.sink_into_grass) start.torso_position.z() -= sinking(contact, bottom, lowest, weight_n);
+  return engine.start(start);
+}
+
+/// Gives the trunk of a robot placed by `start` (with joint speeds) the velocity that keeps its
+/// lower foot still: the foot's pose after a short time with the trunk held, moved back onto
+/// where it is now, moves the trunk by the opposite of the foot's motion.
+Status still_lower_foot(PhysicsEngine& engine, int left_foot, int right_foot, EngineStart& start) {
+  if (left_foot < 0 || right_foot < 0) return Status::ok();
+  const Eigen::Isometry3d torso = engine.link_pose(0);
+  const Eigen::Isometry3d left = engine.link_pose(static_cast<std::size_t>(left_foot));
+  const Eigen::Isometry3d right = engine.link_pose(static_cast<std::size_t>(right_foot));
+  const bool use_left = left.translation().z() <= right.translation().z();
+  const Eigen::Isometry3d foot = use_left ? left : right;
+  constexpr double kDt = 1e-5;  // [s]
+  EngineStart probe = start;
+  for (std::size_t j = 0; j < probe.joint_angles.size(); ++j)
+    probe.joint_angles[j] += kDt * start.joint_speeds[j];
+  if (Status s = engine.start(probe); !s) return s;
+  const Eigen::Isometry3d moved =
+      engine.link_pose(static_cast<std::size_t>(use_left ? left_foot : right_foot));
+  const Eigen::Isometry3d back = foot * moved.inverse();  // takes the moved foot back
+  const Eigen::AngleAxisd turn(back.linear());
+  start.torso_angular_velocity = turn.axis() * (turn.angle() / kDt);
+  start.torso_velocity = ((back * torso).translation() - torso.translation()) / kDt;
   return engine.start(start);
 }
 
@@ -263,6 +311,8 @@ Status SimWorld::reset(const ResetSpec& spec) {
   Impl& w = *impl_;
   for (double a : spec.joint_angles)
     if (!std::isfinite(a)) return Status::error("reset: non-finite joint angle");
+  for (double v : spec.joint_speeds)
+    if (!std::isfinite(v)) return Status::error("reset: non-finite joint speed");
   if (!std::isfinite(spec.torso_position.x()) || !std::isfinite(spec.torso_position.y()) ||
       !spec.torso_orientation.coeffs().allFinite() || !std::isfinite(spec.ball_position.x()) ||
       !std::isfinite(spec.ball_position.y()) || !spec.ball_velocity.allFinite())
@@ -322,15 +372,25 @@ Status SimWorld::reset(const ResetSpec& spec) {
   start.joint_angles.assign(w.model.joints().size(), 0.0);
   for (std::size_t i = 0; i < hal::kServoCount; ++i)
     start.joint_angles[static_cast<std::size_t>(w.servo_joint[i])] = spec.joint_angles[i];
+  if (std::any_of(spec.joint_speeds.begin(), spec.joint_speeds.end(),
+                  [](double v) { return v != 0.0; })) {
+    start.joint_speeds.assign(w.model.joints().size(), 0.0);
+    for (std::size_t i = 0; i < hal::kServoCount; ++i)
+      start.joint_speeds[static_cast<std::size_t>(w.servo_joint[i])] = spec.joint_speeds[i];
+  }
   const double grass_top = w.options.contact.grass_thickness_m;
   start.ball_position = spec.ball_position;
   if (!std::isfinite(start.ball_position.z()))
     start.ball_position.z() = grass_top + w.options.ball.radius_m;
   start.ball_velocity = spec.ball_velocity;
   if (Status s =
-          place_robot(*w.engine, w.collision, spec, w.left_foot, w.right_foot, grass_top, start);
+          place_robot(*w.engine, w.collision, spec, w.left_foot, w.right_foot, w.options.contact,
+                      w.model.total_mass() * w.options.gravity_mps2, start);
       !s)
     return Status::error("reset: " + s.message());
+  if (spec.still_lower_foot && !start.joint_speeds.empty())
+    if (Status s = still_lower_foot(*w.engine, w.left_foot, w.right_foot, start); !s)
+      return Status::error("reset: " + s.message());
   w.periods = 0;
   w.steps = 0;
   w.status = WorldStatus::kRunning;
