@@ -19,18 +19,28 @@ namespace stride::sim {
 void TiltFilter::start(const Eigen::Vector3d& accel) {
   const double n = accel.norm();
   up_ = n > 1e-6 && accel.allFinite() ? Eigen::Vector3d(accel / n) : Eigen::Vector3d::UnitZ();
+  bias_.setZero();
+}
+
+void TiltFilter::start(const TiltFilter& other) {
+  up_ = other.up_;
+  bias_ = other.bias_;
 }
 
 void TiltFilter::update(const Eigen::Vector3d& accel, const Eigen::Vector3d& gyro, double dt_s) {
-  // A direction fixed in the world, seen from a frame turning at `gyro`: d(up)/dt = -gyro x up.
-  if (gyro.allFinite()) up_ -= dt_s * gyro.cross(up_);
-  up_.normalize();
+  // A direction fixed in the world, seen from a frame turning at w: d(up)/dt = -w x up. The
+  // correction turns up towards the measured direction a at the rate kp |up x a|; the bias
+  // integrates the same error (Mahony: w = gyro - bias - kp up x a, d(bias)/dt = ki up x a).
+  const double kp = 1.0 / time_constant_s_;
+  const double ki = estimate_bias_ ? 0.25 * kp * kp : 0.0;  // critically damped
+  Eigen::Vector3d error = Eigen::Vector3d::Zero();
   const double n = accel.norm();
   constexpr double kG = 9.81;
-  if (accel.allFinite() && n > 0.5 * kG && n < 1.5 * kG) {
-    const double pull = dt_s / (time_constant_s_ + dt_s);
-    up_ = ((1.0 - pull) * up_ + pull * accel / n).normalized();
-  }
+  if (accel.allFinite() && n > 0.5 * kG && n < 1.5 * kG) error = up_.cross(accel / n);
+  const Eigen::Vector3d w =
+      (gyro.allFinite() ? gyro : Eigen::Vector3d::Zero()) - bias_ - kp * error;
+  up_ = (up_ - dt_s * w.cross(up_)).normalized();
+  bias_ += dt_s * ki * error;
 }
 
 double TiltFilter::roll() const {
@@ -204,9 +214,9 @@ Eigen::Vector3d gyro_of(const hal::SensorFrame& f) {
   return {f.cm730.gyro_rad_s[0], f.cm730.gyro_rad_s[1], f.cm730.gyro_rad_s[2]};
 }
 
-/// The trunk's "up" direction at every log tick: TiltFilter over the log, restarted at gaps.
-std::vector<Eigen::Vector3d> logged_up(const fw::FlightLog& log, double period_s) {
-  std::vector<Eigen::Vector3d> up(log.ticks.size());
+/// The trunk's attitude at every log tick: TiltFilter over the log, restarted at gaps.
+std::vector<TiltFilter> logged_tilt(const fw::FlightLog& log, double period_s) {
+  std::vector<TiltFilter> out(log.ticks.size());
   TiltFilter filter;
   for (std::size_t i = 0; i < log.ticks.size(); ++i) {
     const hal::SensorFrame& f = log.ticks[i].sensors;
@@ -214,12 +224,12 @@ std::vector<Eigen::Vector3d> logged_up(const fw::FlightLog& log, double period_s
       filter.update(accel_of(f), gyro_of(f), period_s);
     else
       filter.start(accel_of(f));
-    up[i] = filter.up();
+    out[i] = filter;
   }
-  return up;
+  return out;
 }
 
-/// Angles of a trunk whose up direction in its own frame is `up` (yaw 0).
+/// The trunk's orientation of roll and pitch (yaw 0).
 Eigen::Quaterniond trunk_orientation(double roll, double pitch) {
   return Eigen::Quaterniond(Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
                             Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX()));
@@ -269,7 +279,7 @@ Status replay_flight_log(const fw::FlightLog& log, const WorldOptions& world,
   std::unique_ptr<SimWorld> sim_world;
   if (Status s = SimWorld::create(world_options, sim_world); !s) return s;
   SimRobot robot(std::move(sim_world));
-  const std::vector<Eigen::Vector3d> up = logged_up(log, period_s);
+  const std::vector<TiltFilter> tilt = logged_tilt(log, period_s);
 
   // Windows: runs of n periods of consecutive ticks, one after the other.
   std::vector<bool> used(log.ticks.size(), false);
@@ -287,8 +297,8 @@ Status replay_flight_log(const fw::FlightLog& log, const WorldOptions& world,
     window.start_s = static_cast<double>(window.start_tick) * period_s;
     const hal::SensorFrame& start = log.ticks[first].sensors;
     TiltFilter logged_tilt, sim_tilt;
-    logged_tilt.start(up[first]);
-    sim_tilt.start(up[first]);
+    logged_tilt.start(tilt[first]);
+    sim_tilt.start(tilt[first]);
     window.start_roll_pitch = {logged_tilt.roll(), logged_tilt.pitch()};
 
     ResetSpec spec;

@@ -142,8 +142,8 @@ TEST_F(LogReplay, TheSameWorldReplaysAtTheEncodersResolution) {
   for (std::size_t i = 0; i < hal::kServoCount; ++i)
     EXPECT_LT(standing.joint[i], 2.5 * kEncoderTickRad) << r.servo_names[i];
   EXPECT_LT(standing.all, 1.2 * kEncoderTickRad);
-  // Walking, the replay starts each window with the trunk at rest on the feet: measured 2.7 and
-  // 5.4 ticks (the worst joint 10 ticks), 3.1 over the whole log (FLIGHT_LOG.md, "Replay").
+  // Walking, the replay starts each window with the trunk at rest on the feet: measured 2.6 and
+  // 5.5 ticks (the worst joint 11 ticks), 3.1 over the whole log (FLIGHT_LOG.md, "Replaying").
   EXPECT_LT(r.overall.position_all_rad, 4.0 * kEncoderTickRad);
   // The IMU standing: attitude within half a degree, the accelerometer within 1.5 m/s^2 (measured
   // 1.0 and 0.3: the logged run began with the robot on the grass top and sinking into it, the
@@ -165,7 +165,7 @@ TEST_F(LogReplay, IsDeterministic) {
 }
 
 // The seed's servo law in the same robot: several times the error (measured: 4.6 ticks standing
-// against 0.9, 9.4 over the whole log against 3.1).
+// against 0.9, 9.7 over the whole log against 3.1).
 TEST_F(LogReplay, AnotherServoLawIsClearlyWorse) {
   const ReplayResult same = replay(world_from({"--noise", "off"}));
   const ReplayResult other = replay(world_from({"--noise", "off", "--servo-law", "seed"}));

@@ -27,20 +27,28 @@ namespace stride::sim {
 
 /// Trunk roll and pitch from the IMU: the "up" direction in the torso frame, propagated by the
 /// gyro and pulled towards the accelerometer's direction with time constant `time_constant_s`
-/// (a specific force far from 1 g is not trusted). Upright and still: roll = pitch = 0.
+/// (a specific force far from 1 g is not trusted), the gyro's bias about the horizontal axes
+/// estimated on the way (the integral term of a Mahony filter, critically damped). Upright and
+/// still: roll = pitch = 0.
 class TiltFilter {
  public:
-  explicit TiltFilter(double time_constant_s = 1.0) : time_constant_s_(time_constant_s) {}
-  /// Starts from the accelerometer alone (up along the specific force).
+  explicit TiltFilter(double time_constant_s = 2.0, bool estimate_bias = true)
+      : time_constant_s_(time_constant_s), estimate_bias_(estimate_bias) {}
+  /// Starts from the accelerometer alone (up along the specific force), no gyro bias.
   void start(const Eigen::Vector3d& accel);
+  /// Starts from the state of another filter (its direction and bias).
+  void start(const TiltFilter& other);
   void update(const Eigen::Vector3d& accel, const Eigen::Vector3d& gyro, double dt_s);
   double roll() const;
   double pitch() const;
   const Eigen::Vector3d& up() const { return up_; }
+  const Eigen::Vector3d& gyro_bias() const { return bias_; }
 
  private:
   double time_constant_s_;
+  bool estimate_bias_;
   Eigen::Vector3d up_ = Eigen::Vector3d::UnitZ();
+  Eigen::Vector3d bias_ = Eigen::Vector3d::Zero();
 };
 
 /// Checks that `log` can be replayed with the firmware files in use: a sim-able header
