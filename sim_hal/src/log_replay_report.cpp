@@ -74,7 +74,7 @@ std::string worst_joint(const ReplayErrors& e, const std::array<std::string, hal
 std::string table_row(const std::string& label, const ReplayErrors& e,
                       const std::array<std::string, hal::kServoCount>& names) {
   char line[512];
-  std::snprintf(line, sizeof line, "%-12s %6zu %9s %8s %8s %7s %7s %7s %7s %7s  %s\n",
+  std::snprintf(line, sizeof line, "%-12s %6zu %9s %8s %8s %7s %7s %7s %8s %9s  %s\n",
                 label.c_str(), e.samples, format("%.5f", e.position_all_rad).c_str(),
                 format("%.2f", e.position_all_rad / kEncoderTickRad).c_str(),
                 format("%.3f", e.speed_all_rad_s).c_str(), format("%.3f", e.load_all).c_str(),
@@ -126,10 +126,14 @@ nlohmann::json replay_summary_json(const ReplayResult& r,
 
 std::string replay_table(const ReplayResult& r) {
   std::string out;
-  out += "RMS error, simulated - logged (position also in encoder ticks of 2pi/4096 rad)\n";
   out +=
-      "window        ticks  pos[rad]  pos[tk] spd[r/s]     load roll[d] pitch[d] gyro "
-      "  acc[m/s2] worst joint [tk]\n";
+      "RMS error, simulated - logged (position also in encoder ticks of 2pi/4096 rad; gyro "
+      "and accelerometer: the three axes together)\n";
+  char header[256];
+  std::snprintf(header, sizeof header, "%-12s %6s %9s %8s %8s %7s %7s %7s %8s %9s  %s\n", "window",
+                "ticks", "pos[rad]", "pos[tk]", "spd[r/s]", "load", "roll[d]", "ptch[d]",
+                "gyr[r/s]", "acc[m/s2]", "worst joint [tk]");
+  out += header;
   for (const ReplayWindow& w : r.windows) {
     out += table_row(format("%.2f s", w.start_s), w.errors, r.servo_names);
     if (!w.failure.empty()) out += "             simulation stopped: " + w.failure + "\n";
