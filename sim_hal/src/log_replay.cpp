@@ -215,7 +215,7 @@ Eigen::Vector3d gyro_of(const hal::SensorFrame& f) {
 }
 
 /// The trunk's attitude at every log tick: TiltFilter over the log, restarted at gaps.
-std::vector<TiltFilter> logged_tilt(const fw::FlightLog& log, double period_s) {
+std::vector<TiltFilter> tilt_over_log(const fw::FlightLog& log, double period_s) {
   std::vector<TiltFilter> out(log.ticks.size());
   TiltFilter filter;
   for (std::size_t i = 0; i < log.ticks.size(); ++i) {
@@ -279,7 +279,7 @@ Status replay_flight_log(const fw::FlightLog& log, const WorldOptions& world,
   std::unique_ptr<SimWorld> sim_world;
   if (Status s = SimWorld::create(world_options, sim_world); !s) return s;
   SimRobot robot(std::move(sim_world));
-  const std::vector<TiltFilter> tilt = logged_tilt(log, period_s);
+  const std::vector<TiltFilter> tilt = tilt_over_log(log, period_s);
 
   // Windows: runs of n periods of consecutive ticks, one after the other.
   std::vector<bool> used(log.ticks.size(), false);
