@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "robot_placement.hpp"
 #include "stride/sim_hal/collision_points.hpp"
 #include "stride/sim_hal/physics_engine.hpp"
 #include "stride/sim_hal/world_rng.hpp"
@@ -219,50 +220,12 @@ void SimWorld::reseed(std::uint64_t seed) {
   impl_->rng.reseed(seed);
 }
 
-namespace {
-
-/// Places the robot for a reset on `engine`: the given orientation, tilted so that the mean
-/// sole normal points up if asked, lowered until the lowest collision point rests on the grass
-/// top unless a height is given. The feet and points are read from the engine itself, so the
-/// placement is exact in the engine's own kinematics.
-Status place_robot(PhysicsEngine& engine, const std::vector<CollisionPoint>& points,
-                   const ResetSpec& spec, int left_foot, int right_foot, double grass_top,
-                   EngineStart& start) {
-  start.torso_orientation = spec.torso_orientation.normalized();
-  start.torso_position = Eigen::Vector3d(spec.torso_position.x(), spec.torso_position.y(), 0.0);
-  start.tilt_angle = 0.0;
-  if (spec.level_feet && left_foot >= 0 && right_foot >= 0) {
-    if (Status s = engine.start(start); !s) return s;
-    const Eigen::Vector3d up =
-        engine.link_pose(static_cast<std::size_t>(left_foot)).linear().col(2) +
-        engine.link_pose(static_cast<std::size_t>(right_foot)).linear().col(2);
-    const Eigen::Vector3d n = up / up.norm();
-    const Eigen::Vector3d axis = n.cross(Eigen::Vector3d::UnitZ());
-    if (axis.norm() > 1e-12) {
-      start.tilt_axis = axis;
-      start.tilt_angle = std::atan2(axis.norm(), n.z());
-    }
-  }
-  if (std::isfinite(spec.torso_position.z())) {
-    start.torso_position.z() = spec.torso_position.z();
-    return engine.start(start);
-  }
-  if (Status s = engine.start(start); !s) return s;
-  double lowest = std::numeric_limits<double>::infinity();
-  for (const CollisionPoint& p : points) {
-    const Eigen::Isometry3d x = engine.link_pose(static_cast<std::size_t>(p.link));
-    lowest = std::min(lowest, (x * p.station).z() - p.radius);
-  }
-  start.torso_position.z() = grass_top - lowest;
-  return engine.start(start);
-}
-
-}  // namespace
-
 Status SimWorld::reset(const ResetSpec& spec) {
   Impl& w = *impl_;
   for (double a : spec.joint_angles)
     if (!std::isfinite(a)) return Status::error("reset: non-finite joint angle");
+  for (double v : spec.joint_speeds)
+    if (!std::isfinite(v)) return Status::error("reset: non-finite joint speed");
   if (!std::isfinite(spec.torso_position.x()) || !std::isfinite(spec.torso_position.y()) ||
       !spec.torso_orientation.coeffs().allFinite() || !std::isfinite(spec.ball_position.x()) ||
       !std::isfinite(spec.ball_position.y()) || !spec.ball_velocity.allFinite())
@@ -322,15 +285,25 @@ Status SimWorld::reset(const ResetSpec& spec) {
   start.joint_angles.assign(w.model.joints().size(), 0.0);
   for (std::size_t i = 0; i < hal::kServoCount; ++i)
     start.joint_angles[static_cast<std::size_t>(w.servo_joint[i])] = spec.joint_angles[i];
+  if (std::any_of(spec.joint_speeds.begin(), spec.joint_speeds.end(),
+                  [](double v) { return v != 0.0; })) {
+    start.joint_speeds.assign(w.model.joints().size(), 0.0);
+    for (std::size_t i = 0; i < hal::kServoCount; ++i)
+      start.joint_speeds[static_cast<std::size_t>(w.servo_joint[i])] = spec.joint_speeds[i];
+  }
   const double grass_top = w.options.contact.grass_thickness_m;
   start.ball_position = spec.ball_position;
   if (!std::isfinite(start.ball_position.z()))
     start.ball_position.z() = grass_top + w.options.ball.radius_m;
   start.ball_velocity = spec.ball_velocity;
   if (Status s =
-          place_robot(*w.engine, w.collision, spec, w.left_foot, w.right_foot, grass_top, start);
+          place_robot(*w.engine, w.collision, spec, w.left_foot, w.right_foot, w.options.contact,
+                      w.model.total_mass() * w.options.gravity_mps2, start);
       !s)
     return Status::error("reset: " + s.message());
+  if (spec.still_lower_foot && !start.joint_speeds.empty())
+    if (Status s = still_lower_foot(*w.engine, w.left_foot, w.right_foot, start); !s)
+      return Status::error("reset: " + s.message());
   w.periods = 0;
   w.steps = 0;
   w.status = WorldStatus::kRunning;

@@ -219,6 +219,9 @@ Status MujocoEngine::start(const EngineStart& start) {
   mj_resetData(m_.get(), d_.get());
   for (std::size_t j = 0; j < joint_qpos_.size(); ++j)
     d_->qpos[joint_qpos_[j]] = start.joint_angles[j];
+  if (start.joint_speeds.size() == joint_dof_.size())
+    for (std::size_t j = 0; j < joint_dof_.size(); ++j)
+      d_->qvel[joint_dof_[j]] = start.joint_speeds[j];
   const Eigen::Vector3d& p = start.torso_position;
   Eigen::Quaterniond q = start.torso_orientation.normalized();
   if (start.tilt_angle != 0.0)
@@ -232,6 +235,13 @@ Status MujocoEngine::start(const EngineStart& start) {
   root[5] = q.y();
   root[6] = q.z();
   mju_normalize4(root + 3);
+  // A free joint's speeds: the linear velocity in the world frame, the angular in the body's.
+  mjtNum* root_speed = d_->qvel + root_dof_;
+  const Eigen::Vector3d body_w = q.normalized().conjugate() * start.torso_angular_velocity;
+  for (int k = 0; k < 3; ++k) {
+    root_speed[k] = start.torso_velocity[k];
+    root_speed[3 + k] = body_w[k];
+  }
   if (ball_body_ >= 0) {
     mjtNum* ball = d_->qpos + ball_qpos_;
     for (int k = 0; k < 3; ++k) ball[k] = start.ball_position[k];

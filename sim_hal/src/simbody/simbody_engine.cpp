@@ -203,11 +203,17 @@ Status SimbodyEngine::start(const EngineStart& start) {
   for (std::size_t j = 0; j < robot.joints().size(); ++j)
     bodies_[static_cast<std::size_t>(robot.joints()[j].child_link)].setOneQ(s, 0,
                                                                             start.joint_angles[j]);
+  if (start.joint_speeds.size() == robot.joints().size())
+    for (std::size_t j = 0; j < robot.joints().size(); ++j)
+      bodies_[static_cast<std::size_t>(robot.joints()[j].child_link)].setOneU(
+          s, 0, start.joint_speeds[j]);
   const Eigen::Quaterniond& o = start.torso_orientation;
   SimTK::Rotation rot(SimTK::Quaternion(o.w(), o.x(), o.y(), o.z()));
   if (start.tilt_angle != 0.0)
     rot = SimTK::Rotation(start.tilt_angle, SimTK::UnitVec3(to_vec3(start.tilt_axis))) * rot;
   bodies_[0].setQToFitTransform(s, Transform(rot, to_vec3(start.torso_position)));
+  bodies_[0].setUToFitAngularVelocity(s, to_vec3(start.torso_angular_velocity));
+  bodies_[0].setUToFitLinearVelocity(s, to_vec3(start.torso_velocity));
   if (has_ball_) {
     ball_.setQToFitTransform(s, Transform(to_vec3(start.ball_position)));
     ball_.setUToFitLinearVelocity(s, to_vec3(start.ball_velocity));

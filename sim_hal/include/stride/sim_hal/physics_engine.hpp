@@ -60,11 +60,15 @@ struct EngineModel {
 /// `torso_orientation` (SimWorld levels the feet with the tilt); engines compose it in their
 /// own arithmetic, so that a placement is the same bits as the engine's own kinematics.
 struct EngineStart {
-  std::vector<double> joint_angles;                          ///< per model joint [rad]
+  std::vector<double> joint_angles;  ///< per model joint [rad]
+  std::vector<double> joint_speeds;  ///< per model joint [rad/s]; empty: every joint at rest
   Eigen::Vector3d torso_position = Eigen::Vector3d::Zero();  ///< root link origin [m]
   Eigen::Quaterniond torso_orientation = Eigen::Quaterniond::Identity();
-  Eigen::Vector3d tilt_axis = Eigen::Vector3d::UnitZ();     ///< unit, world frame
-  double tilt_angle = 0.0;                                  ///< [rad]
+  Eigen::Vector3d tilt_axis = Eigen::Vector3d::UnitZ();  ///< unit, world frame
+  double tilt_angle = 0.0;                               ///< [rad]
+  /// Velocity of the root link's origin and its angular velocity (world frame).
+  Eigen::Vector3d torso_velocity = Eigen::Vector3d::Zero();
+  Eigen::Vector3d torso_angular_velocity = Eigen::Vector3d::Zero();
   Eigen::Vector3d ball_position = Eigen::Vector3d::Zero();  ///< ball centre [m]
   Eigen::Vector3d ball_velocity = Eigen::Vector3d::Zero();  ///< [m/s]
 };
@@ -81,7 +85,7 @@ class PhysicsEngine {
 
   /// Builds bodies, joints and contacts for `model`. Errors name what could not be built.
   virtual Status build(const EngineModel& model) = 0;
-  /// Places robot and ball at time 0, at rest (the ball at its given velocity).
+  /// Places robot and ball at time 0 with the given speeds (zero: at rest).
   virtual Status start(const EngineStart& start) = 0;
 
   /// Angle [rad] and speed [rad/s] of model joint `joint` now.

@@ -44,6 +44,14 @@ const std::array<double, hal::kServoCount>& igus_stand_pose();
 /// Initial conditions for reset().
 struct ResetSpec {
   std::array<double, hal::kServoCount> joint_angles{};  ///< servo joints [rad]
+  /// Servo joint speeds [rad/s] (the other joints, the torso and the ball start at rest).
+  std::array<double, hal::kServoCount> joint_speeds{};
+  /// With joint speeds: give the trunk the velocity that keeps the lower foot still, as a foot
+  /// standing on the ground is (false: the trunk starts at rest).
+  bool still_lower_foot = false;
+  /// With a NaN z: sink the robot into the grass until the contacts' static springs carry its
+  /// weight, as a robot that has been standing is (false: the lowest point on the grass top).
+  bool sink_into_grass = false;
   /// Torso (root link) position; a NaN z means "lowest contact point resting on the grass".
   Eigen::Vector3d torso_position{0.0, 0.0, std::numeric_limits<double>::quiet_NaN()};
   Eigen::Quaterniond torso_orientation = Eigen::Quaterniond::Identity();

@@ -1,0 +1,124 @@
+// Replay of a flight log (stride-fw --record) against the simulated robot (`stride replay`).
+//
+// The log is cut into windows of whole control periods. Each window puts the simulated robot
+// in the logged state at the window's start (joint angles from the encoders, trunk roll and
+// pitch from a complementary filter over the logged IMU, yaw 0, the lowest contact point on the
+// grass; no ball: the log does not say where one was), then feeds the logged CommandFrames one
+// control period each and compares the simulated SensorFrames with the logged ones: RMS error per
+// joint of position, speed and load, and of the IMU's attitude, rate and specific force. Format of
+// the log: FLIGHT_LOG.md.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "stride/firmware/recorder/flight_log_reader.hpp"
+#include "stride/firmware/robot_description.hpp"
+#include "stride/firmware/servo_table.hpp"
+#include "stride/hal/status.hpp"
+#include "stride/sim_hal/world_options.hpp"
+
+namespace stride::sim {
+
+/// Trunk roll and pitch from the IMU: the "up" direction in the torso frame, propagated by the
+/// gyro and pulled towards the accelerometer's direction with time constant `time_constant_s`
+/// (a specific force far from 1 g is not trusted), the gyro's bias about the horizontal axes
+/// estimated on the way (the integral term of a Mahony filter, critically damped). Upright and
+/// still: roll = pitch = 0.
+class TiltFilter {
+ public:
+  explicit TiltFilter(double time_constant_s = 2.0, bool estimate_bias = true)
+      : time_constant_s_(time_constant_s), estimate_bias_(estimate_bias) {}
+  /// Starts from the accelerometer alone (up along the specific force), no gyro bias.
+  void start(const Eigen::Vector3d& accel);
+  /// Starts from the state of another filter (its direction and bias).
+  void start(const TiltFilter& other);
+  void update(const Eigen::Vector3d& accel, const Eigen::Vector3d& gyro, double dt_s);
+  double roll() const;
+  double pitch() const;
+  const Eigen::Vector3d& up() const { return up_; }
+  const Eigen::Vector3d& gyro_bias() const { return bias_; }
+
+ private:
+  double time_constant_s_;
+  bool estimate_bias_;
+  Eigen::Vector3d up_ = Eigen::Vector3d::UnitZ();
+  Eigen::Vector3d bias_ = Eigen::Vector3d::Zero();
+};
+
+/// Checks that `log` can be replayed with the firmware files in use: a sim-able header
+/// (period), whole (unless `allow_truncated`), and recorded with the same servo table and robot
+/// description. The error is one line naming what does not match.
+Status check_replayable(const fw::FlightLog& log, const fw::ServoTable& servos,
+                        const fw::RobotDescription& robot, bool allow_truncated = false);
+
+struct ReplayOptions {
+  double window_s = 2.0;     ///< window length [s] (rounded to whole control periods)
+  bool keep_traces = false;  ///< keep the logged and simulated traces (ReplayWindow::traces)
+  /// Start each window with the logged joint speeds (the trunk at rest) instead of at rest.
+  bool start_with_logged_speeds = false;
+  /// Sink the robot into the grass until the contacts carry its weight (ResetSpec).
+  bool sink_into_grass = true;
+};
+
+/// RMS errors, simulated minus logged (NaN where nothing was compared).
+struct ReplayErrors {
+  std::array<double, hal::kServoCount> position_rad{};  ///< per servo
+  std::array<double, hal::kServoCount> speed_rad_s{};
+  std::array<double, hal::kServoCount> load{};  ///< fraction of the stall torque
+  double position_all_rad = 0.0;                ///< over every servo sample
+  double speed_all_rad_s = 0.0;
+  double load_all = 0.0;
+  double roll_rad = 0.0, pitch_rad = 0.0;  ///< TiltFilter attitude
+  Eigen::Vector3d gyro_rad_s = Eigen::Vector3d::Zero();
+  Eigen::Vector3d accel_mps2 = Eigen::Vector3d::Zero();
+  std::size_t samples = 0;  ///< ticks compared
+};
+
+/// The traces of one window (one entry per compared tick), logged and simulated.
+struct ReplayTraces {
+  std::vector<double> time_s;  ///< log time of the compared sensors
+  std::array<std::vector<float>, hal::kServoCount> logged_position, sim_position;
+  std::vector<float> logged_roll, sim_roll, logged_pitch, sim_pitch;
+  std::array<std::vector<float>, 3> logged_gyro, sim_gyro, logged_accel, sim_accel;
+};
+
+struct ReplayWindow {
+  std::size_t first_index = 0;  ///< index in FlightLog::ticks of the starting state
+  hal::Tick start_tick = 0;
+  double start_s = 0.0;  ///< log time of the start
+  std::size_t ticks = 0;
+  Eigen::Vector2d start_roll_pitch = Eigen::Vector2d::Zero();  ///< the placed trunk [rad]
+  std::string failure;  ///< why the simulation stopped early ("" if it did not)
+  ReplayErrors errors;
+  ReplayTraces traces;  ///< empty unless ReplayOptions::keep_traces
+};
+
+struct ReplayResult {
+  double period_s = 0.01;
+  std::size_t window_ticks = 0;
+  std::vector<ReplayWindow> windows;
+  ReplayErrors overall;
+  std::size_t ticks_in_log = 0;
+  std::size_t ticks_not_replayed = 0;  ///< the tail shorter than a window, and around gaps
+  std::array<std::string, hal::kServoCount> servo_names;
+};
+
+/// The control period of `log` [ns] (its header's period_ns), or an error naming the field.
+Status log_period_ns(const fw::FlightLog& log, std::int64_t& out);
+
+/// Checks that a window of `window_s` fits in `log` (which check_replayable accepted): the
+/// error names --window, the window and the log's longest run of consecutive ticks.
+Status check_window(const fw::FlightLog& log, double window_s);
+
+/// Replays `log` (which check_replayable and check_window accepted) in `world` (its control
+/// period is taken from the log). Fails only if the world cannot be built.
+Status replay_flight_log(const fw::FlightLog& log, const WorldOptions& world,
+                         const ReplayOptions& options, ReplayResult& out);
+
+}  // namespace stride::sim
