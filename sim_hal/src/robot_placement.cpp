@@ -61,6 +61,8 @@ Status place_robot(PhysicsEngine& engine, const std::vector<CollisionPoint>& poi
     const Eigen::Isometry3d x = engine.link_pose(static_cast<std::size_t>(p.link));
     bottom.push_back((x * p.station).z() - p.radius);
   }
+  // A model without collision points has nothing to rest on the grass: the trunk stays at z 0.
+  if (bottom.empty()) return Status::ok();
   const double lowest = *std::min_element(bottom.begin(), bottom.end());
   start.torso_position.z() = grass_top - lowest;
   if (spec.sink_into_grass) start.torso_position.z() -= sinking(contact, bottom, lowest, weight_n);
