@@ -87,19 +87,31 @@ std::string fixed(const json& v, int decimals) {
 /// How the plain-language summary names a task's goal and its gate measure.
 struct TaskWords {
   std::string reach, reaches, misses, measure;
-  std::string worse;  ///< "{} % slower than in the run": {} is the percentage
+  std::string motion;  ///< "walk" or "kick": what does or does not carry over
+  std::string worse;   ///< "{} % slower than in the run": {} is the percentage
 };
 
 TaskWords task_words(const std::string& task) {
   if (task == "kick")
-    return {"kick the ball at least 0.5 m", "kicks the ball at least 0.5 m",
-            "kicks the ball less than 0.5 m", "1 / ball distance",
+    return {"kick the ball at least 0.5 m",
+            "kicks the ball at least 0.5 m",
+            "kicks the ball less than 0.5 m",
+            "1 / ball distance",
+            "kick",
             "its median 1 / ball distance is {} % worse than in the run"};
   if (task == "walk-omni")
-    return {"walk every segment", "walks every segment", "does not walk every segment",
-            "speed score", "its median speed score is {} % worse than in the run"};
-  return {"reach the goal", "reaches the goal", "does not reach the goal in time",
-          "time to the goal", "{} % slower than in the run"};
+    return {"walk every segment",
+            "walks every segment",
+            "does not walk every segment",
+            "speed score",
+            "walk",
+            "its median speed score is {} % worse than in the run"};
+  return {"reach the goal",
+          "reaches the goal",
+          "does not reach the goal in time",
+          "time to the goal",
+          "walk",
+          "{} % slower than in the run"};
 }
 
 /// "on MuJoCo", "on fresh seeds", "with wider randomisation", "at half the physics step".
@@ -405,10 +417,11 @@ std::string validation_words(const json& result) {
   std::snprintf(legend, sizeof legend,
                 "pass (holds): at least %.0f %% of the seeds %s without a fall, and the median %s "
                 "is at most %.0f %% worse than the individual's own value in the run.\n"
-                "fail: not so in that world: the walk does not carry over to it (for a pick: "
-                "what the run tuned does not hold there). A finding about the walk in that "
+                "fail: not so in that world: the %s does not carry over to it (for a pick: "
+                "what the run tuned does not hold there). A finding about the %s in that "
                 "world, not an error of the program.\n",
-                100.0 * min_reached, words.reach.c_str(), words.measure.c_str(), 100.0 * max_worse);
+                100.0 * min_reached, words.reach.c_str(), words.measure.c_str(), 100.0 * max_worse,
+                words.motion.c_str(), words.motion.c_str());
   out << legend;
   return out.str();
 }

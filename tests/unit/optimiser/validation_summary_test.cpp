@@ -219,6 +219,8 @@ TEST(ValidationSummary, WordsNameTheKicksGoalAndMeasure) {
   EXPECT_NE(words.find("  no pick holds in any world\n"), std::string::npos) << words;
   EXPECT_NE(words.find("the median 1 / ball distance is at most 25 % worse"), std::string::npos)
       << words;
+  EXPECT_NE(words.find("the kick does not carry over to it"), std::string::npos) << words;
+  EXPECT_EQ(words.find("walk"), std::string::npos) << words;  // a kick run's words
 }
 
 }  // namespace
