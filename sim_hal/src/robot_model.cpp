@@ -244,4 +244,12 @@ double RobotModel::total_mass() const {
   return m;
 }
 
+void RobotModel::adjust_link(std::size_t link, double mass_scale,
+                             const Eigen::Vector3d& com_shift) {
+  LinkSpec& l = links_.at(link);
+  l.mass *= mass_scale;
+  l.inertia *= mass_scale;
+  l.com += com_shift;
+}
+
 }  // namespace stride::sim

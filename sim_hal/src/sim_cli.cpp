@@ -2,6 +2,7 @@
 #include "stride/sim_hal/sim_cli.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <limits>
 #include <memory>
@@ -9,6 +10,7 @@
 #include <system_error>
 
 #include "stride/sim_hal/physics_engine.hpp"
+#include "stride/sim_hal/world_file.hpp"
 
 namespace stride::sim {
 
@@ -24,9 +26,9 @@ void declare_world_options(fw::CliArgs& args) {
               "2000");
   args.option("urdf", "robot description (URDF) to simulate instead of the igus model", true);
   args.option("world",
-              "named world: faithful (identified servo law, CM730 IMU, turf) or seed (the "
-              "thesis's: seed servo law, ideal IMU, 2 cm grass); --servo-law, --imu and "
-              "--contact override its parts",
+              "named world: faithful (identified servo law, CM730 IMU, turf), seed (the "
+              "thesis's: seed servo law, ideal IMU, 2 cm grass) or a world file (.json, from "
+              "stride calibrate); --servo-law, --imu and --contact override its parts",
               true, "faithful");
   args.option("imu", "IMU model: ideal (true value plus white noise) or cm730 (chips and CM730)",
               true, "the world's");
@@ -70,9 +72,17 @@ Status read_world_options(const fw::CliArgs& args, WorldOptions& out) {
   }
   const std::string world = args.get("world", "faithful");
   WorldPreset preset = WorldPreset::kFaithful;
-  if (!parse_world_preset(world, preset))
-    return Status::error("--world: expected faithful or seed, got '" + world + "'");
-  out.apply(preset);
+  if (looks_like_world_file(world)) {
+    WorldFile file;
+    if (Status s = load_world_file(world, file); !s)
+      return Status::error("--world: " + s.message());
+    file.apply(out);
+  } else if (parse_world_preset(world, preset)) {
+    out.apply(preset);
+  } else {
+    return Status::error("--world: expected faithful, seed or a world file (.json), got '" + world +
+                         "'");
+  }
   if (args.has("imu")) {
     const std::string imu = args.get("imu");
     if (imu != "cm730" && imu != "ideal")
@@ -106,6 +116,34 @@ Status read_world_options(const fw::CliArgs& args, WorldOptions& out) {
   return Status::ok();
 }
 
+namespace {
+
+/// ", calibrated robot (...)" naming what differs from the nominal robot, or "".
+std::string describe_calibration(const WorldOptions& o) {
+  const RobotCalibration& c = o.robot;
+  const RobotCalibration nominal;
+  std::string parts;
+  const auto add = [&parts](const std::string& name, double value) {
+    char text[64];
+    std::snprintf(text, sizeof text, "%s%s %.4g", parts.empty() ? "" : ", ", name.c_str(), value);
+    parts += text;
+  };
+  if (o.battery_voltage_v != WorldOptions{}.battery_voltage_v) add("supply V", o.battery_voltage_v);
+  if (c.torque_scale_mx64 != nominal.torque_scale_mx64) add("MX-64 torque x", c.torque_scale_mx64);
+  if (c.torque_scale_mx106 != nominal.torque_scale_mx106)
+    add("MX-106 torque x", c.torque_scale_mx106);
+  if (c.friction_scale != nominal.friction_scale) add("friction x", c.friction_scale);
+  if (c.latency_ticks != nominal.latency_ticks) add("latency ticks", c.latency_ticks);
+  if (c.trunk_mass_scale != nominal.trunk_mass_scale) add("trunk mass x", c.trunk_mass_scale);
+  if (c.trunk_com_offset_m.x() != 0.0) add("trunk CoM x +m", c.trunk_com_offset_m.x());
+  if (c.trunk_com_offset_m.y() != 0.0) add("trunk CoM y +m", c.trunk_com_offset_m.y());
+  if (!o.imu.gyro_bias.isZero()) add("|gyro bias| rad/s", o.imu.gyro_bias.norm());
+  if (!o.imu.accel_bias.isZero()) add("|accel bias| m/s^2", o.imu.accel_bias.norm());
+  return parts.empty() ? "" : ", calibrated robot (" + parts + ")";
+}
+
+}  // namespace
+
 std::string describe_world(const WorldOptions& o) {
   const ContactOptions turf = ContactOptions::turf();
   const bool is_turf = o.contact.grass_thickness_m == turf.grass_thickness_m &&
@@ -114,7 +152,7 @@ std::string describe_world(const WorldOptions& o) {
          (o.servo.law == ServoLaw::kIdentified ? "identified" : "seed") + " servo law, " +
          (o.imu.chain.is_ideal() ? "ideal" : "cm730") + " IMU, " +
          (is_turf ? "turf" : "seed grass") + ", step " + std::to_string(o.physics_step_ns / 1000) +
-         " us";
+         " us" + describe_calibration(o);
 }
 
 namespace {

@@ -31,13 +31,16 @@ struct SimWorld::Impl {
   std::array<double, hal::kServoCount> last_torque{};
   std::array<fw::ServoModel, hal::kServoCount> servo_models{};
   std::array<hal::ServoCommand, hal::kServoCount> written{};
-  std::array<hal::ServoCommand, hal::kServoCount> delayed{};
+  /// The commands written 1, 2, ... periods ago (latency: RobotCalibration, Randomisation).
+  std::array<std::array<hal::ServoCommand, hal::kServoCount>,
+             RobotCalibration::kMaxLatencyTicks + 1>
+      delayed{};
   bool torque_enable = true;
   int left_foot = -1, right_foot = -1;
 
   // Randomised per reset.
   std::array<double, hal::kServoCount> strength{};
-  bool latency = false;
+  int latency_ticks = 0;  ///< RobotCalibration's and the randomised tick
   Eigen::Vector3d accel_bias = Eigen::Vector3d::Zero(), gyro_bias = Eigen::Vector3d::Zero();
 
   // Time and status.
@@ -75,6 +78,17 @@ Status SimWorld::Impl::configure() {
                          std::to_string(o.control_period_ns) + " ns)");
   if (!(o.battery_voltage_v > 0.0) || !(o.max_speed > 0.0))
     return Status::error("battery voltage and max speed must be positive");
+  const RobotCalibration& c = o.robot;
+  if (!(c.torque_scale_mx64 > 0.0 && c.torque_scale_mx64 < 10.0) ||
+      !(c.torque_scale_mx106 > 0.0 && c.torque_scale_mx106 < 10.0) ||
+      !(c.friction_scale >= 0.0 && c.friction_scale < 10.0) ||
+      !(c.trunk_mass_scale > 0.0 && c.trunk_mass_scale < 10.0) ||
+      !(c.trunk_com_offset_m.array().abs() < 0.5).all() || c.latency_ticks < 0 ||
+      c.latency_ticks > RobotCalibration::kMaxLatencyTicks)
+    return Status::error(
+        "robot calibration: torque, friction and trunk mass scales must be in (0, 10), the "
+        "trunk's centre-of-mass offset within 0.5 m, latency 0.." +
+        std::to_string(RobotCalibration::kMaxLatencyTicks) + " ticks");
   if (!(o.contact.grass_thickness_m >= 0.0) || !(o.contact.grass_stiffness_n_m > 0.0) ||
       !(o.contact.ground_stiffness_n_m > 0.0) || !(o.contact.friction >= 0.0) ||
       !(o.contact.tangential_stiffness_n_m > 0.0) || !(o.contact.grass_damping_n_s_m >= 0.0) ||
@@ -100,6 +114,9 @@ Status SimWorld::Impl::configure() {
   } else if (Status s = RobotModel::load_file(o.urdf, model); !s) {
     return s;
   }
+  if (o.robot.trunk_mass_scale != 1.0 || !o.robot.trunk_com_offset_m.isZero())
+    model.adjust_link(0, o.robot.trunk_mass_scale,
+                      {o.robot.trunk_com_offset_m.x(), o.robot.trunk_com_offset_m.y(), 0.0});
   joint_servo.assign(model.joints().size(), -1);
   joint_tau.assign(model.joints().size(), 0.0);
   const fw::ServoTable* table = o.servo_models_from_table ? &fw::ServoTable::defaults() : nullptr;
@@ -236,7 +253,8 @@ Status SimWorld::reset(const ResetSpec& spec) {
   em.friction = w.options.contact.friction * (1.0 + r.friction_range * w.rng.uniform(-1.0, 1.0));
   for (double& s : em.link_mass_scale) s = 1.0 + r.mass_range * w.rng.uniform(-1.0, 1.0);
   for (double& s : w.strength) s = 1.0 + r.strength_range * w.rng.uniform(-1.0, 1.0);
-  w.latency = w.rng.uniform() < r.latency_probability;
+  w.latency_ticks =
+      w.options.robot.latency_ticks + (w.rng.uniform() < r.latency_probability ? 1 : 0);
   for (int k = 0; k < 3; ++k)
     w.accel_bias[k] = w.options.imu.accel_bias[k] + w.options.imu.accel_bias_std * w.rng.normal();
   for (int k = 0; k < 3; ++k)
@@ -247,11 +265,14 @@ Status SimWorld::reset(const ResetSpec& spec) {
     const MotorCurve curve = motor_curve(w.servo_models[i], w.options.battery_voltage_v);
     const JointSpec& joint = w.model.joints()[static_cast<std::size_t>(w.servo_joint[i])];
     ServoParams p;
-    p.stall_torque_nm = curve.stall_torque_nm * w.strength[i];
+    const RobotCalibration& calibration = w.options.robot;
+    const double strength = w.strength[i] * calibration.torque_scale(w.servo_models[i]);
+    const double friction = calibration.friction_scale;
+    p.stall_torque_nm = curve.stall_torque_nm * strength;
     p.no_load_speed_rad_s = curve.no_load_speed_rad_s;
     p.kp_per_register = w.options.servo.kp_per_register;
-    p.viscous_friction = w.options.servo.viscous_friction;
-    p.coulomb_friction = w.options.servo.coulomb_friction;
+    p.viscous_friction = w.options.servo.viscous_friction * friction;
+    p.coulomb_friction = w.options.servo.coulomb_friction * friction;
     p.reflected_inertia = w.options.servo.rotor_inertia_kg_m2 * curve.gear_ratio * curve.gear_ratio;
     p.limited = joint.limited;
     p.lower = joint.lower;
@@ -260,7 +281,8 @@ Status SimWorld::reset(const ResetSpec& spec) {
     w.servos[i].reset(spec.joint_angles[i]);
     MxServoParams mx = mx_servo_params(w.servo_models[i], w.options.battery_voltage_v,
                                        w.options.servo.friction_model);
-    mx.strength = w.strength[i];
+    mx.strength = strength;
+    if (friction != 1.0) mx.friction.scale(friction);
     mx.backlash_rad = w.options.servo.backlash_rad;
     mx.driver_drop_v = w.options.servo.driver_drop_v;
     mx.limited = joint.limited;
@@ -273,8 +295,11 @@ Status SimWorld::reset(const ResetSpec& spec) {
     hold.position_rad = spec.joint_angles[i];
     hold.p_gain = 32.0;
     hold.torque_enable = true;
-    w.written[i] = hold;
-    w.delayed[i] = hold;
+    w.written[i] = spec.previous_commands.empty() ? hold : spec.previous_commands[0].servos[i];
+    for (std::size_t k = 0; k < w.delayed.size(); ++k)
+      w.delayed[k][i] = k < spec.previous_commands.size() ? spec.previous_commands[k].servos[i]
+                        : spec.previous_commands.empty()  ? hold
+                                                          : spec.previous_commands.back().servos[i];
     w.servos[i].set_input({hold.position_rad, 0.0, hold.p_gain, hold.torque_limit, true});
     w.mx_servos[i].set_input({hold.position_rad, 0.0, hold.p_gain, hold.torque_limit, true});
   }
@@ -359,12 +384,15 @@ bool SimWorld::advance_period() {
   Impl& w = *impl_;
   if (w.status != WorldStatus::kRunning) return false;
   for (std::size_t i = 0; i < hal::kServoCount; ++i) {
-    const hal::ServoCommand& c = w.latency ? w.delayed[i] : w.written[i];
+    const int d = w.latency_ticks;
+    const hal::ServoCommand c =
+        d == 0 ? w.written[i] : w.delayed[static_cast<std::size_t>(d - 1)][i];
     w.servos[i].set_input({c.position_rad, c.moving_speed_rad_s, c.p_gain, c.torque_limit,
                            c.torque_enable && w.torque_enable});
     w.mx_servos[i].set_input({c.position_rad, c.moving_speed_rad_s, c.p_gain, c.torque_limit,
                               c.torque_enable && w.torque_enable});
-    w.delayed[i] = w.written[i];
+    for (std::size_t k = w.delayed.size() - 1; k > 0; --k) w.delayed[k][i] = w.delayed[k - 1][i];
+    w.delayed[0][i] = w.written[i];
   }
   for (int k = 0; k < w.steps_per_period; ++k)
     if (!w.step_once()) break;

@@ -37,6 +37,7 @@ sim::WorldOptions world_for_trial(const TaskConfig& config, int world) {
   w.use_cm730_imu(config.imu_cm730);
   w.physics_step_ns = config.physics_step_us * 1000;
   sim::parse_contact_kind(config.contact, w.contact);  // checked when the config was read
+  if (config.world_file) config.world_file->apply_calibration(w);
   return w;
 }
 

@@ -100,8 +100,19 @@ Status parse_robot(const nlohmann::json& doc, TaskConfig& c) {
   if (doc.contains("world")) {
     const auto& w = doc.at("world");
     sim::WorldPreset preset = sim::WorldPreset::kFaithful;
-    if (!w.is_string() || !sim::parse_world_preset(w.get<std::string>(), preset))
-      return Status::error("world: must be \"faithful\" or \"seed\", got " + w.dump());
+    c.world_file.reset();
+    if (w.is_object() || (w.is_string() && sim::looks_like_world_file(w.get<std::string>()))) {
+      sim::WorldFile file;
+      const Status s = w.is_object() ? sim::parse_world_file(w, file)
+                                     : sim::load_world_file(w.get<std::string>(), file);
+      if (!s) return Status::error("world: " + s.message());
+      preset = file.base;
+      c.world_file = file;
+    } else if (!w.is_string() || !sim::parse_world_preset(w.get<std::string>(), preset)) {
+      return Status::error(
+          "world: must be \"faithful\", \"seed\", a world file (.json) or its object, got " +
+          w.dump());
+    }
     const bool seed = preset == sim::WorldPreset::kSeed;
     c.servo_law = seed ? sim::ServoLaw::kSeed : sim::ServoLaw::kIdentified;
     c.imu_cm730 = !seed;
@@ -347,8 +358,10 @@ Status load_task_config(const std::filesystem::path& path, TaskConfig& out) {
   nlohmann::json doc = nlohmann::json::parse(in, nullptr, false);
   if (doc.is_discarded()) return Status::error(path.string() + ": not valid JSON");
   // A relative robot description or parameter file is relative to the config file.
-  for (const char* key : {"urdf", "params"}) {
+  for (const char* key : {"urdf", "params", "world"}) {
     if (!doc.is_object() || !doc.contains(key) || !doc.at(key).is_string()) continue;
+    if (std::string(key) == "world" && !sim::looks_like_world_file(doc.at(key).get<std::string>()))
+      continue;
     const std::filesystem::path file = doc.at(key).get<std::string>();
     if (file.is_relative() && !file.empty())
       doc[key] = (std::filesystem::absolute(path).parent_path() / file).lexically_normal().string();
@@ -397,6 +410,7 @@ nlohmann::json to_json(const TaskConfig& c) {
     for (const auto& [name, value] : c.base_params) params[name] = value;
     j["params"] = params;  // the values, so that run.json stands alone
   }
+  if (c.world_file) j["world"] = sim::to_json(*c.world_file);  // by value, as the params
   j["servo_law"] = c.servo_law == sim::ServoLaw::kIdentified ? "identified" : "seed";
   j["imu"] = c.imu_cm730 ? "cm730" : "ideal";
   j["contact"] = c.contact;

@@ -256,7 +256,9 @@ TEST(TaskConfig, RobotFieldsReachTheWorldsAndNameTheFieldOnError) {
   EXPECT_FALSE(RobotTask(c).world_options(0).imu.chain.is_ideal());
   EXPECT_EQ(RobotTask(c).world_options(0).servo.law, sim::ServoLaw::kSeed);
   seed["world"] = "gazebo";
-  EXPECT_EQ(error_of(seed), "world: must be \"faithful\" or \"seed\", got \"gazebo\"");
+  EXPECT_EQ(
+      error_of(seed),
+      "world: must be \"faithful\", \"seed\", a world file (.json) or its object, got \"gazebo\"");
   test::TempDir tmp;
   std::filesystem::create_directories(tmp.path() / "robots");
   std::filesystem::copy_file(sim::RobotModel::igus_path(), tmp.path() / "robots" / "mine.urdf");
@@ -328,6 +330,39 @@ TEST(TaskConfig, BaseParametersFromAFileOrAnObject) {
   EXPECT_EQ(error_of(d), "params: must be a parameter file's path or an object {name: number}");
   d["params"] = (tmp.path() / "none.json").string();
   EXPECT_EQ(error_of(d), "params: cannot open '" + (tmp.path() / "none.json").string() + "'");
+}
+
+// A world file (stride calibrate's output, sim_hal/world_file.hpp): a path relative to the
+// config or the object itself; its base world sets the servo law, IMU and contact, its
+// calibration reaches every trial world; run.json keeps it by value.
+TEST(TaskConfig, AWorldFileReachesEveryTrialWorld) {
+  test::TempDir tmp;
+  std::filesystem::create_directories(tmp.path() / "walk");
+  tmp.write("walk/robot.json", R"({"format": "stride-world", "base": "seed",
+      "supply_voltage_v": 14.0, "robot": {"latency_ticks": 1, "trunk_mass_scale": 1.1}})");
+  auto d = minimal();
+  d["world"] = "robot.json";
+  d["trials"] = 3;
+  tmp.write("walk/config.json", d.dump());
+  TaskConfig c;
+  const Status s = load_task_config(tmp.path() / "walk" / "config.json", c);
+  ASSERT_TRUE(s) << s.message();
+  ASSERT_TRUE(c.world_file.has_value());
+  EXPECT_EQ(c.servo_law, sim::ServoLaw::kSeed);
+  EXPECT_EQ(c.contact, "seed");
+  const RobotTask task(c);
+  for (int w = 0; w < 3; ++w) {
+    const sim::WorldOptions o = task.world_options(w);
+    EXPECT_EQ(o.robot.latency_ticks, 1);
+    EXPECT_EQ(o.robot.trunk_mass_scale, 1.1);
+    EXPECT_EQ(o.battery_voltage_v, 14.0);
+  }
+  TaskConfig back;
+  ASSERT_TRUE(parse_task_config(to_json(c), back));
+  ASSERT_TRUE(back.world_file.has_value());
+  EXPECT_EQ(sim::to_json(*back.world_file), sim::to_json(*c.world_file));
+  d["world"] = {{"format", "stride-world"}, {"robot", {{"latency_ticks", 9}}}};
+  EXPECT_EQ(error_of(d), "world: robot.latency_ticks: must be an integer in 0..3, got 9");
 }
 
 TEST(TaskConfig, RoundTripsThroughJson) {

@@ -49,6 +49,20 @@ struct MxFriction {
   double load_external_stribeck = 0.0;   ///< load_friction_external_stribeck
   double load_motor_quadratic = 0.0;     ///< load_friction_motor_quad [1/(N m)]
   double load_external_quadratic = 0.0;  ///< load_friction_external_quad [1/(N m)]
+
+  /// Every friction torque times `s` (RobotCalibration::friction_scale): the constant terms and
+  /// the load-dependent fractions; the Stribeck speed and curvature are kept.
+  void scale(double s) {
+    base_nm *= s;
+    stribeck_nm *= s;
+    viscous_nm_s *= s;
+    load_motor *= s;
+    load_external *= s;
+    load_motor_stribeck *= s;
+    load_external_stribeck *= s;
+    load_motor_quadratic *= s;
+    load_external_quadratic *= s;
+  }
 };
 
 struct MxServoParams {

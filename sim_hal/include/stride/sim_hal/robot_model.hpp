@@ -72,6 +72,9 @@ class RobotModel {
   int link_index(const std::string& name) const;   ///< -1 if absent
   int joint_index(const std::string& name) const;  ///< -1 if absent
   double total_mass() const;
+  /// Scales link `link`'s mass and inertia by `mass_scale` (> 0) and moves its centre of mass
+  /// by `com_shift` (link frame) [m]; a calibrated robot (RobotCalibration).
+  void adjust_link(std::size_t link, double mass_scale, const Eigen::Vector3d& com_shift);
 
  private:
   std::string name_;

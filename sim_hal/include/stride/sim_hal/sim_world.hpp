@@ -49,6 +49,10 @@ struct ResetSpec {
   /// With joint speeds: give the trunk the velocity that keeps the lower foot still, as a foot
   /// standing on the ground is (false: the trunk starts at rest).
   bool still_lower_foot = false;
+  /// The commands written before the start, the latest first (a replay gives the logged ones):
+  /// with command latency (RobotCalibration::latency_ticks) the servos act on them first.
+  /// Empty: a hold of joint_angles at P 32.
+  std::vector<hal::CommandFrame> previous_commands;
   /// With a NaN z: sink the robot into the grass until the contacts' static springs carry its
   /// weight, as a robot that has been standing is (false: the lowest point on the grass top).
   bool sink_into_grass = false;

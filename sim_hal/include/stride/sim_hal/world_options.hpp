@@ -114,6 +114,31 @@ struct Randomisation {
   double latency_probability = 0.0;  ///< chance of one control tick of command latency
 };
 
+/// How one robot differs from the model (issue 30 point 3): what `stride calibrate` fits from
+/// the robot's flight logs and a world file holds (world_file.hpp). The nominal values change
+/// nothing. The supply voltage and the IMU's fixed biases are WorldOptions::battery_voltage_v
+/// and ImuOptions::gyro_bias / accel_bias.
+struct RobotCalibration {
+  static constexpr int kMaxLatencyTicks = 3;
+  /// Scale of every MX-64's / MX-106's motor torque (on top of the per-reset randomisation):
+  /// wear, a weaker batch, a servo model that is not the datasheet's.
+  double torque_scale_mx64 = 1.0;
+  double torque_scale_mx106 = 1.0;
+  /// Scale of every servo's friction (every term of the servo law in use).
+  double friction_scale = 1.0;
+  /// Control periods between a command and the servos acting on it (bus latency, 0..3), on top
+  /// of Randomisation::latency_probability's one tick.
+  int latency_ticks = 0;
+  /// The trunk link's mass and inertia scale (battery, cables, a heavier head).
+  double trunk_mass_scale = 1.0;
+  /// The trunk's centre of mass moved in the trunk frame [m] (x forward, y left).
+  Eigen::Vector2d trunk_com_offset_m = Eigen::Vector2d::Zero();
+
+  double torque_scale(fw::ServoModel model) const {
+    return model == fw::ServoModel::kMx106 ? torque_scale_mx106 : torque_scale_mx64;
+  }
+};
+
 /// A push on the trunk (issue 29 point 4, `stride sim walk --push T,DIR,IMPULSE`): the impulse
 /// `impulse_n_s` along the horizontal direction `direction_rad`, measured anticlockwise from the
 /// robot's heading (the torso's yaw when the push starts: 0 forward, pi/2 left), starting
@@ -160,6 +185,7 @@ struct WorldOptions {
   BallOptions ball;
   ImuOptions imu;
   Randomisation randomise;
+  RobotCalibration robot;
   std::uint64_t seed = 1;
   /// A state with a speed above this [rad/s or m/s] counts as exploded.
   double max_speed = 200.0;

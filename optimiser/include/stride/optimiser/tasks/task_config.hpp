@@ -10,6 +10,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -18,6 +19,7 @@
 
 #include "stride/hal/status.hpp"
 #include "stride/optimiser/nsga2/settings.hpp"
+#include "stride/sim_hal/world_file.hpp"
 #include "stride/sim_hal/world_options.hpp"
 
 namespace stride::opt {
@@ -93,6 +95,11 @@ struct TaskConfig {
   /// The field contact (issue 29, config `contact`): "seed" (the seed's 2 cm grass) or "turf"
   /// (sim::ContactOptions::turf(), sim_hal/models/README.md).
   std::string contact = "turf";
+  /// A world file (config `world`: its path, relative to the config, or its object;
+  /// sim::WorldFile, e.g. from `stride calibrate`): its base world sets the servo law, IMU and
+  /// contact above, and its calibration (supply voltage, servo torque and friction, latency,
+  /// trunk mass and centre of mass, IMU biases) applies to every trial and validation world.
+  std::optional<sim::WorldFile> world_file;
   /// Parameter values every episode's firmware takes before the genome (config `params`: a
   /// parameter file's path, relative to the config, or an object {name: number}); genes
   /// override them. Sorted by name. E.g. firmware/config/seed-walk.json with `"world": "seed"`
