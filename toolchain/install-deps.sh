@@ -16,6 +16,7 @@ packages=(
   libeigen3-dev nlohmann-json3-dev libserialport-dev libedit-dev
   libsimbody-dev libmujoco-dev libqhull-dev liburdfdom-dev liburdfdom-headers-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  libnlopt-dev   # stride calibrate: bounded derivative-free fitting (BOBYQA)
   libopenmpi-dev openmpi-bin
   clang libclang-rt-14-dev clang-format
   python3 curl xz-utils

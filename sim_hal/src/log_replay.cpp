@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <thread>
 
 #include <Eigen/Geometry>
 
@@ -256,6 +257,108 @@ void keep(ReplayTraces& t, double time_s, const hal::SensorFrame& logged,
 
 }  // namespace
 
+namespace {
+
+/// The first tick index of every window: runs of n periods of consecutive ticks, one after the
+/// other, restarting after a gap.
+std::vector<std::size_t> window_starts(const fw::FlightLog& log, std::size_t n) {
+  std::vector<std::size_t> starts;
+  for (std::size_t first = 0; first + n < log.ticks.size();) {
+    std::size_t last = first + 1;
+    while (last <= first + n && follows(log, last)) ++last;
+    if (last <= first + n) {  // a gap before the window's end: start again after it
+      first = last;
+      continue;
+    }
+    starts.push_back(first);
+    first += n;
+  }
+  return starts;
+}
+
+/// Replays one window of n periods from log tick `first` on `robot`; `used` marks the log
+/// ticks compared.
+ReplayWindow replay_window(SimRobot& robot, const fw::FlightLog& log,
+                           const std::vector<TiltFilter>& tilt, std::size_t first, std::size_t n,
+                           double period_s, std::uint64_t seed, const ReplayOptions& options,
+                           ErrorSums& sums, std::vector<char>& used) {
+  ReplayWindow window;
+  window.first_index = first;
+  window.start_tick = log.ticks[first].meta.tick;
+  window.start_s = static_cast<double>(window.start_tick) * period_s;
+  const hal::SensorFrame& start = log.ticks[first].sensors;
+  TiltFilter logged_tilt, sim_tilt;
+  logged_tilt.start(tilt[first]);
+  sim_tilt.start(tilt[first]);
+  window.start_roll_pitch = {logged_tilt.roll(), logged_tilt.pitch()};
+
+  ResetSpec spec;
+  for (std::size_t i = 0; i < hal::kServoCount; ++i) {
+    spec.joint_angles[i] = start.servos[i].position_rad;
+    if (options.start_with_logged_speeds) spec.joint_speeds[i] = start.servos[i].speed_rad_s;
+  }
+  spec.torso_orientation = trunk_orientation(logged_tilt.roll(), logged_tilt.pitch());
+  spec.still_lower_foot = options.start_with_logged_speeds;
+  spec.sink_into_grass = options.sink_into_grass;
+  spec.level_feet = false;  // the trunk's attitude is the logged one, not the feet's
+  // The commands the servos were acting on (command latency), the latest first.
+  for (std::size_t k = 1; k <= RobotCalibration::kMaxLatencyTicks + 1 && k <= first; ++k)
+    spec.previous_commands.push_back(log.ticks[first - k].commands);
+  // The same randomisation as the logged run's first reset (that world's seed).
+  robot.world().reseed(seed);
+  if (Status s = robot.world().reset(spec); !s) {
+    window.failure = s.message();
+    return window;
+  }
+  used[first] = 1;
+  hal::SensorFrame sim{};
+  for (std::size_t k = 0; k < n; ++k) {
+    robot.write(log.ticks[first + k].commands);
+    robot.sleep_until(robot.current_tick() + 1);
+    if (robot.world().status() != WorldStatus::kRunning) {
+      window.failure = robot.world().failure_reason();
+      break;
+    }
+    robot.read(sim);
+    const fw::FlightLogTick& logged_tick = log.ticks[first + k + 1];
+    const hal::SensorFrame& logged = logged_tick.sensors;
+    used[first + k + 1] = 1;
+    ++sums.ticks;
+    for (std::size_t i = 0; i < hal::kServoCount; ++i) {
+      if (logged.servos[i].health != hal::DeviceHealth::kOk) continue;  // stale reading
+      const auto sq = [](double d) { return d * d; };
+      sums.position[i] += sq(sim.servos[i].position_rad - logged.servos[i].position_rad);
+      sums.speed[i] += sq(sim.servos[i].speed_rad_s - logged.servos[i].speed_rad_s);
+      sums.load[i] += sq(sim.servos[i].load - logged.servos[i].load);
+      ++sums.servo_samples[i];
+    }
+    logged_tilt.update(accel_of(logged), gyro_of(logged), period_s);
+    sim_tilt.update(accel_of(sim), gyro_of(sim), period_s);
+    if (logged.cm730.health == hal::DeviceHealth::kOk) {
+      sums.roll += std::pow(sim_tilt.roll() - logged_tilt.roll(), 2);
+      sums.pitch += std::pow(sim_tilt.pitch() - logged_tilt.pitch(), 2);
+      sums.gyro += (gyro_of(sim) - gyro_of(logged)).cwiseAbs2();
+      sums.accel += (accel_of(sim) - accel_of(logged)).cwiseAbs2();
+      ++sums.imu_samples;
+    }
+    if (options.keep_traces)
+      keep(window.traces, static_cast<double>(logged_tick.meta.tick) * period_s, logged, sim,
+           logged_tilt, sim_tilt);
+  }
+  window.ticks = sums.ticks;
+  window.errors = sums.rms();
+  return window;
+}
+
+}  // namespace
+
+std::size_t count_windows(const fw::FlightLog& log, double window_s) {
+  std::int64_t period_ns = 0;
+  if (!log_period_ns(log, period_ns)) return 0;
+  const std::size_t n = window_ticks(window_s, period_ns);
+  return n == 0 ? 0 : window_starts(log, n).size();
+}
+
 Status replay_flight_log(const fw::FlightLog& log, const WorldOptions& world,
                          const ReplayOptions& options, ReplayResult& out) {
   out = {};
@@ -276,90 +379,57 @@ Status replay_flight_log(const fw::FlightLog& log, const WorldOptions& world,
   WorldOptions world_options = world;
   world_options.control_period_ns = period_ns;
   world_options.ball.present = false;  // the log does not say where a ball was
-  std::unique_ptr<SimWorld> sim_world;
-  if (Status s = SimWorld::create(world_options, sim_world); !s) return s;
-  SimRobot robot(std::move(sim_world));
   const std::vector<TiltFilter> tilt = tilt_over_log(log, period_s);
 
-  // Windows: runs of n periods of consecutive ticks, one after the other.
-  std::vector<bool> used(log.ticks.size(), false);
-  ErrorSums overall;
-  for (std::size_t first = 0; first + n < log.ticks.size();) {
-    std::size_t last = first + 1;
-    while (last <= first + n && follows(log, last)) ++last;
-    if (last <= first + n) {  // a gap before the window's end: start again after it
-      first = last;
-      continue;
+  // The windows to replay, then each thread takes every threads-th of them on its own world;
+  // the sums are merged in window order, so the result is the same for any thread count.
+  const std::vector<std::size_t> starts = window_starts(log, n);
+  std::vector<std::size_t> chosen;
+  for (std::size_t w = 0; w < starts.size(); ++w)
+    if (options.only_windows.empty() ||
+        std::find(options.only_windows.begin(), options.only_windows.end(), w) !=
+            options.only_windows.end())
+      chosen.push_back(w);
+  std::vector<ReplayWindow> windows(chosen.size());
+  std::vector<ErrorSums> sums(chosen.size());
+  const std::size_t threads = std::max<std::size_t>(
+      1,
+      std::min<std::size_t>(static_cast<std::size_t>(std::max(1, options.threads)), chosen.size()));
+  std::vector<std::vector<char>> used(threads, std::vector<char>(log.ticks.size(), 0));
+  std::vector<Status> status(threads, Status::ok());
+  const auto work = [&](std::size_t t) {
+    std::unique_ptr<SimWorld> sim_world;
+    if (Status s = SimWorld::create(world_options, sim_world); !s) {
+      status[t] = s;
+      return;
     }
-    ReplayWindow window;
-    window.first_index = first;
-    window.start_tick = log.ticks[first].meta.tick;
-    window.start_s = static_cast<double>(window.start_tick) * period_s;
-    const hal::SensorFrame& start = log.ticks[first].sensors;
-    TiltFilter logged_tilt, sim_tilt;
-    logged_tilt.start(tilt[first]);
-    sim_tilt.start(tilt[first]);
-    window.start_roll_pitch = {logged_tilt.roll(), logged_tilt.pitch()};
-
-    ResetSpec spec;
-    for (std::size_t i = 0; i < hal::kServoCount; ++i) {
-      spec.joint_angles[i] = start.servos[i].position_rad;
-      if (options.start_with_logged_speeds) spec.joint_speeds[i] = start.servos[i].speed_rad_s;
+    SimRobot robot(std::move(sim_world));
+    for (std::size_t k = t; k < chosen.size(); k += threads) {
+      windows[k] = replay_window(robot, log, tilt, starts[chosen[k]], n, period_s,
+                                 world_options.seed, options, sums[k], used[t]);
+      windows[k].index = chosen[k];
     }
-    spec.torso_orientation = trunk_orientation(logged_tilt.roll(), logged_tilt.pitch());
-    spec.still_lower_foot = options.start_with_logged_speeds;
-    spec.sink_into_grass = options.sink_into_grass;
-    spec.level_feet = false;  // the trunk's attitude is the logged one, not the feet's
-    // The same randomisation as the logged run's first reset (that world's seed).
-    robot.world().reseed(world_options.seed);
-    ErrorSums sums;
-    if (Status s = robot.world().reset(spec); !s) {
-      window.failure = s.message();
-    } else {
-      used[first] = true;
-      hal::SensorFrame sim{};
-      for (std::size_t k = 0; k < n; ++k) {
-        robot.write(log.ticks[first + k].commands);
-        robot.sleep_until(robot.current_tick() + 1);
-        if (robot.world().status() != WorldStatus::kRunning) {
-          window.failure = robot.world().failure_reason();
-          break;
-        }
-        robot.read(sim);
-        const fw::FlightLogTick& logged_tick = log.ticks[first + k + 1];
-        const hal::SensorFrame& logged = logged_tick.sensors;
-        used[first + k + 1] = true;
-        ++sums.ticks;
-        for (std::size_t i = 0; i < hal::kServoCount; ++i) {
-          if (logged.servos[i].health != hal::DeviceHealth::kOk) continue;  // stale reading
-          const auto sq = [](double d) { return d * d; };
-          sums.position[i] += sq(sim.servos[i].position_rad - logged.servos[i].position_rad);
-          sums.speed[i] += sq(sim.servos[i].speed_rad_s - logged.servos[i].speed_rad_s);
-          sums.load[i] += sq(sim.servos[i].load - logged.servos[i].load);
-          ++sums.servo_samples[i];
-        }
-        logged_tilt.update(accel_of(logged), gyro_of(logged), period_s);
-        sim_tilt.update(accel_of(sim), gyro_of(sim), period_s);
-        if (logged.cm730.health == hal::DeviceHealth::kOk) {
-          sums.roll += std::pow(sim_tilt.roll() - logged_tilt.roll(), 2);
-          sums.pitch += std::pow(sim_tilt.pitch() - logged_tilt.pitch(), 2);
-          sums.gyro += (gyro_of(sim) - gyro_of(logged)).cwiseAbs2();
-          sums.accel += (accel_of(sim) - accel_of(logged)).cwiseAbs2();
-          ++sums.imu_samples;
-        }
-        if (options.keep_traces)
-          keep(window.traces, static_cast<double>(logged_tick.meta.tick) * period_s, logged, sim,
-               logged_tilt, sim_tilt);
-      }
-    }
-    window.ticks = sums.ticks;
-    window.errors = sums.rms();
-    overall.merge(sums);
-    out.windows.push_back(std::move(window));
-    first += n;
+  };
+  if (threads == 1) {
+    work(0);
+  } else {
+    std::vector<std::thread> pool;
+    for (std::size_t t = 0; t < threads; ++t) pool.emplace_back(work, t);
+    for (std::thread& th : pool) th.join();
   }
+  for (const Status& s : status)
+    if (!s) return s;
+  ErrorSums overall;
+  for (const ErrorSums& s : sums) overall.merge(s);
+  out.windows = std::move(windows);
   out.overall = overall.rms();
-  out.ticks_not_replayed = static_cast<std::size_t>(std::count(used.begin(), used.end(), false));
+  std::size_t replayed = 0;
+  for (std::size_t i = 0; i < log.ticks.size(); ++i) {
+    bool any = false;
+    for (const auto& u : used) any = any || u[i] != 0;
+    replayed += any ? 1 : 0;
+  }
+  out.ticks_not_replayed = log.ticks.size() - replayed;
   return Status::ok();
 }
 

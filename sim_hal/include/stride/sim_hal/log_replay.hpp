@@ -64,6 +64,11 @@ struct ReplayOptions {
   bool start_with_logged_speeds = false;
   /// Sink the robot into the grass until the contacts carry its weight (ResetSpec).
   bool sink_into_grass = true;
+  /// Threads replaying windows side by side (each its own world); the result does not depend
+  /// on it.
+  int threads = 1;
+  /// Replay only the windows whose index (in the order of the log) is listed; empty: all.
+  std::vector<std::size_t> only_windows;
 };
 
 /// RMS errors, simulated minus logged (NaN where nothing was compared).
@@ -89,6 +94,7 @@ struct ReplayTraces {
 };
 
 struct ReplayWindow {
+  std::size_t index = 0;        ///< the window's number in the log (ReplayOptions::only_windows)
   std::size_t first_index = 0;  ///< index in FlightLog::ticks of the starting state
   hal::Tick start_tick = 0;
   double start_s = 0.0;  ///< log time of the start
@@ -115,6 +121,9 @@ Status log_period_ns(const fw::FlightLog& log, std::int64_t& out);
 /// Checks that a window of `window_s` fits in `log` (which check_replayable accepted): the
 /// error names --window, the window and the log's longest run of consecutive ticks.
 Status check_window(const fw::FlightLog& log, double window_s);
+
+/// The number of windows of `window_s` in `log` (which check_window accepted).
+std::size_t count_windows(const fw::FlightLog& log, double window_s);
 
 /// Replays `log` (which check_replayable and check_window accepted) in `world` (its control
 /// period is taken from the log). Fails only if the world cannot be built.

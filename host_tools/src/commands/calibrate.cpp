@@ -1,0 +1,192 @@
+// `stride calibrate LOG... --fit NAME[,NAME...] --out WORLD.json`: fits the simulated robot to
+// flight logs (calibration.hpp) and writes a world file (world_file.hpp) that --world and task
+// configs accept. Progress on stderr; Ctrl-C stops after the running evaluation and keeps the
+// progress file, which --resume continues from. Bad input: one line, exit 2, no output file.
+#include <atomic>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <system_error>
+#include <vector>
+
+#include "stride/firmware/atomic_file.hpp"
+#include "stride/firmware/cli_args.hpp"
+#include "stride/firmware/recorder/flight_log_reader.hpp"
+#include "stride/host_tools/command.hpp"
+#include "stride/sim_hal/calibration.hpp"
+#include "stride/sim_hal/sim_cli.hpp"
+
+namespace {
+
+using stride::Status;
+namespace sim = stride::sim;
+namespace fw = stride::fw;
+
+std::atomic<bool> g_stop{false};
+extern "C" void on_sigint(int) {
+  g_stop.store(true);
+}
+
+int bad_input(const std::string& message) {
+  std::fprintf(stderr, "stride calibrate: %s\n", message.c_str());
+  return 2;
+}
+
+int failure(const std::string& message) {
+  std::fprintf(stderr, "stride calibrate: %s\n", message.c_str());
+  return 1;
+}
+
+}  // namespace
+
+int run_calibrate(int argc, char** argv) {
+  fw::CliArgs args;
+  args.option("help", "show this help", false);
+  args.option("fit", "parameters to fit, comma-separated (see below)", true);
+  args.option("out", "the world file to write (required)", true);
+  args.option("window", "replay window [s]", true, "4");
+  args.option("jobs", "threads replaying windows side by side", true, "1");
+  args.option("max-evals", "evaluations per fit of the continuous parameters", true, "250");
+  args.option("subsets",
+              "re-fits without one of K subsets of the windows, for the uncertainty "
+              "(0: none)",
+              true, "3");
+  args.option("resume", "continue a stopped run from OUT.progress.jsonl", false);
+  args.option("servo-table", "the firmware's servo table (must be the logs')", true,
+              fw::ServoTable::default_path().string());
+  args.option("robot-description", "the firmware's rigid-body model (must be the logs')", true,
+              fw::RobotDescription::default_path().string());
+  sim::declare_world_options(args);
+  if (Status s = args.parse(argc, argv); !s) return bad_input(s.message());
+  if (args.has("help")) {
+    std::string names;
+    for (const sim::CalibrationParameter& p : sim::calibration_parameters()) {
+      char line[160];
+      std::snprintf(line, sizeof line, "  %-14s %-32s [%g, %g] %s\n", p.name.c_str(),
+                    p.what.c_str(), p.lower, p.upper, p.unit.c_str());
+      names += line;
+    }
+    std::printf(
+        "usage: stride calibrate LOG... --fit NAME[,NAME...] --out WORLD.json [world options]\n\n"
+        "Fits the simulated robot to flight logs (stride-fw --record; the identification\n"
+        "routine of firmware/scripts/IDENTIFICATION.md): minimises the replay error (stride\n"
+        "replay) over every window of every log, prints each fitted value with an uncertainty\n"
+        "from re-fits on subsets of the windows, and writes a world file for --world and task\n"
+        "configs. The world options give the world the logs are replayed in (default: the\n"
+        "faithful world, noise off); a world file there is the start of the fit.\n\n"
+        "Parameters (--fit; gyro_bias and accel_bias name three axes, all every one):\n%s\n%s",
+        names.c_str(), args.help().c_str());
+    return 0;
+  }
+  if (args.positional().empty()) return bad_input("expected at least one flight log");
+  if (!args.has("out")) return bad_input("--out: the world file to write is required");
+  if (!args.has("fit")) return bad_input("--fit: name the parameters to fit");
+  const std::filesystem::path out = args.get("out");
+  std::error_code error;
+  if (out.has_parent_path() && !std::filesystem::is_directory(out.parent_path(), error))
+    return bad_input("--out: no such folder '" + out.parent_path().string() + "'");
+  if (std::filesystem::is_directory(out, error)) return bad_input("--out: is a folder");
+
+  sim::CalibrationOptions options;
+  if (Status s = sim::parse_fit_names(args.get("fit"), options.fit); !s)
+    return bad_input(s.message());
+  if (Status s = args.get_double("window", options.replay.window_s); !s)
+    return bad_input(s.message());
+  std::int64_t jobs = 1, max_evals = 250, subsets = 3;
+  if (Status s = args.get_int("jobs", jobs); !s) return bad_input(s.message());
+  if (Status s = args.get_int("max-evals", max_evals); !s) return bad_input(s.message());
+  if (Status s = args.get_int("subsets", subsets); !s) return bad_input(s.message());
+  if (jobs < 1 || jobs > 256) return bad_input("--jobs: must be in 1..256");
+  if (max_evals < 1 || max_evals > 100000) return bad_input("--max-evals: must be in 1..100000");
+  if (subsets < 0 || subsets == 1 || subsets > 20)
+    return bad_input("--subsets: must be 0 or in 2..20");
+  options.replay.threads = static_cast<int>(jobs);
+  options.max_evaluations = static_cast<int>(max_evals);
+  options.subsets = static_cast<int>(subsets);
+  if (args.has("push"))
+    return bad_input("--push: not available (the logged commands are replayed)");
+
+  // The replay world: noise off unless asked (the logged sensors carry the robot's noise).
+  sim::WorldOptions world;
+  if (Status s = sim::read_world_options(args, world); !s) return bad_input(s.message());
+  if (args.get_all("noise").empty()) world.imu.set_noise(false);
+  sim::WorldFile start;
+  start.base = world.servo.law == sim::ServoLaw::kSeed ? sim::WorldPreset::kSeed
+                                                       : sim::WorldPreset::kFaithful;
+  const std::string world_arg = args.get("world", "faithful");
+  if (sim::looks_like_world_file(world_arg))
+    if (Status s = sim::load_world_file(world_arg, start); !s)
+      return bad_input("--world: " + s.message());
+
+  fw::ServoTable servos;
+  if (Status s = fw::ServoTable::load(args.get("servo-table"), servos); !s)
+    return bad_input("--servo-table: " + s.message());
+  fw::RobotDescription robot;
+  if (Status s = fw::RobotDescription::load(args.get("robot-description"), servos, robot); !s)
+    return bad_input("--robot-description: " + s.message());
+  std::vector<fw::FlightLog> logs(args.positional().size());
+  std::vector<const fw::FlightLog*> log_ptrs;
+  for (std::size_t i = 0; i < logs.size(); ++i) {
+    const std::string& path = args.positional()[i];
+    if (Status s = fw::read_flight_log(path, logs[i]); !s) return bad_input(s.message());
+    if (Status s = sim::check_replayable(logs[i], servos, robot); !s)
+      return bad_input(path + ": " + s.message());
+    if (Status s = sim::check_window(logs[i], options.replay.window_s); !s)
+      return bad_input(path + ": " + s.message());
+    log_ptrs.push_back(&logs[i]);
+  }
+  options.progress_file = out;
+  options.progress_file += ".progress.jsonl";
+  options.resume = args.has("resume");
+  if (!options.resume && std::filesystem::exists(options.progress_file, error))
+    return bad_input(options.progress_file.string() +
+                     " exists: a stopped run (--resume continues it) or remove it");
+  if (options.resume && !std::filesystem::exists(options.progress_file, error))
+    return bad_input("--resume: no progress file " + options.progress_file.string());
+
+  options.stop = &g_stop;
+  std::signal(SIGINT, on_sigint);
+  options.on_evaluation = [](const std::string& fit, int n, double j, double best) {
+    std::fprintf(stderr, "\r%-9s evaluation %4d  J %10.4f  best %10.4f", fit.c_str(), n, j, best);
+    std::fflush(stderr);
+  };
+  std::fprintf(stderr, "stride calibrate: %zu log(s), fitting %s in %s\n", logs.size(),
+               args.get("fit").c_str(), sim::describe_world(world).c_str());
+  sim::CalibrationResult result;
+  const Status s = sim::calibrate(log_ptrs, world, start, options, result);
+  std::fprintf(stderr, "\n");
+  std::signal(SIGINT, SIG_DFL);
+  if (!s) {
+    if (g_stop.load())
+      return failure("interrupted; the evaluations so far are in " +
+                     options.progress_file.string() + " (--resume continues)");
+    return failure(s.message());
+  }
+  nlohmann::json logs_json = nlohmann::json::array();
+  for (const std::string& path : args.positional()) logs_json.push_back(path);
+  result.world.calibration["logs"] = logs_json;
+  if (Status w = fw::write_file_atomically(out, sim::to_json(result.world).dump(2) + "\n"); !w)
+    return failure(w.message());
+  std::filesystem::remove(options.progress_file, error);
+
+  std::printf("%-14s %10s %10s %12s  %s\n", "parameter", "start", "fitted", "uncertainty", "unit");
+  for (const sim::FittedValue& v : result.values) {
+    std::string unit;
+    for (const sim::CalibrationParameter& p : sim::calibration_parameters())
+      if (p.name == v.name) unit = p.unit;
+    std::printf("%-14s %10.4g %10.4g %12.3g  %s\n", v.name.c_str(), v.start, v.value, v.uncertainty,
+                unit.c_str());
+  }
+  std::printf(
+      "replay objective J: %.4g at the start, %.4g fitted (%d replays, %d from the "
+      "progress file)\n",
+      result.start_objective, result.objective, result.evaluations, result.stored_evaluations);
+  std::printf("position RMS %.5f -> %.5f rad, load RMS %.4f -> %.4f; wrote %s\n",
+              result.start_errors.position_all_rad, result.errors.position_all_rad,
+              result.start_errors.load_all, result.errors.load_all, out.string().c_str());
+  return 0;
+}
+
+STRIDE_COMMAND(calibrate, "fit the simulated robot to flight logs and write a world file",
+               run_calibrate);

@@ -1,0 +1,92 @@
+// Calibration of the simulated robot from flight logs (`stride calibrate`, issue 30 point 3).
+//
+// The replay error (log_replay.hpp) of the logs in a world is a function of the world's
+// calibration (world_file.hpp: servo torque per model, friction, supply voltage, bus latency,
+// trunk mass and centre of mass, IMU biases). The fit minimises
+//
+//   J = sum over windows of ticks_w * sum over channels c of (rms_c,w / scale_c)^2 / sum ticks_w
+//
+// with the channels and scales of kCalibrationChannels (roughly one sensor resolution each, so
+// that every channel counts), by NLopt's BOBYQA (a bounded derivative-free trust-region method)
+// on the continuous parameters; the latency (whole ticks) is chosen by trying every value at the
+// start and again around the fit. Uncertainty: the fit is repeated K times, each without one of
+// K interleaved subsets of the windows, started from the full fit (a delete-a-group jackknife:
+// sigma = sqrt((K-1)/K sum (theta_k - mean)^2)).
+//
+// Every evaluation is appended to a progress file; a run stopped (Ctrl-C) and started again
+// with `resume` retraces the same deterministic path through the stored values, then goes on.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "stride/firmware/recorder/flight_log_reader.hpp"
+#include "stride/hal/status.hpp"
+#include "stride/sim_hal/log_replay.hpp"
+#include "stride/sim_hal/world_file.hpp"
+
+namespace stride::sim {
+
+/// A parameter the calibration can fit (`--fit NAME`).
+struct CalibrationParameter {
+  std::string name;
+  std::string unit;
+  std::string what;
+  double lower = 0.0, upper = 0.0;  ///< search bounds
+  double step = 0.0;                ///< the fit's initial step
+  bool whole = false;               ///< whole numbers (the latency)
+};
+
+/// Every fittable parameter, in the order they are reported.
+const std::vector<CalibrationParameter>& calibration_parameters();
+/// Parses a comma-separated list of names ("gyro_bias" and "accel_bias" stand for their three
+/// axes, "all" for every parameter); the error names an unknown name and lists the known ones.
+Status parse_fit_names(const std::string& list, std::vector<std::string>& out);
+double calibration_value(const WorldFile& world, const std::string& name);
+void set_calibration_value(WorldFile& world, const std::string& name, double value);
+
+struct CalibrationOptions {
+  std::vector<std::string> fit;         ///< parameter names (parse_fit_names)
+  ReplayOptions replay;                 ///< window length, threads (keep_traces unused)
+  int max_evaluations = 250;            ///< per fit of the continuous parameters
+  int subsets = 3;                      ///< K for the uncertainty (0: none)
+  std::filesystem::path progress_file;  ///< evaluations, one JSON line each ("" none)
+  bool resume = false;                  ///< read progress_file's evaluations first
+  const std::atomic<bool>* stop = nullptr;
+  /// Called after each evaluation: the fit's name ("full", "subset 1", ...), the evaluation
+  /// count, this J and the best J of this fit.
+  std::function<void(const std::string&, int, double, double)> on_evaluation;
+};
+
+struct FittedValue {
+  std::string name;
+  double start = 0.0;
+  double value = 0.0;
+  double uncertainty = 0.0;  ///< jackknife standard error (0 without subsets)
+  std::vector<double> subset_values;
+};
+
+struct CalibrationResult {
+  WorldFile world;  ///< the start world with the fitted values, "calibration" filled in
+  std::vector<FittedValue> values;
+  double start_objective = 0.0, objective = 0.0;
+  ReplayErrors start_errors, errors;  ///< over every window of every log
+  int evaluations = 0;                ///< computed in this run (stored ones not counted)
+  int stored_evaluations = 0;         ///< taken from the progress file (--resume)
+};
+
+/// Fits `options.fit` of `start` to `logs` (each checked by check_replayable and check_window)
+/// replayed in `base` (the world options the replays run in; `start` is applied on top).
+/// Errors: an interrupted fit ("interrupted"), a progress file that cannot be read or written,
+/// a world that cannot be built.
+Status calibrate(const std::vector<const fw::FlightLog*>& logs, const WorldOptions& base,
+                 const WorldFile& start, const CalibrationOptions& options, CalibrationResult& out);
+
+/// J of one replay result (the objective above).
+double calibration_objective(const ReplayResult& result);
+
+}  // namespace stride::sim

@@ -1,0 +1,415 @@
+// stride calibrate's fit (calibration.hpp): the parameters, the objective over the replayed
+// windows, NLopt's BOBYQA, the latency search, the jackknife and the progress file.
+#include "stride/sim_hal/calibration.hpp"
+
+#include <nlopt.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+namespace stride::sim {
+
+namespace {
+
+/// The channels of the objective and their scales (about one sensor resolution: the encoder's
+/// 0.088 deg, the speed register's unit times 2, the load register's 1 %, the attitude filter's
+/// 0.3 deg, the gyro's 0.02 rad/s, the accelerometer's 0.1 m/s^2).
+constexpr double kPositionScale = 0.0015, kSpeedScale = 0.02, kLoadScale = 0.01,
+                 kAttitudeScale = 0.005, kGyroScale = 0.02, kAccelScale = 0.1;
+constexpr double kFailedWindow = 1e4;  ///< J of a window whose simulation stopped
+
+double window_objective(const ReplayErrors& e, bool failed) {
+  if (failed || e.samples == 0) return kFailedWindow;
+  const auto sq = [](double v, double scale) {
+    return std::isfinite(v) ? (v / scale) * (v / scale) : 0.0;
+  };
+  double j = sq(e.position_all_rad, kPositionScale) + sq(e.speed_all_rad_s, kSpeedScale) +
+             sq(e.load_all, kLoadScale) + sq(e.roll_rad, kAttitudeScale) +
+             sq(e.pitch_rad, kAttitudeScale);
+  for (int k = 0; k < 3; ++k)
+    j += sq(e.gyro_rad_s[k], kGyroScale) + sq(e.accel_mps2[k], kAccelScale);
+  return j;
+}
+
+std::string hex(double v) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%a", v);
+  return text;
+}
+
+}  // namespace
+
+double calibration_objective(const ReplayResult& r) {
+  double sum = 0.0, ticks = 0.0;
+  for (const ReplayWindow& w : r.windows) {
+    const double n = static_cast<double>(std::max<std::size_t>(w.ticks, 1));
+    sum += n * window_objective(w.errors, !w.failure.empty());
+    ticks += n;
+  }
+  return ticks > 0.0 ? sum / ticks : kFailedWindow;
+}
+
+const std::vector<CalibrationParameter>& calibration_parameters() {
+  static const std::vector<CalibrationParameter> params = {
+      {"torque_mx64", "x", "MX-64 torque scale", 0.5, 1.5, 0.1},
+      {"torque_mx106", "x", "MX-106 torque scale", 0.5, 1.5, 0.1},
+      {"friction", "x", "servo friction scale", 0.2, 3.0, 0.2},
+      {"voltage", "V", "supply voltage", 11.0, 16.8, 0.5},
+      {"latency", "ticks", "bus latency", 0.0, RobotCalibration::kMaxLatencyTicks, 1.0, true},
+      {"trunk_mass", "x", "trunk mass scale", 0.7, 1.5, 0.05},
+      {"trunk_com_x", "m", "trunk centre of mass, forward", -0.04, 0.04, 0.005},
+      {"trunk_com_y", "m", "trunk centre of mass, left", -0.04, 0.04, 0.005},
+      {"gyro_bias_x", "rad/s", "gyro bias x", -0.2, 0.2, 0.02},
+      {"gyro_bias_y", "rad/s", "gyro bias y", -0.2, 0.2, 0.02},
+      {"gyro_bias_z", "rad/s", "gyro bias z", -0.2, 0.2, 0.02},
+      {"accel_bias_x", "m/s^2", "accelerometer bias x", -1.0, 1.0, 0.1},
+      {"accel_bias_y", "m/s^2", "accelerometer bias y", -1.0, 1.0, 0.1},
+      {"accel_bias_z", "m/s^2", "accelerometer bias z", -1.0, 1.0, 0.1},
+  };
+  return params;
+}
+
+Status parse_fit_names(const std::string& list, std::vector<std::string>& out) {
+  out.clear();
+  std::string known;
+  for (const CalibrationParameter& p : calibration_parameters())
+    known += (known.empty() ? "" : ", ") + p.name;
+  std::stringstream in(list);
+  std::vector<std::string> wanted;
+  for (std::string name; std::getline(in, name, ',');) {
+    if (name == "all") {
+      for (const CalibrationParameter& p : calibration_parameters()) wanted.push_back(p.name);
+    } else if (name == "gyro_bias" || name == "accel_bias") {
+      for (const char* axis : {"_x", "_y", "_z"}) wanted.push_back(name + axis);
+    } else {
+      const auto& params = calibration_parameters();
+      if (std::none_of(params.begin(), params.end(),
+                       [&name](const CalibrationParameter& p) { return p.name == name; }))
+        return Status::error("--fit: cannot fit '" + name + "' (known: " + known +
+                             ", gyro_bias, accel_bias, all)");
+      wanted.push_back(name);
+    }
+  }
+  if (wanted.empty()) return Status::error("--fit: name at least one parameter (" + known + ")");
+  for (const CalibrationParameter& p : calibration_parameters())  // table order, no repeats
+    if (std::find(wanted.begin(), wanted.end(), p.name) != wanted.end()) out.push_back(p.name);
+  return Status::ok();
+}
+
+double calibration_value(const WorldFile& w, const std::string& name) {
+  const RobotCalibration& c = w.robot;
+  if (name == "torque_mx64") return c.torque_scale_mx64;
+  if (name == "torque_mx106") return c.torque_scale_mx106;
+  if (name == "friction") return c.friction_scale;
+  if (name == "voltage") return w.supply_voltage_v;
+  if (name == "latency") return c.latency_ticks;
+  if (name == "trunk_mass") return c.trunk_mass_scale;
+  if (name == "trunk_com_x") return c.trunk_com_offset_m.x();
+  if (name == "trunk_com_y") return c.trunk_com_offset_m.y();
+  const int axis = name.back() - 'x';
+  if (name.rfind("gyro_bias_", 0) == 0) return w.gyro_bias_rad_s[axis];
+  if (name.rfind("accel_bias_", 0) == 0) return w.accel_bias_mps2[axis];
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+void set_calibration_value(WorldFile& w, const std::string& name, double v) {
+  RobotCalibration& c = w.robot;
+  if (name == "torque_mx64") c.torque_scale_mx64 = v;
+  if (name == "torque_mx106") c.torque_scale_mx106 = v;
+  if (name == "friction") c.friction_scale = v;
+  if (name == "voltage") w.supply_voltage_v = v;
+  if (name == "latency") c.latency_ticks = static_cast<int>(std::lround(v));
+  if (name == "trunk_mass") c.trunk_mass_scale = v;
+  if (name == "trunk_com_x") c.trunk_com_offset_m.x() = v;
+  if (name == "trunk_com_y") c.trunk_com_offset_m.y() = v;
+  const int axis = name.back() - 'x';
+  if (name.rfind("gyro_bias_", 0) == 0) w.gyro_bias_rad_s[axis] = v;
+  if (name.rfind("accel_bias_", 0) == 0) w.accel_bias_mps2[axis] = v;
+}
+
+namespace {
+
+const CalibrationParameter& parameter(const std::string& name) {
+  for (const CalibrationParameter& p : calibration_parameters())
+    if (p.name == name) return p;
+  return calibration_parameters().front();  // names are checked by parse_fit_names
+}
+
+/// Replays the logs for a world and keeps every evaluation (memory and progress file).
+class Evaluator {
+ public:
+  Evaluator(const std::vector<const fw::FlightLog*>& logs, const WorldOptions& base,
+            const CalibrationOptions& options)
+      : logs_(logs), base_(base), options_(options) {
+    for (const fw::FlightLog* log : logs_)
+      window_counts_.push_back(count_windows(*log, options.replay.window_s));
+  }
+
+  Status open() {
+    if (options_.progress_file.empty()) return Status::ok();
+    if (options_.resume) {
+      std::ifstream in(options_.progress_file);
+      if (!in) return Status::error("--resume: cannot read " + options_.progress_file.string());
+      for (std::string line; std::getline(in, line);) {
+        const nlohmann::json j = nlohmann::json::parse(line, nullptr, false);
+        if (j.is_discarded() || !j.contains("key") || !j.contains("J")) continue;  // a cut line
+        cache_[j["key"].get<std::string>()] =
+            std::strtod(j["J"].get<std::string>().c_str(), nullptr);
+        from_file_.insert(j["key"].get<std::string>());
+      }
+    }
+    progress_.open(options_.progress_file, options_.resume ? std::ios::app : std::ios::trunc);
+    if (!progress_)
+      return Status::error("cannot write the progress file " + options_.progress_file.string());
+    return Status::ok();
+  }
+
+  /// J of `world` over the windows not in subset `left_out` of `subsets` (-1: all windows).
+  Status evaluate(const WorldFile& world, int left_out, double& j, ReplayErrors* errors = nullptr) {
+    std::string key = std::to_string(left_out);
+    for (const CalibrationParameter& p : calibration_parameters())
+      key += " " + hex(calibration_value(world, p.name));
+    if (errors == nullptr) {
+      if (auto it = cache_.find(key); it != cache_.end()) {
+        j = it->second;
+        if (from_file_.erase(key) > 0) ++stored_;
+        return Status::ok();
+      }
+    }
+    if (options_.stop && options_.stop->load()) return Status::error("interrupted");
+    WorldOptions w = base_;
+    world.apply_calibration(w);
+    double sum = 0.0, ticks = 0.0;
+    std::size_t global = 0;
+    ReplayErrors all{};
+    for (std::size_t l = 0; l < logs_.size(); ++l) {
+      ReplayOptions replay = options_.replay;
+      replay.keep_traces = false;
+      replay.only_windows.clear();
+      for (std::size_t k = 0; k < window_counts_[l]; ++k, ++global)
+        if (left_out < 0 ||
+            static_cast<int>(global % static_cast<std::size_t>(options_.subsets)) != left_out)
+          replay.only_windows.push_back(k);
+      if (replay.only_windows.empty()) continue;
+      ReplayResult result;
+      if (Status s = replay_flight_log(*logs_[l], w, replay, result); !s) return s;
+      for (const ReplayWindow& win : result.windows) {
+        const double n = static_cast<double>(std::max<std::size_t>(win.ticks, 1));
+        sum += n * window_objective(win.errors, !win.failure.empty());
+        ticks += n;
+      }
+      if (l == 0) all = result.overall;  // the first log's errors, reported
+    }
+    j = ticks > 0.0 ? sum / ticks : kFailedWindow;
+    if (errors) *errors = all;
+    cache_[key] = j;
+    ++computed_;
+    if (progress_.is_open()) {
+      progress_ << nlohmann::json({{"key", key}, {"J", hex(j)}}).dump() << "\n";
+      progress_.flush();
+      if (!progress_) return Status::error("cannot write the progress file");
+    }
+    return Status::ok();
+  }
+
+  int computed() const { return computed_; }
+  int stored() const { return stored_; }
+
+ private:
+  const std::vector<const fw::FlightLog*>& logs_;
+  const WorldOptions& base_;
+  const CalibrationOptions& options_;
+  std::vector<std::size_t> window_counts_;
+  std::map<std::string, double> cache_;
+  std::set<std::string> from_file_;  ///< progress-file entries not used yet
+  std::ofstream progress_;
+  int computed_ = 0, stored_ = 0;
+};
+
+struct FitContext {
+  Evaluator* evaluator = nullptr;
+  WorldFile world;                 ///< the whole-number parameters fixed, the others set by x
+  std::vector<std::string> names;  ///< the continuous parameters
+  std::vector<double> origin, step;
+  int left_out = -1;
+  std::string label;
+  const CalibrationOptions* options = nullptr;
+  Status status = Status::ok();
+  int count = 0;
+  double best = std::numeric_limits<double>::infinity();
+  nlopt_opt opt = nullptr;
+
+  WorldFile at(const double* x) const {
+    WorldFile w = world;
+    for (std::size_t i = 0; i < names.size(); ++i)
+      set_calibration_value(w, names[i], origin[i] + step[i] * x[i]);
+    return w;
+  }
+};
+
+double fit_objective(unsigned /*n*/, const double* x, double* /*grad*/, void* data) {
+  auto& c = *static_cast<FitContext*>(data);
+  double j = kFailedWindow;
+  if (Status s = c.evaluator->evaluate(c.at(x), c.left_out, j); !s) {
+    c.status = s;
+    nlopt_force_stop(c.opt);
+    return kFailedWindow;
+  }
+  ++c.count;
+  c.best = std::min(c.best, j);
+  if (c.options->on_evaluation) c.options->on_evaluation(c.label, c.count, j, c.best);
+  return j;
+}
+
+/// BOBYQA over the continuous parameters of `world` from their present values; `world` is set
+/// to the best point.
+Status fit_continuous(Evaluator& evaluator, const std::vector<std::string>& names, int left_out,
+                      const std::string& label, const CalibrationOptions& options, WorldFile& world,
+                      double& best) {
+  FitContext c;
+  c.evaluator = &evaluator;
+  c.world = world;
+  c.names = names;
+  c.left_out = left_out;
+  c.label = label;
+  c.options = &options;
+  const auto n = static_cast<unsigned>(names.size());
+  std::vector<double> x(n, 0.0), lower(n), upper(n);
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    const CalibrationParameter& p = parameter(names[i]);
+    c.origin.push_back(calibration_value(world, names[i]));
+    c.step.push_back(p.step);
+    lower[i] = (p.lower - c.origin[i]) / p.step;
+    upper[i] = (p.upper - c.origin[i]) / p.step;
+    x[i] = std::clamp(0.0, lower[i], upper[i]);
+  }
+  if (n == 0) return evaluator.evaluate(world, left_out, best);
+  c.opt = nlopt_create(NLOPT_LN_BOBYQA, n);
+  nlopt_set_lower_bounds(c.opt, lower.data());
+  nlopt_set_upper_bounds(c.opt, upper.data());
+  nlopt_set_min_objective(c.opt, fit_objective, &c);
+  nlopt_set_xtol_abs1(c.opt, 0.02);  // 2 % of each parameter's step
+  nlopt_set_maxeval(c.opt, options.max_evaluations);
+  std::vector<double> initial_step(n, 1.0);
+  nlopt_set_initial_step(c.opt, initial_step.data());
+  double value = 0.0;
+  const nlopt_result r = nlopt_optimize(c.opt, x.data(), &value);
+  nlopt_destroy(c.opt);
+  if (!c.status) return c.status;
+  if (r < 0 && r != NLOPT_ROUNDOFF_LIMITED)
+    return Status::error("the fit failed (NLopt code " + std::to_string(static_cast<int>(r)) + ")");
+  world = c.at(x.data());
+  best = value;
+  return Status::ok();
+}
+
+/// The whole fit on the windows without subset `left_out`: the latency tried at every value
+/// (if fitted), the continuous parameters, the latency again around the result.
+Status fit_all(Evaluator& evaluator, const std::vector<std::string>& fit, int left_out,
+               const std::string& label, const CalibrationOptions& options, WorldFile& world,
+               double& best) {
+  const bool latency = std::find(fit.begin(), fit.end(), "latency") != fit.end();
+  std::vector<std::string> continuous;
+  for (const std::string& name : fit)
+    if (!parameter(name).whole) continuous.push_back(name);
+  const auto choose_latency = [&](WorldFile& w, double& j) -> Status {
+    WorldFile best_world = w;
+    if (Status s = evaluator.evaluate(w, left_out, j); !s) return s;
+    for (int l = 0; l <= RobotCalibration::kMaxLatencyTicks; ++l) {
+      if (l == w.robot.latency_ticks) continue;
+      WorldFile candidate = w;
+      candidate.robot.latency_ticks = l;
+      double jl = 0.0;
+      if (Status s = evaluator.evaluate(candidate, left_out, jl); !s) return s;
+      if (jl < j) {
+        j = jl;
+        best_world = candidate;
+      }
+    }
+    w = best_world;
+    return Status::ok();
+  };
+  double j = 0.0;
+  if (latency)
+    if (Status s = choose_latency(world, j); !s) return s;
+  if (Status s = fit_continuous(evaluator, continuous, left_out, label, options, world, best); !s)
+    return s;
+  if (latency) {
+    const int before = world.robot.latency_ticks;
+    if (Status s = choose_latency(world, j); !s) return s;
+    if (world.robot.latency_ticks != before) {
+      if (Status s = fit_continuous(evaluator, continuous, left_out, label, options, world, best);
+          !s)
+        return s;
+    } else {
+      best = std::min(best, j);
+    }
+  }
+  return Status::ok();
+}
+
+}  // namespace
+
+Status calibrate(const std::vector<const fw::FlightLog*>& logs, const WorldOptions& base,
+                 const WorldFile& start, const CalibrationOptions& options,
+                 CalibrationResult& out) {
+  out = {};
+  if (options.fit.empty()) return Status::error("--fit: name at least one parameter");
+  Evaluator evaluator(logs, base, options);
+  if (Status s = evaluator.open(); !s) return s;
+  if (Status s = evaluator.evaluate(start, -1, out.start_objective, &out.start_errors); !s)
+    return s;
+  WorldFile world = start;
+  double best = 0.0;
+  if (Status s = fit_all(evaluator, options.fit, -1, "full", options, world, best); !s) return s;
+  out.objective = best;
+  for (const std::string& name : options.fit)
+    out.values.push_back(
+        {name, calibration_value(start, name), calibration_value(world, name), 0.0, {}});
+  // Jackknife: K fits, each without one subset, started from the full fit.
+  for (int k = 0; k < options.subsets && options.subsets >= 2; ++k) {
+    WorldFile sub = world;
+    double j = 0.0;
+    if (Status s =
+            fit_all(evaluator, options.fit, k, "subset " + std::to_string(k + 1), options, sub, j);
+        !s)
+      return s;
+    for (FittedValue& v : out.values) v.subset_values.push_back(calibration_value(sub, v.name));
+  }
+  for (FittedValue& v : out.values) {
+    const auto k = static_cast<double>(v.subset_values.size());
+    if (k < 2) continue;
+    double mean = 0.0, sq = 0.0;
+    for (double x : v.subset_values) mean += x / k;
+    for (double x : v.subset_values) sq += (x - mean) * (x - mean);
+    v.uncertainty = std::sqrt((k - 1.0) / k * sq);
+  }
+  double check = 0.0;
+  if (Status s = evaluator.evaluate(world, -1, check, &out.errors); !s) return s;
+  out.evaluations = evaluator.computed();
+  out.stored_evaluations = evaluator.stored();
+  nlohmann::json fitted = nlohmann::json::object();
+  for (const FittedValue& v : out.values)
+    fitted[v.name] = {{"value", v.value},
+                      {"start", v.start},
+                      {"uncertainty", v.uncertainty},
+                      {"unit", parameter(v.name).unit}};
+  world.calibration = {{"fitted", fitted},
+                       {"objective_start", out.start_objective},
+                       {"objective", out.objective},
+                       {"window_s", options.replay.window_s},
+                       {"subsets", options.subsets}};
+  out.world = world;
+  return Status::ok();
+}
+
+}  // namespace stride::sim

@@ -1,0 +1,254 @@
+// stride calibrate and world files (issue 30 point 3): a world file reads, writes and names a
+// bad field; its calibration changes the simulated robot (trunk mass and centre of mass, bus
+// latency); `stride calibrate` fits a perturbed robot from the identification routine's log,
+// writes a world file that `stride sim` takes (task configs: task_config_test.cpp), resumes a
+// stopped run to the same result, and gives bad input one line, exit 2 and no output file.
+#include <signal.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "child_process.hpp"
+#include "stride/firmware/robot_description.hpp"
+#include "stride/sim_hal/sim_world.hpp"
+#include "stride/sim_hal/world_file.hpp"
+#include "temp_dir.hpp"
+
+namespace stride::sim {
+namespace {
+
+const std::string kBin = STRIDE_BIN_DIR;
+
+struct CliRun {
+  int code = -1;
+  std::string out, err;
+};
+
+CliRun stride(const test::TempDir& dir, std::vector<std::string> args) {
+  args.insert(args.begin(), kBin + "/stride");
+  CliRun run;
+  run.code = test::wait_exit(test::spawn(args, dir.path() / "out", dir.path() / "err"));
+  run.out = test::slurp(dir.path() / "out");
+  run.err = test::slurp(dir.path() / "err");
+  return run;
+}
+
+void expect_bad_input(const CliRun& run, const std::string& what) {
+  EXPECT_EQ(run.code, 2) << run.err;
+  EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
+  EXPECT_NE(run.err.find(what), std::string::npos) << run.err;
+  EXPECT_EQ(run.out, "");
+}
+
+std::string parse_error(const nlohmann::json& doc) {
+  WorldFile w;
+  const Status s = parse_world_file(doc, w);
+  return s ? "" : s.message();
+}
+
+TEST(WorldFile, ReadsWritesAndNamesTheBadField) {
+  WorldFile w;
+  w.base = WorldPreset::kSeed;
+  w.supply_voltage_v = 14.0;
+  w.robot.torque_scale_mx106 = 0.85;
+  w.robot.latency_ticks = 2;
+  w.robot.trunk_mass_scale = 1.1;
+  w.robot.trunk_com_offset_m = {0.01, -0.002};
+  w.gyro_bias_rad_s = {0.0, 0.01, 0.0};
+  WorldFile back;
+  ASSERT_TRUE(parse_world_file(to_json(w), back));
+  EXPECT_EQ(to_json(back), to_json(w));
+  EXPECT_EQ(back.base, WorldPreset::kSeed);
+  EXPECT_EQ(back.robot.latency_ticks, 2);
+  // Absent fields are nominal.
+  ASSERT_TRUE(parse_world_file({{"format", "stride-world"}}, back));
+  EXPECT_EQ(back.robot.torque_scale_mx64, 1.0);
+  EXPECT_EQ(back.supply_voltage_v, 14.8);
+
+  const nlohmann::json ok = {{"format", "stride-world"}};
+  auto with = [&ok](const nlohmann::json& patch) {
+    nlohmann::json d = ok;
+    d.merge_patch(patch);
+    return d;
+  };
+  EXPECT_EQ(parse_error({{"format", "stride-task"}}),
+            "not a Stride world file (\"format\" is not \"stride-world\")");
+  EXPECT_EQ(parse_error(with({{"robot", {{"latency_ticks", 4}}}})),
+            "robot.latency_ticks: must be an integer in 0..3, got 4");
+  EXPECT_EQ(parse_error(with({{"robot", {{"torque_scale", {{"MX-28", 1.0}}}}}})),
+            "robot.torque_scale.MX-28: unknown field");
+  EXPECT_EQ(parse_error(with({{"supply_voltage_v", 30}})),
+            "supply_voltage_v: must be a number in [9, 18], got 30");
+  EXPECT_EQ(parse_error(with({{"robot", {{"trunk_com_offset_m", {0.01}}}}})),
+            "robot.trunk_com_offset_m: must be 2 numbers, each in [-0.1, 0.1], got [0.01]");
+  EXPECT_EQ(parse_error(with({{"base", "moon"}})),
+            "base: must be \"faithful\" or \"seed\", got \"moon\"");
+  EXPECT_EQ(parse_error(with({{"gravity", 9.81}})), "gravity: unknown field");
+}
+
+TEST(WorldFile, TheCalibrationChangesTheSimulatedRobot) {
+  WorldOptions nominal;
+  nominal.ball.present = false;
+  WorldOptions heavy = nominal;
+  WorldFile file;
+  file.robot.trunk_mass_scale = 1.1;
+  file.robot.trunk_com_offset_m = {0.01, 0.0};
+  file.apply_calibration(heavy);
+  std::unique_ptr<SimWorld> a, b;
+  ASSERT_TRUE(SimWorld::create(nominal, a));
+  ASSERT_TRUE(SimWorld::create(heavy, b));
+  const double trunk = 1.8051;  // kg, igus_op.urdf trunk_link
+  EXPECT_NEAR(b->model().total_mass() - a->model().total_mass(), 0.1 * trunk, 1e-9);
+  const double com_shift =
+      b->ground_truth().center_of_mass.x() - a->ground_truth().center_of_mass.x();
+  EXPECT_NEAR(com_shift, 0.01 * 1.1 * trunk / b->model().total_mass(), 0.001);
+
+  // Latency: a step command to the head reaches the servo `latency_ticks` periods later.
+  const auto first_move = [](int latency) {
+    WorldOptions o;
+    o.ball.present = false;
+    o.robot.latency_ticks = latency;
+    std::unique_ptr<SimWorld> w;
+    EXPECT_TRUE(SimWorld::create(o, w));
+    const std::size_t head_yaw = 18;
+    const double start = w->servo_joint_angle(head_yaw);
+    hal::ServoCommand c;
+    c.position_rad = w->servo_state(head_yaw).goal_position_rad + 0.3;
+    c.p_gain = 32;
+    c.torque_enable = true;
+    w->set_servo_command(head_yaw, c);
+    for (int period = 1; period <= 10; ++period) {
+      w->advance_period();
+      if (std::abs(w->servo_joint_angle(head_yaw) - start) > 0.005) return period;
+    }
+    return -1;
+  };
+  const int immediate = first_move(0);
+  ASSERT_GT(immediate, 0);
+  EXPECT_EQ(first_move(1), immediate + 1);
+  EXPECT_EQ(first_move(2), immediate + 2);
+}
+
+// A robot one tick of bus latency away from the model, recorded by the product: standing 2 s,
+// walking in place 5 s, a stop, 5 s forward, a stop (noise off: the test is about the fit).
+class Calibrate : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = std::make_unique<test::TempDir>();
+    perturbed_ = dir_->write("perturbed.json",
+                             R"({"format": "stride-world", "robot": {"latency_ticks": 1}})");
+    log_ = dir_->path() / "routine.flog";
+    const CliRun run = stride(
+        *dir_, {"identify", "--out", log_.string(), "--world", perturbed_.string(), "--noise",
+                "off", "--parts", "stand,walk", "--stand-s", "2", "--walk-s", "5"});
+    ASSERT_EQ(run.code, 0) << run.err;
+  }
+  static void TearDownTestSuite() { dir_.reset(); }
+  static std::unique_ptr<test::TempDir> dir_;
+  static std::filesystem::path perturbed_, log_;
+};
+std::unique_ptr<test::TempDir> Calibrate::dir_;
+std::filesystem::path Calibrate::perturbed_, Calibrate::log_;
+
+TEST_F(Calibrate, FitsTheBusLatencyAndWritesAWorldFileTheSimulatorTakes) {
+  test::TempDir dir;
+  const auto world = dir.path() / "calibrated.json";
+  const CliRun run = stride(dir, {"calibrate", log_.string(), "--fit", "latency", "--out",
+                                  world.string(), "--subsets", "0", "--jobs", "2"});
+  ASSERT_EQ(run.code, 0) << run.err;
+  WorldFile fitted;
+  ASSERT_TRUE(load_world_file(world, fitted));
+  EXPECT_EQ(fitted.robot.latency_ticks, 1);
+  // Measured: J 867 at the nominal robot, 601 calibrated.
+  EXPECT_LT(fitted.calibration["objective"].get<double>(),
+            0.8 * fitted.calibration["objective_start"].get<double>());
+  EXPECT_FALSE(std::filesystem::exists(world.string() + ".progress.jsonl"));
+  // stride sim takes it, and says what it changes.
+  const CliRun sim = stride(dir, {"sim", "stand", "--world", world.string(), "--duration", "1"});
+  EXPECT_EQ(sim.code, 0) << sim.err;
+  // Task configs take it too: TaskConfig.AWorldFileReachesEveryTrialWorld.
+}
+
+TEST_F(Calibrate, AStoppedRunResumesToTheSameWorldFile) {
+  const std::vector<std::string> fit = {
+      "--fit", "trunk_mass,torque_mx106", "--max-evals", "12", "--subsets", "2"};
+  test::TempDir whole_dir;
+  const auto whole = whole_dir.path() / "whole.json";
+  std::vector<std::string> args = {"calibrate", log_.string(), "--out", whole.string()};
+  args.insert(args.end(), fit.begin(), fit.end());
+  ASSERT_EQ(stride(whole_dir, args).code, 0);
+
+  // The same run stopped with Ctrl-C once it has stored a few evaluations, then resumed.
+  test::TempDir dir;
+  const auto out = dir.path() / "resumed.json";
+  const auto progress = dir.path() / "resumed.json.progress.jsonl";
+  args = {kBin + "/stride", "calibrate", log_.string(), "--out", out.string()};
+  args.insert(args.end(), fit.begin(), fit.end());
+  const pid_t pid = test::spawn(args, dir.path() / "out", dir.path() / "err");
+  const auto lines = [&progress] {
+    const std::string text = test::slurp(progress);
+    return std::count(text.begin(), text.end(), '\n');
+  };
+  for (int i = 0; i < 600 && lines() < 4; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  ASSERT_GE(lines(), 4) << "no progress";
+  ::kill(pid, SIGINT);
+  EXPECT_EQ(test::wait_exit(pid), 1);
+  const std::string err = test::slurp(dir.path() / "err");
+  EXPECT_NE(err.find("interrupted"), std::string::npos) << err;
+  EXPECT_FALSE(std::filesystem::exists(out));
+  // Without --resume the progress file is not overwritten.
+  args.erase(args.begin());
+  expect_bad_input(stride(dir, args), "--resume");
+  args.push_back("--resume");
+  const CliRun resumed = stride(dir, args);
+  ASSERT_EQ(resumed.code, 0) << resumed.err;
+  EXPECT_EQ(test::slurp(out), test::slurp(whole));
+  EXPECT_FALSE(std::filesystem::exists(progress));
+}
+
+TEST_F(Calibrate, BadInputIsOneLineExitTwoAndNoOutputFile) {
+  test::TempDir dir;
+  const auto out = dir.path() / "w.json";
+  const std::string log = log_.string();
+  const std::string bytes = test::slurp(log_);
+  const auto cut = dir.write("cut.flog", bytes.substr(0, bytes.size() / 2 + 7));
+  expect_bad_input(
+      stride(dir, {"calibrate", cut.string(), "--fit", "latency", "--out", out.string()}),
+      "truncated");
+  const auto foreign = dir.write("notes.flog", "not a log\n");
+  expect_bad_input(
+      stride(dir, {"calibrate", foreign.string(), "--fit", "latency", "--out", out.string()}),
+      "not a Stride flight log");
+  const std::string description = test::slurp(fw::RobotDescription::default_path());
+  const auto other = dir.write("robot_description.json", description + " ");
+  expect_bad_input(stride(dir, {"calibrate", log, "--fit", "latency", "--out", out.string(),
+                                "--robot-description", other.string()}),
+                   "robot description");
+  expect_bad_input(
+      stride(dir, {"calibrate", log, "--fit", "latency,wheel_radius", "--out", out.string()}),
+      "--fit: cannot fit 'wheel_radius'");
+  expect_bad_input(
+      stride(dir, {"calibrate", log, "--fit", "latency", "--out", out.string(), "--window", "60"}),
+      "--window");
+  expect_bad_input(stride(dir, {"calibrate", log, "--fit", "latency"}), "--out");
+  const auto broken = dir.write("broken.json", R"({"format": "stride-world", "robot": 3})");
+  expect_bad_input(stride(dir, {"calibrate", log, "--fit", "latency", "--out", out.string(),
+                                "--world", broken.string()}),
+                   "robot: must be an object");
+  expect_bad_input(stride(dir, {"sim", "stand", "--world", broken.string()}),
+                   "robot: must be an object");
+  EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+}  // namespace
+}  // namespace stride::sim
