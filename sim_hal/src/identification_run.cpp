@@ -132,6 +132,7 @@ Status record_identification(const IdentificationRun& run, WorldOptions world,
   fw::ControlLoop loop(robot, firmware->controller(), firmware->params());
   loop.set_recorder(recorder.get());
   const double period_s = static_cast<double>(firmware->period_ns()) * 1e-9;
+  out.period_s = period_s;
   Player player(loop, *firmware, robot, period_s, out);
   for (const std::string& part : run.parts) {
     if (player.stopped()) break;

@@ -90,7 +90,8 @@ int run_identify(int argc, char** argv) {
     std::printf("%s\n", j.dump().c_str());
   } else {
     std::printf("%s: %lld ticks (%.1f s) in %s\n", out.string().c_str(),
-                static_cast<long long>(summary.ticks), static_cast<double>(summary.ticks) * 0.01,
+                static_cast<long long>(summary.ticks),
+                static_cast<double>(summary.ticks) * summary.period_s,
                 sim::describe_world(world).c_str());
     for (const auto& [name, start] : summary.part_start_s)
       std::printf("  %-15s from %6.2f s\n", name.c_str(), start);

@@ -36,6 +36,7 @@ struct IdentificationRun {
 const std::vector<std::string>& identification_parts();
 
 struct IdentificationSummary {
+  double period_s = 0.01;  ///< the firmware's control period
   std::int64_t ticks = 0;
   std::int64_t ticks_dropped = 0;
   bool fell = false;    ///< the firmware detected a fall (the log ends there)
