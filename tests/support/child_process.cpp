@@ -40,4 +40,12 @@ std::string slurp(const std::filesystem::path& path) {
   return s.str();
 }
 
+ChildRun run_child(const std::vector<std::string>& argv, const std::filesystem::path& dir) {
+  ChildRun run;
+  run.code = wait_exit(spawn(argv, dir / "out", dir / "err"));
+  run.out = slurp(dir / "out");
+  run.err = slurp(dir / "err");
+  return run;
+}
+
 }  // namespace stride::test

@@ -19,4 +19,12 @@ int wait_exit(pid_t pid);
 /// The whole contents of a file ("" if unreadable).
 std::string slurp(const std::filesystem::path& path);
 
+/// A finished child: its exit code (as wait_exit) and what it printed.
+struct ChildRun {
+  int code = -1;
+  std::string out, err;
+};
+/// Runs `argv` to the end with its output in `dir`/out and `dir`/err, and reads them.
+ChildRun run_child(const std::vector<std::string>& argv, const std::filesystem::path& dir);
+
 }  // namespace stride::test

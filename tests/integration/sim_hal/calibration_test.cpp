@@ -18,6 +18,7 @@
 #include <nlohmann/json.hpp>
 
 #include "child_process.hpp"
+#include "expect_bad_input.hpp"
 #include "stride/firmware/robot_description.hpp"
 #include "stride/sim_hal/sim_world.hpp"
 #include "stride/sim_hal/world_file.hpp"
@@ -28,25 +29,12 @@ namespace {
 
 const std::string kBin = STRIDE_BIN_DIR;
 
-struct CliRun {
-  int code = -1;
-  std::string out, err;
-};
+using CliRun = test::ChildRun;
+using test::expect_bad_input;
 
 CliRun stride(const test::TempDir& dir, std::vector<std::string> args) {
   args.insert(args.begin(), kBin + "/stride");
-  CliRun run;
-  run.code = test::wait_exit(test::spawn(args, dir.path() / "out", dir.path() / "err"));
-  run.out = test::slurp(dir.path() / "out");
-  run.err = test::slurp(dir.path() / "err");
-  return run;
-}
-
-void expect_bad_input(const CliRun& run, const std::string& what) {
-  EXPECT_EQ(run.code, 2) << run.err;
-  EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
-  EXPECT_NE(run.err.find(what), std::string::npos) << run.err;
-  EXPECT_EQ(run.out, "");
+  return test::run_child(args, dir.path());
 }
 
 std::string parse_error(const nlohmann::json& doc) {

@@ -22,6 +22,7 @@
 #include <nlohmann/json.hpp>
 
 #include "child_process.hpp"
+#include "expect_bad_input.hpp"
 #include "stride/firmware/control_loop.hpp"
 #include "stride/firmware/firmware.hpp"
 #include "stride/firmware/motion_request.hpp"
@@ -178,27 +179,13 @@ TEST_F(LogReplay, AnotherServoLawIsClearlyWorse) {
 // --------------------------------------------------------------------------------------------
 // The command
 
-struct CliRun {
-  int code = -1;
-  std::string out, err;
-};
+using CliRun = test::ChildRun;
+using test::expect_bad_input;
 
 CliRun stride_replay(const test::TempDir& dir, const std::vector<std::string>& options) {
   std::vector<std::string> argv = {kBin + "/stride", "replay"};
   argv.insert(argv.end(), options.begin(), options.end());
-  CliRun run;
-  run.code = test::wait_exit(test::spawn(argv, dir.path() / "out", dir.path() / "err"));
-  run.out = test::slurp(dir.path() / "out");
-  run.err = test::slurp(dir.path() / "err");
-  return run;
-}
-
-/// Exit 2, exactly one line on stderr containing `what`, nothing on stdout.
-void expect_bad_input(const CliRun& run, const std::string& what) {
-  EXPECT_EQ(run.code, 2) << run.err;
-  EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
-  EXPECT_NE(run.err.find(what), std::string::npos) << run.err;
-  EXPECT_EQ(run.out, "");
+  return test::run_child(argv, dir.path());
 }
 
 TEST_F(LogReplay, TheCommandPrintsJsonAndWritesThePage) {
