@@ -74,7 +74,7 @@ struct CalibrationResult {
   WorldFile world;  ///< the start world with the fitted values, "calibration" filled in
   std::vector<FittedValue> values;
   double start_objective = 0.0, objective = 0.0;
-  ReplayErrors start_errors, errors;  ///< over every window of every log
+  ReplayErrors start_errors, errors;  ///< RMS errors over the windows of the first log
   int evaluations = 0;                ///< computed in this run (stored ones not counted)
   int stored_evaluations = 0;         ///< taken from the progress file (--resume)
 };
