@@ -26,6 +26,8 @@ namespace {
 constexpr double kPositionScale = 0.0015, kSpeedScale = 0.02, kLoadScale = 0.01,
                  kAttitudeScale = 0.005, kGyroScale = 0.02, kAccelScale = 0.1;
 constexpr double kFailedWindow = 1e4;  ///< J of a window whose simulation stopped
+/// The subset fits' tolerance in parameter steps: the smallest uncertainty reported.
+constexpr double kSubsetTolerance = 0.002;
 
 double window_objective(const ReplayErrors& e, bool failed) {
   if (failed || e.samples == 0) return kFailedWindow;
@@ -56,6 +58,41 @@ double calibration_objective(const ReplayResult& r) {
     ticks += n;
   }
   return ticks > 0.0 ? sum / ticks : kFailedWindow;
+}
+
+bool logged_supply_voltage(const std::vector<const fw::FlightLog*>& logs, double& out) {
+  std::vector<double> volts;
+  for (const fw::FlightLog* log : logs)
+    for (const fw::FlightLogTick& t : log->ticks)
+      if (t.sensors.cm730.health == hal::DeviceHealth::kOk && t.sensors.cm730.voltage_v > 0.0)
+        volts.push_back(t.sensors.cm730.voltage_v);
+  if (volts.empty()) return false;
+  const auto middle = volts.begin() + static_cast<std::ptrdiff_t>(volts.size() / 2);
+  std::nth_element(volts.begin(), middle, volts.end());
+  out = *middle;
+  return true;
+}
+
+Status trunk_scale_for_mass(const WorldOptions& world, double robot_mass_kg, double& out) {
+  RobotModel loaded;
+  const RobotModel* model = world.model.get();
+  if (model == nullptr) {
+    if (Status s = RobotModel::load_file(world.urdf, loaded); !s) return s;
+    model = &loaded;
+  }
+  const double trunk = model->links().front().mass;
+  const double total = model->total_mass();
+  out = 1.0 + (robot_mass_kg - total) / trunk;
+  const double lo = total - 0.7 * trunk, hi = total + 2.0 * trunk;
+  if (!std::isfinite(robot_mass_kg) || out < 0.3 || out > 3.0) {
+    char text[160];
+    std::snprintf(text, sizeof text,
+                  "--robot-mass: %.3g kg is too far from the model's %.3f kg (allowed %.2f to "
+                  "%.2f kg: the difference goes into the %.3f kg trunk)",
+                  robot_mass_kg, total, lo, hi, trunk);
+    return Status::error(text);
+  }
+  return Status::ok();
 }
 
 const std::vector<CalibrationParameter>& calibration_parameters() {
@@ -297,9 +334,12 @@ Status fit_continuous(Evaluator& evaluator, const std::vector<std::string>& name
   nlopt_set_lower_bounds(c.opt, lower.data());
   nlopt_set_upper_bounds(c.opt, upper.data());
   nlopt_set_min_objective(c.opt, fit_objective, &c);
-  nlopt_set_xtol_abs1(c.opt, 0.02);  // 2 % of each parameter's step
+  // A subset's fit starts at the full fit, whose optimum it is near: a smaller first step and a
+  // finer tolerance, so that the spread of the subsets is resolved (kSubsetTolerance).
+  const bool subset = left_out >= 0;
+  nlopt_set_xtol_abs1(c.opt, subset ? kSubsetTolerance : 0.02);  // in parameter steps
   nlopt_set_maxeval(c.opt, options.max_evaluations);
-  std::vector<double> initial_step(n, 1.0);
+  std::vector<double> initial_step(n, subset ? 0.25 : 1.0);
   nlopt_set_initial_step(c.opt, initial_step.data());
   double value = 0.0;
   const nlopt_result r = nlopt_optimize(c.opt, x.data(), &value);
@@ -368,6 +408,9 @@ Status calibrate(const std::vector<const fw::FlightLog*>& logs, const WorldOptio
   if (Status s = evaluator.open(); !s) return s;
   if (Status s = evaluator.evaluate(start, -1, out.start_objective, &out.start_errors); !s)
     return s;
+  WorldFile nominal;  // the base world with nothing calibrated
+  nominal.base = start.base;
+  if (Status s = evaluator.evaluate(nominal, -1, out.nominal_objective); !s) return s;
   WorldFile world = start;
   double best = 0.0;
   if (Status s = fit_all(evaluator, options.fit, -1, "full", options, world, best); !s) return s;
@@ -391,7 +434,10 @@ Status calibrate(const std::vector<const fw::FlightLog*>& logs, const WorldOptio
     double mean = 0.0, sq = 0.0;
     for (double x : v.subset_values) mean += x / k;
     for (double x : v.subset_values) sq += (x - mean) * (x - mean);
+    // Not below what the subset fits resolve (a spread under their tolerance reads as 0).
+    const CalibrationParameter& p = parameter(v.name);
     v.uncertainty = std::sqrt((k - 1.0) / k * sq);
+    if (!p.whole) v.uncertainty = std::max(v.uncertainty, kSubsetTolerance * p.step);
   }
   double check = 0.0;
   if (Status s = evaluator.evaluate(world, -1, check, &out.errors); !s) return s;
@@ -404,6 +450,7 @@ Status calibrate(const std::vector<const fw::FlightLog*>& logs, const WorldOptio
                       {"uncertainty", v.uncertainty},
                       {"unit", parameter(v.name).unit}};
   world.calibration = {{"fitted", fitted},
+                       {"objective_nominal", out.nominal_objective},
                        {"objective_start", out.start_objective},
                        {"objective", out.objective},
                        {"window_s", options.replay.window_s},

@@ -2,6 +2,7 @@
 // flight logs (calibration.hpp) and writes a world file (world_file.hpp) that --world and task
 // configs accept. Progress on stderr; Ctrl-C stops after the running evaluation and keeps the
 // progress file, which --resume continues from. Bad input: one line, exit 2, no output file.
+#include <algorithm>
 #include <atomic>
 #include <csignal>
 #include <cstdio>
@@ -45,7 +46,9 @@ int run_calibrate(int argc, char** argv) {
   args.option("help", "show this help", false);
   args.option("fit", "parameters to fit, comma-separated (see below)", true);
   args.option("out", "the world file to write (required)", true);
-  args.option("window", "replay window [s]", true, "4");
+  args.option("window", "replay window [s]", true, "15");
+  args.option("robot-mass", "the robot's weighed mass [kg]: sets the trunk mass (not fitted)",
+              true);
   args.option("jobs", "threads replaying windows side by side", true, "1");
   args.option("max-evals", "evaluations per fit of the continuous parameters", true, "250");
   args.option("subsets",
@@ -136,6 +139,26 @@ int run_calibrate(int argc, char** argv) {
       return bad_input(path + ": " + s.message());
     log_ptrs.push_back(&logs[i]);
   }
+  std::size_t windows = 0;
+  for (const fw::FlightLog* log : log_ptrs)
+    windows += sim::count_windows(*log, options.replay.window_s);
+  if (options.subsets > 0 && windows < static_cast<std::size_t>(options.subsets))
+    return bad_input("--subsets: " + std::to_string(options.subsets) + " subsets need at least " +
+                     std::to_string(options.subsets) + " windows; the logs have " +
+                     std::to_string(windows) + " of " + args.get("window") + " s");
+  // Measured, not fitted (calibration.hpp): the supply from the logs, the trunk from the scale.
+  const bool fit_voltage =
+      std::find(options.fit.begin(), options.fit.end(), "voltage") != options.fit.end();
+  double volts = 0.0;
+  if (!fit_voltage && sim::logged_supply_voltage(log_ptrs, volts)) start.supply_voltage_v = volts;
+  if (args.has("robot-mass")) {
+    if (std::find(options.fit.begin(), options.fit.end(), "trunk_mass") != options.fit.end())
+      return bad_input("--robot-mass: sets the trunk mass; do not also --fit trunk_mass");
+    double kg = 0.0;
+    if (Status s = args.get_double("robot-mass", kg); !s) return bad_input(s.message());
+    if (Status s = sim::trunk_scale_for_mass(world, kg, start.robot.trunk_mass_scale); !s)
+      return bad_input(s.message());
+  }
   options.progress_file = out;
   options.progress_file += ".progress.jsonl";
   options.resume = args.has("resume");
@@ -153,6 +176,9 @@ int run_calibrate(int argc, char** argv) {
   };
   std::fprintf(stderr, "stride calibrate: %zu log(s), fitting %s in %s\n", logs.size(),
                args.get("fit").c_str(), sim::describe_world(world).c_str());
+  std::fprintf(stderr, "supply %.2f V (%s), trunk mass x%.4f (%s)\n", start.supply_voltage_v,
+               fit_voltage ? "fitted" : "from the logs", start.robot.trunk_mass_scale,
+               args.has("robot-mass") ? "from --robot-mass" : "the start world's");
   sim::CalibrationResult result;
   const Status s = sim::calibrate(log_ptrs, world, start, options, result);
   std::fprintf(stderr, "\n");
@@ -166,6 +192,9 @@ int run_calibrate(int argc, char** argv) {
   nlohmann::json logs_json = nlohmann::json::array();
   for (const std::string& path : args.positional()) logs_json.push_back(path);
   result.world.calibration["logs"] = logs_json;
+  result.world.calibration["supply_voltage_from"] = fit_voltage ? "fit" : "logs";
+  if (args.has("robot-mass"))
+    result.world.calibration["robot_mass_kg"] = std::stod(args.get("robot-mass"));
   if (Status w = fw::write_file_atomically(out, sim::to_json(result.world).dump(2) + "\n"); !w)
     return failure(w.message());
   std::filesystem::remove(options.progress_file, error);
@@ -179,9 +208,10 @@ int run_calibrate(int argc, char** argv) {
                 unit.c_str());
   }
   std::printf(
-      "replay objective J: %.4g at the start, %.4g fitted (%d replays, %d from the "
-      "progress file)\n",
-      result.start_objective, result.objective, result.evaluations, result.stored_evaluations);
+      "replay objective J: %.4g in the nominal world, %.4g at the start, %.4g fitted (%d "
+      "replays, %d from the progress file)\n",
+      result.nominal_objective, result.start_objective, result.objective, result.evaluations,
+      result.stored_evaluations);
   std::printf("position RMS %.5f -> %.5f rad, load RMS %.4f -> %.4f; wrote %s\n",
               result.start_errors.position_all_rad, result.errors.position_all_rad,
               result.start_errors.load_all, result.errors.load_all, out.string().c_str());

@@ -150,8 +150,9 @@ std::filesystem::path Calibrate::perturbed_, Calibrate::log_;
 TEST_F(Calibrate, FitsTheBusLatencyAndWritesAWorldFileTheSimulatorTakes) {
   test::TempDir dir;
   const auto world = dir.path() / "calibrated.json";
-  const CliRun run = stride(dir, {"calibrate", log_.string(), "--fit", "latency", "--out",
-                                  world.string(), "--subsets", "0", "--jobs", "2"});
+  const CliRun run =
+      stride(dir, {"calibrate", log_.string(), "--fit", "latency", "--out", world.string(),
+                   "--subsets", "0", "--jobs", "2", "--window", "4"});
   ASSERT_EQ(run.code, 0) << run.err;
   WorldFile fitted;
   ASSERT_TRUE(load_world_file(world, fitted));
@@ -168,7 +169,7 @@ TEST_F(Calibrate, FitsTheBusLatencyAndWritesAWorldFileTheSimulatorTakes) {
 
 TEST_F(Calibrate, AStoppedRunResumesToTheSameWorldFile) {
   const std::vector<std::string> fit = {
-      "--fit", "trunk_mass,torque_mx106", "--max-evals", "12", "--subsets", "2"};
+      "--fit", "trunk_mass,torque_mx106", "--max-evals", "12", "--subsets", "2", "--window", "4"};
   test::TempDir whole_dir;
   const auto whole = whole_dir.path() / "whole.json";
   std::vector<std::string> args = {"calibrate", log_.string(), "--out", whole.string()};
@@ -229,6 +230,15 @@ TEST_F(Calibrate, BadInputIsOneLineExitTwoAndNoOutputFile) {
       stride(dir, {"calibrate", log, "--fit", "latency", "--out", out.string(), "--window", "60"}),
       "--window");
   expect_bad_input(stride(dir, {"calibrate", log, "--fit", "latency"}), "--out");
+  expect_bad_input(stride(dir, {"calibrate", log, "--fit", "latency", "--out", out.string(),
+                                "--subsets", "3", "--window", "15"}),
+                   "--subsets: 3 subsets need at least 3 windows");
+  expect_bad_input(stride(dir, {"calibrate", log, "--fit", "trunk_mass", "--out", out.string(),
+                                "--robot-mass", "6.6", "--subsets", "0"}),
+                   "--robot-mass: sets the trunk mass");
+  expect_bad_input(stride(dir, {"calibrate", log, "--fit", "latency", "--out", out.string(),
+                                "--robot-mass", "20", "--subsets", "0"}),
+                   "--robot-mass: 20 kg is too far from the model's 6.460 kg");
   const auto broken = dir.write("broken.json", R"({"format": "stride-world", "robot": 3})");
   expect_bad_input(stride(dir, {"calibrate", log, "--fit", "latency", "--out", out.string(),
                                 "--world", broken.string()}),
@@ -236,6 +246,59 @@ TEST_F(Calibrate, BadInputIsOneLineExitTwoAndNoOutputFile) {
   expect_bad_input(stride(dir, {"sim", "stand", "--world", broken.string()}),
                    "robot: must be an object");
   EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+// Issue 30 point 5: the routine (standing 20 s, sway and squats, weight shifts) recorded by the
+// product with noise on, on a robot whose trunk is 10 % heavier with its centre of mass 1 cm
+// forward, whose MX-106 servos give 0.85 of their torque, with one tick of bus latency and a
+// 14.0 V supply. Calibrated from the nominal world, the supply read from the log and the trunk
+// mass from the robot weighed (--robot-mass; calibration.hpp says why), the rest fitted: each
+// value within 20 % of its perturbation (or within the stated tolerance where it is 0), the
+// replay objective at most a third of the nominal world's, the forward walk's time to 2.5 m
+// within 5 % of the perturbed robot's.
+TEST(CalibratePerturbedRobot, EachValueLandsWithinTwentyPercentOfItsPerturbation) {
+  test::TempDir dir;
+  const auto perturbed = dir.write("perturbed.json", R"({"format": "stride-world",
+      "supply_voltage_v": 14.0, "robot": {"torque_scale": {"MX-106": 0.85}, "latency_ticks": 1,
+      "trunk_mass_scale": 1.1, "trunk_com_offset_m": [0.01, 0.0]}})");
+  const auto log = dir.path() / "routine.flog";
+  CliRun run = stride(dir, {"identify", "--out", log.string(), "--world", perturbed.string(),
+                            "--parts", "stand,identify_stand,identify_shift"});
+  ASSERT_EQ(run.code, 0) << run.err;
+  const auto world = dir.path() / "calibrated.json";
+  const double weighed_kg = 6.460126 + 0.1 * 1.8051;  // the URDF's total and its trunk link
+  run = stride(dir, {"calibrate", log.string(), "--robot-mass", std::to_string(weighed_kg), "--fit",
+                     "torque_mx64,torque_mx106,latency,trunk_com_x,trunk_com_y,accel_bias_x,"
+                     "accel_bias_y",
+                     "--out", world.string(), "--subsets", "0", "--jobs", "2"});
+  ASSERT_EQ(run.code, 0) << run.err;
+  std::printf("%s", run.out.c_str());
+  WorldFile fit;
+  ASSERT_TRUE(load_world_file(world, fit));
+  EXPECT_EQ(fit.supply_voltage_v, 14.0);  // from the log
+  EXPECT_NEAR(fit.robot.trunk_mass_scale, 1.1, 1e-4);
+  EXPECT_NEAR(fit.robot.torque_scale_mx106, 0.85, 0.2 * 0.15);
+  EXPECT_NEAR(fit.robot.trunk_com_offset_m.x(), 0.01, 0.2 * 0.01);
+  EXPECT_EQ(fit.robot.latency_ticks, 1);
+  EXPECT_NEAR(fit.robot.torque_scale_mx64, 1.0, 0.05);        // stated tolerance
+  EXPECT_NEAR(fit.robot.trunk_com_offset_m.y(), 0.0, 0.003);  // stated tolerance
+  EXPECT_LE(fit.calibration["objective"].get<double>(),
+            fit.calibration["objective_nominal"].get<double>() / 3.0);
+
+  const auto time_to_goal = [&dir](const std::string& w) {
+    const CliRun sim =
+        stride(dir, {"sim", "walk", "--vx", "1", "--duration", "40", "--world", w, "--json"});
+    EXPECT_EQ(sim.code, 0) << sim.err;
+    const nlohmann::json j = nlohmann::json::parse(sim.out);
+    return j["time_to_goal_s"].is_number() ? j["time_to_goal_s"].get<double>() : 1e9;
+  };
+  const double truth = time_to_goal(perturbed.string());
+  const double calibrated = time_to_goal(world.string());
+  const double nominal = time_to_goal("faithful");
+  std::printf("time to 2.5 m: perturbed %.2f s, calibrated %.2f s, nominal %.2f s\n", truth,
+              calibrated, nominal);
+  EXPECT_NEAR(calibrated / truth, 1.0, 0.05);
+  EXPECT_GT(std::abs(nominal / truth - 1.0), 0.05);  // the calibration is what closes the gap
 }
 
 }  // namespace

@@ -1,5 +1,12 @@
 // Calibration of the simulated robot from flight logs (`stride calibrate`, issue 30 point 3).
 //
+// Two values are measured rather than fitted, because the servo readings cannot tell them apart
+// from the MX-106 torque: a joint's deflection under the trunk's weight and its dynamics both go
+// with m / (s V) (trunk mass m, torque scale s, supply V: the motor torque is duty x V x kt / R x
+// s), and every leg servo is an MX-106. The supply voltage is read from the logs (the CM730
+// measures it; logged_supply_voltage) and the trunk mass from the robot weighed on a scale
+// (trunk_scale_for_mass, `--robot-mass`); fitting them is allowed but not identified.
+//
 // The replay error (log_replay.hpp) of the logs in a world is a function of the world's
 // calibration (world_file.hpp: servo torque per model, friction, supply voltage, bus latency,
 // trunk mass and centre of mass, IMU biases). The fit minimises
@@ -11,7 +18,8 @@
 // on the continuous parameters; the latency (whole ticks) is chosen by trying every value at the
 // start and again around the fit. Uncertainty: the fit is repeated K times, each without one of
 // K interleaved subsets of the windows, started from the full fit (a delete-a-group jackknife:
-// sigma = sqrt((K-1)/K sum (theta_k - mean)^2)).
+// sigma = sqrt((K-1)/K sum (theta_k - mean)^2), at least the subset fits' tolerance of 0.002
+// parameter steps).
 //
 // Every evaluation is appended to a progress file; a run stopped (Ctrl-C) and started again
 // with `resume` retraces the same deterministic path through the stored values, then goes on.
@@ -73,6 +81,7 @@ struct FittedValue {
 struct CalibrationResult {
   WorldFile world;  ///< the start world with the fitted values, "calibration" filled in
   std::vector<FittedValue> values;
+  double nominal_objective = 0.0;  ///< J of the base world with nothing calibrated
   double start_objective = 0.0, objective = 0.0;
   ReplayErrors start_errors, errors;  ///< RMS errors over the windows of the first log
   int evaluations = 0;                ///< computed in this run (stored ones not counted)
@@ -85,6 +94,15 @@ struct CalibrationResult {
 /// a world that cannot be built.
 Status calibrate(const std::vector<const fw::FlightLog*>& logs, const WorldOptions& base,
                  const WorldFile& start, const CalibrationOptions& options, CalibrationResult& out);
+
+/// The supply voltage the logs measured: the median of the CM730's readings over every log
+/// [V]; false if no log has a reading.
+bool logged_supply_voltage(const std::vector<const fw::FlightLog*>& logs, double& out);
+
+/// The trunk mass scale that gives the simulated robot (`world`'s model) the weighed total
+/// mass `robot_mass_kg`: the difference is put in the trunk (battery, cables). The error names
+/// --robot-mass and the range it allows.
+Status trunk_scale_for_mass(const WorldOptions& world, double robot_mass_kg, double& out);
 
 /// J of one replay result (the objective above).
 double calibration_objective(const ReplayResult& result);
