@@ -13,8 +13,20 @@ target_compile_options(stride_warnings INTERFACE
 # Builds every .cpp under src/ of the current folder into a static library whose public
 # headers live under include/.
 function(stride_add_library target)
-  cmake_parse_arguments(ARG "" "" "DEPS;PRIVATE_DEPS" ${ARGN})
-  file(GLOB_RECURSE sources CONFIGURE_DEPENDS "${CMAKE_CURRENT_SOURCE_DIR}/src/*.cpp")
+  cmake_parse_arguments(ARG "" "" "DEPS;PRIVATE_DEPS;SOURCE_DIRS;EXCLUDE_DIRS" ${ARGN})
+  # The sources under src/ (or under src/<dir>/ for each of SOURCE_DIRS), less EXCLUDE_DIRS.
+  set(sources)
+  if(ARG_SOURCE_DIRS)
+    foreach(dir ${ARG_SOURCE_DIRS})
+      file(GLOB_RECURSE dir_sources CONFIGURE_DEPENDS "${CMAKE_CURRENT_SOURCE_DIR}/src/${dir}/*.cpp")
+      list(APPEND sources ${dir_sources})
+    endforeach()
+  else()
+    file(GLOB_RECURSE sources CONFIGURE_DEPENDS "${CMAKE_CURRENT_SOURCE_DIR}/src/*.cpp")
+  endif()
+  foreach(dir ${ARG_EXCLUDE_DIRS})
+    list(FILTER sources EXCLUDE REGEX "^${CMAKE_CURRENT_SOURCE_DIR}/src/${dir}/")
+  endforeach()
   add_library(${target} STATIC ${sources})
   target_include_directories(${target} PUBLIC
     $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include> $<INSTALL_INTERFACE:include>)
