@@ -22,6 +22,7 @@
 #include "stride/optimiser/nsga2/evaluator.hpp"
 #include "stride/optimiser/nsga2/mpi_evaluator.hpp"
 #include "stride/optimiser/problems/test_problems.hpp"
+#include "stride/optimiser/report/run_plots.hpp"
 #include "stride/optimiser/run/optimisation_run.hpp"
 #include "stride/optimiser/run/progress.hpp"
 #include "stride/optimiser/run/run_report.hpp"

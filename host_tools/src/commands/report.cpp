@@ -16,6 +16,7 @@
 #include "stride/host_tools/command.hpp"
 #include "stride/optimiser/report/report_page.hpp"
 #include "stride/optimiser/report/run_data.hpp"
+#include "stride/optimiser/report/run_plots.hpp"
 #include "stride/optimiser/run/direction_speeds.hpp"
 #include "stride/optimiser/run/optimisation_run.hpp"
 #include "stride/optimiser/run/run_report.hpp"

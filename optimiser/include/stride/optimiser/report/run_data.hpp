@@ -12,7 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "stride/hal/status.hpp"
-#include "stride/optimiser/run/run_report.hpp"
+#include "stride/optimiser/report/pareto_front.hpp"
 
 namespace stride::opt::report {
 

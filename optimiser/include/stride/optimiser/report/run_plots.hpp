@@ -9,6 +9,7 @@
 // evaluation and generation, and its front file when it is a member of the final front.
 #pragma once
 
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -26,3 +27,10 @@ std::string pareto_chart_svg(const RunData& data, const std::vector<RunPick>& pi
 std::string hypervolume_chart_svg(const RunData& data);
 
 }  // namespace stride::opt::report
+
+namespace stride::opt {
+
+/// Writes both SVG plots from evaluations.jsonl and generations.jsonl.
+Status write_plots(const std::filesystem::path& dir);
+
+}  // namespace stride::opt
