@@ -4,7 +4,6 @@
 #include <unistd.h>
 
 #include <cstdio>
-#include <cstring>
 #include <filesystem>
 #include <sstream>
 #include <string>
@@ -28,15 +27,8 @@ int bad_input(const std::string& message) {
 }
 
 /// Every value of --engine (repeatable, each may be a comma-separated list).
-Status engines_from_argv(int argc, char** argv, std::vector<stride::sim::EngineKind>& out) {
-  std::vector<std::string> values;
-  for (int i = 1; i < argc; ++i) {
-    if (std::strcmp(argv[i], "--engine") == 0 && i + 1 < argc)
-      values.emplace_back(argv[++i]);
-    else if (std::strncmp(argv[i], "--engine=", 9) == 0)
-      values.emplace_back(argv[i] + 9);
-  }
-  for (const std::string& value : values) {
+Status engines_of(const stride::fw::CliArgs& args, std::vector<stride::sim::EngineKind>& out) {
+  for (const std::string& value : args.get_all("engine")) {
     std::stringstream list(value);
     std::string name;
     while (std::getline(list, name, ',')) {
@@ -86,7 +78,7 @@ int run_validate(int argc, char** argv) {
   opt::ValidationSubject subject;
   if (auto st = opt::load_validation_subject(dir, subject); !st) return bad_input(st.message());
   opt::ValidationOptions options;
-  if (auto st = engines_from_argv(argc, argv, options.engines); !st) return bad_input(st.message());
+  if (auto st = engines_of(args, options.engines); !st) return bad_input(st.message());
   options.seeds = subject.config.validate_seeds;
   std::int64_t v = 0;
   if (args.has("seeds")) {
