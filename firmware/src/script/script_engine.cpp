@@ -24,7 +24,7 @@ Status ScriptEngine::add_script(Script script) {
   }
   if (find(script.name) >= 0) return Status::error(origin + ": name: already loaded");
   // Check every parameter name and default before registering any (all or nothing).
-  std::vector<ParamSpec> specs;
+  std::vector<ParamSpec> specs, duration_specs;
   for (std::size_t f = 0; f < script.frames.size(); ++f) {
     for (const ScriptTarget& t : script.frames[f].targets) {
       if (t.servo >= hal::kServoCount) {
@@ -50,12 +50,26 @@ Status ScriptEngine::add_script(Script script) {
       }
       specs.push_back(std::move(spec));
     }
+    ParamSpec duration;
+    duration.name = script_duration_parameter(script.name, f);
+    duration.type = ParamType::kReal;
+    duration.default_value = script.frames[f].duration_ms;
+    duration.min = 1.0;
+    duration.max = kMaxFrameDurationMs;
+    duration.unit = "ms";
+    duration.description = script.name + " frame " + std::to_string(f + 1) +
+                           " duration (before script.duration_modifier)";
+    if (params_.find(duration.name)) {
+      return Status::error(origin + ": parameter " + duration.name + " already registered");
+    }
+    duration_specs.push_back(std::move(duration));
   }
   LoadedScript loaded;
   std::size_t next_spec = 0;
   loaded.handles.resize(script.frames.size());
   for (std::size_t f = 0; f < script.frames.size(); ++f) {
     const auto& targets = script.frames[f].targets;
+    loaded.durations.push_back(params_.add(std::move(duration_specs[f])));
     for (std::size_t j = 0; j < targets.size(); ++j) {
       loaded.handles[f].push_back(params_.add(std::move(specs[next_spec++])));
       loaded.queues[targets[j].servo].emplace_back(static_cast<std::uint16_t>(f),
@@ -110,13 +124,12 @@ void ScriptEngine::start(const hal::SensorFrame& /*sensors*/,
   const LoadedScript& loaded = scripts_[static_cast<std::size_t>(playing_)];
   const double modifier = params_.value(duration_modifier_);
   const double period_ms = static_cast<double>(period_ns_) * 1e-6;
-  std::int64_t elapsed_ms = 0;
+  double elapsed_ms = 0.0;  // integer-valued as written: the sum is exact
   hal::Tick previous = tick;
   for (std::size_t f = 0; f < loaded.script.frames.size(); ++f) {
     const ScriptFrame& frame = loaded.script.frames[f];
-    elapsed_ms += frame.duration_ms;
-    const auto offset = static_cast<hal::Tick>(
-        std::llround(static_cast<double>(elapsed_ms) * modifier / period_ms));
+    elapsed_ms += params_.value(loaded.durations[f]);
+    const auto offset = static_cast<hal::Tick>(std::llround(elapsed_ms * modifier / period_ms));
     deadlines_[f] = std::max(tick + offset, previous + 1);
     previous = deadlines_[f];
     for (std::size_t j = 0; j < frame.targets.size(); ++j) {

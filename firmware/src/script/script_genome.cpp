@@ -18,6 +18,13 @@ std::string script_position_parameter(std::string_view script_name, std::size_t 
   return name;
 }
 
+std::string script_duration_parameter(std::string_view script_name, std::size_t frame_index) {
+  std::string name = "script.";
+  name += script_name;
+  name += ".frame" + std::to_string(frame_index + 1) + ".duration_ms";
+  return name;
+}
+
 Status script_genome(const ParameterStore& params, const Script& script, int first_frame,
                      int last_frame, double delta, std::vector<ScriptGene>& out) {
   const int frames = static_cast<int>(script.frames.size());

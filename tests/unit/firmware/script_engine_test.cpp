@@ -174,6 +174,20 @@ TEST(ScriptEngine, DurationModifierScalesEveryDeadline) {
   EXPECT_FALSE(f.params.stage("script.duration_modifier", 0.0));
 }
 
+TEST(ScriptEngine, EachFrameDurationIsAParameterReadAtStart) {
+  Fixture f;
+  EXPECT_EQ(f.params.value(*f.params.find("script.probe.frame2.duration_ms")), 50.0);
+  ASSERT_TRUE(f.params.stage("script.probe.frame1.duration_ms", 40.0));
+  ASSERT_TRUE(f.params.apply_staged());
+  f.engine.start(f.sensors, f.out, 5);
+  EXPECT_EQ(f.engine.deadline(0), 9);   // 5 + 40 ms / 10 ms
+  EXPECT_EQ(f.engine.deadline(1), 14);  // 5 + 90 ms / 10 ms
+  // Outside 1..60000 ms the store refuses it and nothing changes.
+  EXPECT_FALSE(f.params.stage("script.probe.frame1.duration_ms", 0.0));
+  EXPECT_FALSE(f.params.stage("script.probe.frame1.duration_ms", 60001.0));
+  EXPECT_EQ(f.params.value(*f.params.find("script.probe.frame1.duration_ms")), 40.0);
+}
+
 TEST(ScriptEngine, EveryFrameGetsAtLeastOneTick) {
   Script s;
   s.name = "probe";

@@ -53,6 +53,7 @@ class Firmware {
   ~Firmware();
 
   ParameterStore& params() noexcept { return params_; }
+  const ParameterStore& params() const noexcept { return params_; }
   Controller& controller() noexcept { return *controller_; }
   const ServoTable& servos() const noexcept { return servos_; }
   const RobotDescription& robot() const noexcept { return robot_; }

@@ -87,6 +87,7 @@ class ScriptEngine final : public ScriptControl {
   struct LoadedScript {
     Script script;
     std::vector<std::vector<ParamHandle>> handles;  ///< [frame][target]
+    std::vector<ParamHandle> durations;             ///< [frame], in ms
     /// For each servo: (frame, target) indices of its targets in frame order.
     std::array<std::vector<std::pair<std::uint16_t, std::uint16_t>>, hal::kServoCount> queues;
   };

@@ -19,6 +19,9 @@ namespace stride::fw {
 /// (0-based; the name uses frame_index + 1).
 std::string script_position_parameter(std::string_view script_name, std::size_t frame_index,
                                       std::string_view servo_name);
+/// Name of the duration parameter of frame `frame_index` (0-based; the name uses
+/// frame_index + 1): "script.get_up_back.frame3.duration_ms", the file's duration by default.
+std::string script_duration_parameter(std::string_view script_name, std::size_t frame_index);
 
 struct ScriptGene {
   std::string parameter;  ///< e.g. "script.kick_right.frame2.r_knee.position"
