@@ -2,6 +2,7 @@
 #include "stride/sim_hal/script_episodes.hpp"
 
 #include <memory>
+#include <numbers>
 
 #include "stride/firmware/motion_request.hpp"
 #include "stride/sim_hal/sim_robot.hpp"
@@ -32,30 +33,75 @@ Status make_firmware(const fw::FirmwareOptions& options, std::int64_t period_ns,
 
 }  // namespace
 
+ResetSpec kick_reset_spec(const Eigen::Vector3d& ball_position) {
+  ResetSpec spec = ResetSpec::standing();
+  spec.ball_position = ball_position;
+  return spec;
+}
+
+Status check_kick_script(const fw::Firmware& firmware, const std::string& script) {
+  if (script.empty() || script.size() >= 32 ||
+      firmware.params().list("script." + script + ".frame").empty()) {
+    return Status::error("unknown kick script '" + script + "'");
+  }
+  return {};
+}
+
+KickRequest::KickRequest(std::string script, double kick_at_s, double period_s)
+    : script_(std::move(script)),
+      kick_tick_(static_cast<hal::Tick>(std::llround(kick_at_s / period_s))) {}
+
+void KickRequest::before_step(hal::Tick tick, fw::Controller& controller) {
+  if (!requested_ && tick >= kick_tick_) {
+    controller.request(fw::MotionRequest::play(script_));
+    requested_ = true;
+  }
+}
+
+ResetSpec lying_reset_spec(bool on_front) {
+  ResetSpec spec = ResetSpec::standing();
+  spec.level_feet = false;
+  // Face down: the torso's x axis (forward) points down, its z axis forward; face up the reverse.
+  const double pitch = on_front ? std::numbers::pi / 2.0 : -std::numbers::pi / 2.0;
+  spec.torso_orientation = Eigen::Quaterniond(Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()));
+  spec.ball_position = {5.0, 5.0, std::nan("")};  // out of the way
+  return spec;
+}
+
+void GetUpWatch::after_step(const fw::Controller& controller, hal::Tick tick) {
+  const fw::MotionState state = controller.motion().state();
+  if (state == fw::MotionState::kGetUp && previous_ != fw::MotionState::kGetUp) {
+    ++attempts_;
+    if (first_script_.empty()) first_script_ = std::string(controller.motion().active_script());
+  }
+  if (state == fw::MotionState::kStand && previous_ == fw::MotionState::kGetUp)
+    stand_again_s_ = static_cast<double>(tick) * period_s_;
+  previous_ = state;
+}
+
+bool stands_at_end(const SimWorld& world, WorldStatus status, const fw::Controller& controller) {
+  const GroundTruth g = world.ground_truth();
+  return status == WorldStatus::kRunning &&
+         g.torso.linear()(2, 2) > std::cos(25.0 * std::numbers::pi / 180.0) &&
+         g.torso.translation().z() > 0.45 && controller.motion().state() == fw::MotionState::kStand;
+}
+
 Status run_kick_episode(const WorldOptions& world_options, const KickEpisodeOptions& options,
                         EpisodeResult& out, std::unique_ptr<SimRobot>* robot_out) {
-  ResetSpec spec = ResetSpec::standing();
-  spec.ball_position = options.ball_position;
   std::unique_ptr<SimRobot> robot;
-  if (Status s = make_robot(world_options, spec, robot); !s) return s;
+  if (Status s = make_robot(world_options, kick_reset_spec(options.ball_position), robot); !s)
+    return s;
   std::unique_ptr<fw::Firmware> firmware;
   if (Status s = make_firmware(options.firmware, robot->period_ns(), firmware); !s) return s;
   fw::Controller& controller = firmware->controller();
   if (controller.motion().state() != fw::MotionState::kStand) {
     return Status::error("firmware: not standing at the start");
   }
-  if (options.script.empty() || options.script.size() >= 32 ||
-      firmware->params().list("script." + options.script + ".frame").empty()) {
-    return Status::error("unknown kick script '" + options.script + "'");
-  }
-  const double period_s = static_cast<double>(robot->period_ns()) * 1e-9;
-  const auto kick_tick = static_cast<hal::Tick>(std::llround(options.kick_at_s / period_s));
-  bool requested = false;
+  if (Status s = check_kick_script(*firmware, options.script); !s) return s;
+  KickRequest kick(options.script, options.kick_at_s,
+                   static_cast<double>(robot->period_ns()) * 1e-9);
   const StepFunction step = [&](const hal::SensorFrame& sensors, hal::Tick tick) {
-    if (!requested && tick >= kick_tick) {
-      controller.request(fw::MotionRequest::play(options.script));
-      requested = true;
-    }
+    kick.before_step(tick, controller);
     return controller.step(sensors, tick);
   };
   EpisodeOptions episode = options.episode;
@@ -82,33 +128,21 @@ Status run_push_episode(const WorldOptions& world_options, const PushEpisodeOpti
   if (Status s = make_firmware(options.firmware, robot->period_ns(), firmware); !s) return s;
   fw::Controller& controller = firmware->controller();
   PushEpisodeResult result;
-  const double period_s = static_cast<double>(robot->period_ns()) * 1e-9;
-  fw::MotionState previous = fw::MotionState::kStand;
+  GetUpWatch watch(static_cast<double>(robot->period_ns()) * 1e-9);
   const StepFunction step = [&](const hal::SensorFrame& sensors, hal::Tick tick) {
     hal::CommandFrame commands = controller.step(sensors, tick);
-    const fw::MotionState state = controller.motion().state();
-    if (state == fw::MotionState::kGetUp && previous != fw::MotionState::kGetUp) {
-      ++result.get_up_attempts;
-      if (result.get_up_script.empty()) {
-        result.get_up_script = std::string(controller.motion().active_script());
-      }
-    }
-    if (state == fw::MotionState::kStand && previous == fw::MotionState::kGetUp) {
-      result.stand_again_s = static_cast<double>(tick) * period_s;
-    }
-    previous = state;
+    watch.after_step(controller, tick);
     return commands;
   };
   EpisodeOptions episode = options.episode;
   episode.duration_s = options.duration_s;
   episode.stop_on_fall = false;
   result.episode = run_episode(*robot, step, episode);
-  const GroundTruth g = robot->world().ground_truth();
-  result.final_upright = g.torso.linear()(2, 2);
-  result.got_up = result.episode.status == WorldStatus::kRunning &&
-                  result.final_upright > std::cos(25.0 * 3.14159265358979 / 180.0) &&
-                  g.torso.translation().z() > 0.45 &&
-                  controller.motion().state() == fw::MotionState::kStand;
+  result.get_up_attempts = watch.attempts();
+  result.get_up_script = watch.first_script();
+  result.stand_again_s = watch.stand_again_s();
+  result.final_upright = robot->world().ground_truth().torso.linear()(2, 2);
+  result.got_up = stands_at_end(robot->world(), result.episode.status, controller);
   out = std::move(result);
   return {};
 }

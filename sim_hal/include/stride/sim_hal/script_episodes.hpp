@@ -28,6 +28,57 @@
 
 namespace stride::sim {
 
+/// The kick episode's start: standing in the Stand pose, the ball at `ball_position` (NaN z:
+/// resting on the grass).
+ResetSpec kick_reset_spec(const Eigen::Vector3d& ball_position);
+
+/// Whether the firmware has a kick script of that name (the error names it).
+Status check_kick_script(const fw::Firmware& firmware, const std::string& script);
+
+/// The kick episode's requests, shared by run_kick_episode and the optimiser's kick task: the
+/// script is requested once, at the first tick at or after kick_at_s (the motion manager starts
+/// it once the stand pose is reached). Real-time: no allocation in before_step.
+class KickRequest {
+ public:
+  KickRequest(std::string script, double kick_at_s, double period_s);
+  void before_step(hal::Tick tick, fw::Controller& controller);
+  const std::string& script() const { return script_; }
+
+ private:
+  std::string script_;
+  hal::Tick kick_tick_ = 0;
+  bool requested_ = false;
+};
+
+/// Lying still on the grass on the front (face down) or on the back, the joints in the Stand
+/// pose: where a get-up starts. The motion manager sees the fall, lets the robot settle
+/// (motion.fallen_settle_time) and plays get_up_front or get_up_back.
+ResetSpec lying_reset_spec(bool on_front);
+
+/// Follows the motion manager through a get-up (run_push_episode and the optimiser's getup
+/// task): call after every Controller::step.
+class GetUpWatch {
+ public:
+  explicit GetUpWatch(double period_s) : period_s_(period_s) {}
+  void after_step(const fw::Controller& controller, hal::Tick tick);
+  int attempts() const { return attempts_; }
+  /// The get-up script the motion manager chose first ("" if none).
+  const std::string& first_script() const { return first_script_; }
+  /// When a get-up last handed over to stand [s] (-1: never).
+  double stand_again_s() const { return stand_again_s_; }
+
+ private:
+  double period_s_;
+  fw::MotionState previous_ = fw::MotionState::kStand;
+  int attempts_ = 0;
+  std::string first_script_;
+  double stand_again_s_ = -1.0;
+};
+
+/// The robot stands at the end: torso z axis within 25 deg of vertical, torso origin above
+/// 0.45 m, the world still running and the motion manager in kStand.
+bool stands_at_end(const SimWorld& world, WorldStatus status, const fw::Controller& controller);
+
 struct KickEpisodeOptions {
   std::string script = "kick_right";
   double kick_at_s = 1.0;   ///< when the kick is requested
