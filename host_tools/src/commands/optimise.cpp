@@ -70,7 +70,7 @@ std::string problem_list() {
 
 /// The problem named on the command line (test problems today; tasks from --config later).
 Status make_problem(const std::string& name, std::unique_ptr<opt::Problem>& out) {
-  if (name == "walk" || name == "walk-omni" || name == "kick")
+  if (opt::find_task_type(name) != nullptr)
     return Status::error("task '" + name + "' needs --config FILE");
   out = opt::make_test_problem(name);
   if (!out) return Status::error("--problem '" + name + "' is not one of " + problem_list());
@@ -208,8 +208,7 @@ int run_optimise(int argc, char** argv) {
       return bad_input("--problem " + args.get("problem") + " differs from the run's " +
                        s.config.problem);
     }
-    if (s.config.problem == "walk" || s.config.problem == "walk-omni" ||
-        s.config.problem == "kick") {
+    if (opt::find_task_type(s.config.problem) != nullptr) {
       opt::TaskConfig task;
       if (auto st = opt::parse_task_config(s.config.task, task); !st)
         return bad_input("run.json task: " + st.message());

@@ -80,9 +80,10 @@ int run_report(int argc, char** argv) {
     return bad_input((dir / "run.json").string() + " does not exist");
   stride::opt::RunConfig config;
   if (auto st = stride::opt::read_run_config(dir, config); !st) return bad_input(st.message());
-  if (config.problem != "walk" && config.problem != "walk-omni" && config.problem != "kick")
-    return bad_input(dir.string() + " is a '" + config.problem +
-                     "' run, not a walk, walk-omni or kick task");
+  const stride::opt::TaskType* type = stride::opt::find_task_type(config.problem);
+  if (type == nullptr)
+    return bad_input(dir.string() + " is a '" + config.problem + "' run, not a " +
+                     stride::opt::task_type_list() + " task");
   stride::opt::TaskConfig task;
   if (auto st = stride::opt::parse_task_config(config.task, task); !st)
     return bad_input("run.json task: " + st.message());
@@ -115,7 +116,7 @@ int run_report(int argc, char** argv) {
     std::fprintf(stderr, "stride report: warning: %s (see %s)\n", line.c_str(), page.file.c_str());
   }
   std::vector<stride::opt::DirectionSpeeds> directions;
-  if (config.problem == "walk-omni") {
+  if (type->measures_directions()) {
     if (auto st = stride::opt::run_direction_table(dir, robot_task, summary, directions); !st) {
       std::fprintf(stderr, "stride report: %s\n", st.message().c_str());
       return 1;
@@ -139,12 +140,8 @@ int run_report(int argc, char** argv) {
   }
   std::printf("%s run, %zu evaluations, %zu front members (objectives: %s)\n",
               config.problem.c_str(), summary["evaluations"].get<std::size_t>(),
-              summary["front_size"].get<std::size_t>(),
-              config.problem == "walk"        ? "f1 time to goal [s], f2 max |a| [m/s^2]"
-              : config.problem == "walk-omni" ? "f1 -(v_f + v_b + 2 v_side + 0.2 w_turn), "
-                                                "f2 max |a| [m/s^2]"
-                                              : "f1 max sway [m/s^2], f2 1/ball distance [1/m]");
-  const bool kick = config.problem == "kick";
+              summary["front_size"].get<std::size_t>(), type->objective_legend().c_str());
+  const bool kick = type->uses_ball();
   const nlohmann::json& o = summary["ind_o"];
   if (o.is_object()) print_member("Ind_O", o, nullptr, kick);
   const stride::opt::RunPickNames names = stride::opt::run_pick_names(config.problem);

@@ -1,5 +1,6 @@
 // The tables of report.html: settings, Ind_O against the picks, validation, Table E.
 #include "stride/optimiser/report/html_tables.hpp"
+#include "stride/optimiser/tasks/task_type.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -89,7 +90,9 @@ std::string picks_table_html(const RunData& data, const std::vector<PickRow>& ro
   std::string html = "<table id=\"picks-table\"><tr><th class=\"name\">individual</th><th>" +
                      html_escape(names.f1) + "</th><th>change</th><th>" + html_escape(names.f2) +
                      "</th><th>change</th>";
-  if (data.task == "kick") html += "<th>ball distance [m]</th>";
+  const TaskType* type = find_task_type(data.task);
+  const bool ball = type != nullptr && type->uses_ball();
+  if (ball) html += "<th>ball distance [m]</th>";
   html += "<th class=\"name\">re-run for the replay</th><th class=\"name\">front file</th></tr>\n";
   const std::vector<double>* o = nullptr;
   if (rows[0].name == "Ind_O" && rows[0].objectives.size() >= 2) o = &rows[0].objectives;
@@ -107,7 +110,7 @@ std::string picks_table_html(const RunData& data, const std::vector<PickRow>& ro
       const char* cls = c.empty() || d == 0.0 ? nullptr : d < 0 ? "better" : "worse";
       html += cell(&r == &rows[0] ? "" : c, cls);
     }
-    if (data.task == "kick")
+    if (ball)
       html += cell(r.objectives.size() >= 2 && r.objectives[1] > 0 && r.objectives[1] < 999
                        ? format_number(1.0 / r.objectives[1], 4)
                        : "-");

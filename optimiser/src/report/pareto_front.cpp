@@ -1,5 +1,6 @@
 // pareto.csv, the non-dominated filter, the knee point and the pick names (pareto_front.hpp).
 #include "stride/optimiser/report/pareto_front.hpp"
+#include "stride/optimiser/tasks/task_type.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -75,8 +76,8 @@ Status read_pareto_csv(const fs::path& path, int objectives, std::vector<FrontMe
 }
 
 RunPickNames run_pick_names(const std::string& task) {
-  if (task == "kick") return {"least_sway", "longest_kick"};
-  if (task == "walk" || task == "walk-omni") return {"fastest", "most_stable"};
+  if (const TaskType* type = find_task_type(task))
+    return {type->best_f1_pick(), type->best_f2_pick()};
   return {"best_obj1", "best_obj2"};
 }
 

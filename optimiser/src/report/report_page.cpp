@@ -1,5 +1,6 @@
 // report.html of a run directory and the one-episode page of `stride sim --html`.
 #include "stride/optimiser/report/report_page.hpp"
+#include "stride/optimiser/tasks/task_type.hpp"
 
 #include <algorithm>
 #include <thread>
@@ -25,18 +26,8 @@ struct Rerun {
 };
 
 std::string outcome_note(const TaskConfig& config, const EpisodeScore& s, double end_s) {
-  char text[160];
-  if (s.fell) {
-    std::snprintf(text, sizeof text, "fell at %.2f s", end_s);
-  } else if (config.task == "kick") {
-    std::snprintf(text, sizeof text, "ball kicked %.2f m", s.ball_distance_m);
-  } else if (s.time_to_goal_s >= 0) {
-    std::snprintf(text, sizeof text, "reached %.3g m at %.2f s", config.goal_distance_m,
-                  s.time_to_goal_s);
-  } else {
-    std::snprintf(text, sizeof text, "%.2f m in %.3g s, goal not reached", s.distance_m, end_s);
-  }
-  return text;
+  const TaskType* type = find_task_type(config.task);
+  return type != nullptr ? type->outcome_note(config, s, end_s) : "";
 }
 
 double end_of(const ReplayIndividual& r) {
@@ -99,16 +90,17 @@ Status write_report_html(const fs::path& dir, const RobotTask& task, ReportOutco
     out.warnings.push_back("robot model: " + s.message());
   ReplayScene scene;
   scene.grass_m = sim::ContactOptions{}.grass_thickness_m;
-  if (config.task == "kick") scene.ball_radius_m = sim::BallOptions{}.radius_m;
-  if (config.task == "walk") scene.goal_m = config.goal_distance_m;
+  const TaskType* type = find_task_type(config.task);
+  const bool ball = type != nullptr && type->uses_ball();
+  if (ball) scene.ball_radius_m = sim::BallOptions{}.radius_m;
+  if (type != nullptr) scene.goal_m = type->replay_goal_m(config);
   double end = 0.0;
   for (const auto& r : replays) end = std::max(end, end_of(r));
   const std::vector<double> times =
-      config.task == "kick"
-          ? strip_times(std::max(config.kick_at_s,
-                                 first_ball_motion_s(replays, config.kick_at_s + 1.0) - 1.5),
-                        0.25, 9, end)
-          : strip_times(std::min(4.0, end / 3), 0.25, 9, end);
+      ball ? strip_times(std::max(config.kick_at_s,
+                                  first_ball_motion_s(replays, config.kick_at_s + 1.0) - 1.5),
+                         0.25, 9, end)
+           : strip_times(std::min(4.0, end / 3), 0.25, 9, end);
 
   HtmlPage page("Stride run report: " + (data.task.empty() ? std::string("run") : data.task),
                 dir.string() + " - " + std::to_string(data.evaluations.size()) + " evaluations, " +

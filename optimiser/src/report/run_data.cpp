@@ -1,5 +1,6 @@
 // RunData: tolerant reading of a robot run directory for reports.
 #include "stride/optimiser/report/run_data.hpp"
+#include "stride/optimiser/tasks/task_type.hpp"
 
 #include <cstdio>
 #include <fstream>
@@ -147,19 +148,12 @@ std::vector<RunPick> run_picks(const RunData& data) {
 namespace stride::opt::report {
 
 ObjectiveNames objective_names(const RunData& data) {
-  if (data.task == "kick") return {"max field-plane sway [m/s^2]", "1 / ball distance [1/m]"};
-  if (data.task == "walk") {
-    double goal = 2.5;
-    const auto& run = data.run;
-    if (run.contains("task") && run["task"].is_object() &&
-        run["task"].contains("goal_distance_m") && run["task"]["goal_distance_m"].is_number())
-      goal = run["task"]["goal_distance_m"].get<double>();
-    char f1[64];
-    std::snprintf(f1, sizeof f1, "time to %.3g m [s]", goal);
-    return {f1, "max |a| [m/s^2]"};
+  if (const TaskType* type = find_task_type(data.task)) {
+    const ObjectiveLabels labels = type->objective_labels(
+        data.run.is_object() && data.run.contains("task") ? data.run["task"]
+                                                          : nlohmann::json::object());
+    return {labels.f1, labels.f2};
   }
-  if (data.task == "walk-omni")
-    return {"-(v_f + v_b + 2 v_side + 0.2 w_turn) [m/s]", "max |a| [m/s^2]"};
   return {"f1", "f2"};
 }
 

@@ -21,7 +21,7 @@ DirectionSpeeds reference_direction_speeds() {
 
 Status measure_direction_speeds(const RobotTask& task, const Genome& genome,
                                 const std::string& label, DirectionSpeeds& out) {
-  if (task.config().task != "walk-omni")
+  if (task.type() == nullptr || !task.type()->measures_directions())
     return Status::error("per-direction speeds need a walk-omni task, not '" + task.config().task +
                          "'");
   DirectionSpeeds row;

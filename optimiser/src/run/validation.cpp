@@ -72,9 +72,9 @@ Status load_validation_subject(const fs::path& dir, ValidationSubject& out) {
     return Status::error(dir.string() + " is not a run directory (no run.json)");
   RunConfig run;
   if (Status s = read_run_config(dir, run); !s) return s;
-  if (run.problem != "walk" && run.problem != "walk-omni" && run.problem != "kick")
-    return Status::error(dir.string() + " is a '" + run.problem +
-                         "' run, not a robot run (walk, walk-omni or kick)");
+  if (find_task_type(run.problem) == nullptr)
+    return Status::error(dir.string() + " is a '" + run.problem + "' run, not a robot run (" +
+                         task_type_list() + ")");
   ValidationSubject subject;
   subject.dir = dir;
   if (Status s = parse_task_config(run.task, subject.config); !s)

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "stride/optimiser/run/direction_speeds.hpp"
+#include "stride/optimiser/tasks/task_type.hpp"
 
 namespace stride::opt {
 
@@ -85,33 +86,9 @@ std::string fixed(const json& v, int decimals) {
 }
 
 /// How the plain-language summary names a task's goal and its gate measure.
-struct TaskWords {
-  std::string reach, reaches, misses, measure;
-  std::string motion;  ///< "walk" or "kick": what does or does not carry over
-  std::string worse;   ///< "{} % slower than in the run": {} is the percentage
-};
-
-TaskWords task_words(const std::string& task) {
-  if (task == "kick")
-    return {"kick the ball at least 0.5 m",
-            "kicks the ball at least 0.5 m",
-            "kicks the ball less than 0.5 m",
-            "1 / ball distance",
-            "kick",
-            "its median 1 / ball distance is {} % worse than in the run"};
-  if (task == "walk-omni")
-    return {"walk every segment",
-            "walks every segment",
-            "does not walk every segment",
-            "speed score",
-            "walk",
-            "its median speed score is {} % worse than in the run"};
-  return {"reach the goal",
-          "reaches the goal",
-          "does not reach the goal in time",
-          "time to the goal",
-          "walk",
-          "{} % slower than in the run"};
+ValidationWords task_words(const std::string& task) {
+  if (const TaskType* type = find_task_type(task)) return type->validation_words();
+  return find_task_type("walk")->validation_words();
 }
 
 /// "on MuJoCo", "on fresh seeds", "with wider randomisation", "at half the physics step".
@@ -136,7 +113,7 @@ std::string join_and(const std::vector<std::string>& parts) {
 }
 
 /// Why one cell fails its gate, in words: falls, misses, or a worse median than in the run.
-std::string fail_reason(const TaskWords& words, const json& cell, int seeds, int reached,
+std::string fail_reason(const ValidationWords& words, const json& cell, int seeds, int reached,
                         double min_reached, const json& own) {
   const int falls = cell.value("falls", 0);
   const int misses = std::max(0, seeds - reached - falls);
@@ -166,15 +143,13 @@ std::string fail_reason(const TaskWords& words, const json& cell, int seeds, int
 
 bool validation_reached(const TaskConfig& config, const EpisodeScore& score) {
   if (score.fell || !score.world_failure.empty()) return false;
-  if (config.task == "walk") return score.time_to_goal_s >= 0.0;
-  if (config.task == "kick") return score.ball_distance_m >= kKickSuccessDistanceM;
-  for (const OmniSegment& s : score.omni)
-    if (!s.measured) return false;
-  return true;
+  const TaskType* type = find_task_type(config.task);
+  return type != nullptr && type->succeeded(config, score);
 }
 
 int gate_objective(const TaskConfig& config) {
-  return config.task == "kick" ? 1 : 0;
+  const TaskType* type = find_task_type(config.task);
+  return type != nullptr ? type->gate_objective() : 0;
 }
 
 double median(std::vector<double> values) {
@@ -198,7 +173,8 @@ json summarise_validation(const std::filesystem::path& dir, const TaskConfig& co
   json worlds_json = json::array();
   for (std::size_t w = 0; w < worlds.size(); ++w)
     worlds_json.push_back(world_json(worlds[w], cells.empty() ? "" : cells[0][w].unavailable));
-  const bool omni = config.task == "walk-omni";
+  const TaskType* type = find_task_type(config.task);
+  const bool omni = type != nullptr && type->measures_directions();
   json individuals_json = json::array(), table = json::array();
   bool all_passed = true;
   for (std::size_t i = 0; i < individuals.size(); ++i) {
@@ -283,10 +259,9 @@ std::string validation_text(const json& result) {
   std::ostringstream out;
   char line[512];
   const std::string task = result.value("task", "");
+  const TaskType* type = find_task_type(task);
   out << "validation of a " << task << " run (objectives: "
-      << (task == "kick"        ? "f1 max sway [m/s^2], f2 1/ball distance [1/m]"
-          : task == "walk-omni" ? "f1 -(v_f + v_b + 2 v_side + 0.2 w_turn), f2 max |a| [m/s^2]"
-                                : "f1 time to goal [s], f2 max |a| [m/s^2]")
+      << (type != nullptr ? type->objective_legend() : std::string("f1, f2"))
       << ")\nworlds (IMU noise on in all):\n";
   for (const json& w : result.value("worlds", json::array())) {
     std::snprintf(line, sizeof line,
@@ -319,7 +294,7 @@ std::string validation_text(const json& result) {
                   fixed(r.value("gain_kept_f2", json()), 2).c_str());
     out << line;
   }
-  if (task == "walk-omni") {
+  if (type != nullptr && type->measures_directions()) {
     for (const json& w : result.value("worlds", json::array())) {
       std::vector<DirectionSpeeds> rows;
       for (const json& ind : result.value("individuals", json::array()))
@@ -347,7 +322,7 @@ std::string validation_text(const json& result) {
 }
 
 std::string validation_words(const json& result) {
-  const TaskWords words = task_words(result.value("task", ""));
+  const ValidationWords words = task_words(result.value("task", ""));
   const json gate = result.value("gate", json::object());
   const double min_reached = gate.value("min_reached_fraction", kGateMinReachedFraction);
   const double max_worse = gate.value("max_worse_fraction", kGateMaxWorseFraction);

@@ -1,4 +1,4 @@
-// RobotTask: walk and kick episodes of the firmware against the simulated robot.
+// RobotTask: the firmware against the simulated robot, in the episodes of the config's task type.
 #include "stride/optimiser/tasks/robot_task.hpp"
 
 #include <algorithm>
@@ -8,7 +8,6 @@
 #include <numbers>
 
 #include "stride/firmware/firmware.hpp"
-#include "stride/firmware/motion_request.hpp"
 #include "stride/sim_hal/episode.hpp"
 #include "stride/sim_hal/sim_robot.hpp"
 #include "stride/sim_hal/sim_world.hpp"
@@ -16,8 +15,6 @@
 namespace stride::opt {
 
 namespace {
-
-constexpr double kFallPenalty = 1000.0;
 
 sim::WorldOptions world_for_trial(const TaskConfig& config, int world) {
   sim::WorldOptions w;
@@ -31,7 +28,8 @@ sim::WorldOptions world_for_trial(const TaskConfig& config, int world) {
     w.randomise.mass_range = config.randomisation.mass_range;
     w.randomise.strength_range = config.randomisation.strength_range;
   }
-  if (config.task != "kick") w.ball.present = false;
+  const TaskType* type = find_task_type(config.task);
+  if (type == nullptr || !type->uses_ball()) w.ball.present = false;
   if (!config.urdf.empty()) w.urdf = config.urdf;
   w.servo.law = config.servo_law;
   w.use_cm730_imu(config.imu_cm730);
@@ -43,10 +41,11 @@ sim::WorldOptions world_for_trial(const TaskConfig& config, int world) {
 
 }  // namespace
 
-RobotTask::RobotTask(TaskConfig config) : config_(std::move(config)) {
+RobotTask::RobotTask(TaskConfig config)
+    : config_(std::move(config)), type_(find_task_type(config_.task)) {
   for (const auto& g : config_.genes) shape_.reals.push_back({g.min, g.max});
   shape_.objectives = 2;
-  shape_.constraints = config_.task == "kick" ? 2 : config_.task == "walk" ? 3 : 4;
+  shape_.constraints = type_ != nullptr ? type_->constraint_count() : 0;
   auto files = std::make_shared<fw::FirmwareFiles>();
   if (fw::FirmwareFiles::load({}, *files)) firmware_files_ = std::move(files);
   auto model = std::make_shared<sim::RobotModel>();
@@ -88,26 +87,39 @@ Status RobotTask::run_trial(const Genome& genome, int world, EpisodeScore& out,
 
 Status RobotTask::run_world(const Genome& genome, sim::WorldOptions options, EpisodeScore& out,
                             sim::EpisodeCapturer* capture) const {
+  if (type_ == nullptr) return Status::error("task: '" + config_.task + "' is not a robot task");
   if (genome.reals.size() != config_.genes.size())
     return Status::error("genome has " + std::to_string(genome.reals.size()) + " genes, the task " +
                          std::to_string(config_.genes.size()));
-  const bool walk = config_.task == "walk";
-  const bool omni = config_.task == "walk-omni";
-  using Clock = std::chrono::steady_clock;
-  const auto setup_start = Clock::now();
   if (options.urdf == (config_.urdf.empty() ? sim::WorldOptions{}.urdf : config_.urdf))
     options.model = robot_model_;
+  const int episodes = type_->episodes_per_world();
+  for (int e = 0; e < episodes; ++e) {
+    EpisodeScore score;
+    if (Status s = run_episode(genome, options, e, score, e == 0 ? capture : nullptr); !s) return s;
+    if (e == 0) {
+      out = std::move(score);
+      continue;
+    }
+    merge_episode(score, e + 1, out);
+  }
+  return {};
+}
+
+Status RobotTask::run_episode(const Genome& genome, const sim::WorldOptions& options, int index,
+                              EpisodeScore& out, sim::EpisodeCapturer* capture) const {
+  using Clock = std::chrono::steady_clock;
+  const auto setup_start = Clock::now();
   std::unique_ptr<fw::Firmware> firmware;
   if (Status s = firmware_files_ ? fw::Firmware::create({}, *firmware_files_, firmware)
                                  : fw::Firmware::create({}, firmware);
       !s)
     return s;
-  options.control_period_ns = firmware->period_ns();
-  sim::ResetSpec spec = sim::ResetSpec::standing();
-  spec.ball_position = {0.25, -0.06, std::nan("")};  // in front of the right (kicking) foot
+  sim::WorldOptions world_options = options;
+  world_options.control_period_ns = firmware->period_ns();
   std::unique_ptr<sim::SimWorld> world;
-  if (Status s = sim::SimWorld::create(options, world); !s) return s;
-  if (Status s = world->reset(spec); !s) return s;
+  if (Status s = sim::SimWorld::create(world_options, world); !s) return s;
+  if (Status s = world->reset(type_->reset_spec(config_, index)); !s) return s;
   sim::SimRobot robot(std::move(world));
 
   // The config's base parameters first (set now: the firmware's start-up values), then the
@@ -124,56 +136,23 @@ Status RobotTask::run_world(const Genome& genome, sim::WorldOptions options, Epi
 
   fw::Controller& controller = firmware->controller();
   const double period_s = static_cast<double>(robot.period_ns()) * 1e-9;
-  const auto kick_tick = static_cast<hal::Tick>(std::llround(config_.kick_at_s / period_s));
-  bool requested = false;
-  double yaw_integral = 0.0;
-  OmniEpisode omni_episode(config_.omni, period_s);
-  std::array<double, 3> omni_requested{0.0, 0.0, 0.0};
-  const sim::GroundTruth start_truth = robot.world().ground_truth();
-  YawTracker yaw_tracker;
-  yaw_tracker.reset(torso_yaw(start_truth.torso));
+  const std::unique_ptr<TaskEpisode> task_episode =
+      type_->start_episode(config_, index, period_s, robot.world());
   double controller_s = 0.0;
   const double setup_s = std::chrono::duration<double>(Clock::now() - setup_start).count();
   const sim::StepFunction step = [&](const hal::SensorFrame& sensors, hal::Tick tick) {
     params.apply_staged();
-    if (omni) {
-      omni_episode.observe(tick, robot.world());
-      const auto c = omni_episode.command(tick);
-      if (!requested || c != omni_requested) {
-        controller.request(fw::MotionRequest::walk(c[0], c[1], c[2]));
-        omni_requested = c;
-        requested = true;
-      }
-    } else if (walk) {
-      yaw_tracker.update(torso_yaw(robot.world().torso_pose()));
-    }
-    if (!requested) {
-      if (walk) {
-        controller.request(fw::MotionRequest::walk(config_.walk_vx, 0.0, 0.0));
-        requested = true;
-      } else if (tick >= kick_tick) {
-        controller.request(fw::MotionRequest::play(config_.script));
-        requested = true;
-      }
-    }
-    if (static_cast<double>(tick) * period_s > 0.25)
-      yaw_integral += sensors.cm730.gyro_rad_s[2] * period_s;
+    task_episode->before_step(sensors, tick, robot.world(), controller);
     const auto before = Clock::now();
     hal::CommandFrame commands = controller.step(sensors, tick);
     controller_s += std::chrono::duration<double>(Clock::now() - before).count();
+    task_episode->after_step(controller, tick);
     return commands;
   };
-  sim::EpisodeOptions episode;
-  episode.duration_s = omni ? omni_episode.duration_s() : config_.duration_s;
-  episode.goal_distance_m = omni ? 1e9 : config_.goal_distance_m;
-  episode.stop_on_fall = true;
-  episode.stop_at_goal = walk;
+  sim::EpisodeOptions episode = task_episode->options();
   if (capture != nullptr) episode.on_tick = capture->observer();
   sim::EpisodeResult r = sim::run_episode(robot, step, episode);
   if (params.has_staged()) return Status::error("the genome was never applied");
-  if (controller.motion().refused_requests() > 0)
-    return Status::error(walk || omni ? "walk request refused"
-                                      : "kick script '" + config_.script + "' refused");
   // A failed world ends the episode: scored below as a fall at that moment.
   const bool failed = r.status != sim::WorldStatus::kRunning;
   if (failed && !r.fell) {
@@ -196,42 +175,29 @@ Status RobotTask::run_world(const Genome& genome, sim::WorldOptions options, Epi
   out.wall_time_s = r.wall_time_s;
   out.setup_s = setup_s;
   out.controller_s = controller_s;
-  if (walk) {
-    // Straightness in the start's walking frame, at the goal or the episode's end.
-    const PlanarPose a = walking_frame(start_truth, torso_yaw(start_truth.torso));
-    const PlanarPose b = walking_frame(robot.world().ground_truth(), yaw_tracker.yaw());
-    const Translation t = measure_translation(a, b, 1.0, 0.0);
-    out.lateral_drift_m = t.off_axis_m;
-    out.heading_change_rad = t.heading_change_rad;
-    const double heading_limit = config_.max_heading_change_deg * std::numbers::pi / 180.0;
-    const double missing = std::max(0.0, config_.goal_distance_m - r.distance_m);
-    const double time = r.time_to_goal_s ? *r.time_to_goal_s : config_.duration_s + 10.0 * missing;
-    out.objectives = {time, r.max_accel};
-    const double lost = r.fell ? std::max(0.0, config_.duration_s - r.fall_time_s) : 0.0;
-    out.constraints = {
-        r.fell ? -(1.0 + lost / config_.duration_s) : 0.0,
-        config_.max_drift_ratio > 0.0
-            ? limit_violation(t.drift_ratio() / config_.max_drift_ratio, 1.0)
-            : limit_violation(t.drift_ratio(), config_.max_drift_ratio),
-        heading_limit > 0.0 ? limit_violation(t.heading_change_rad / heading_limit, 1.0) : 0.0};
-  } else if (omni) {
-    out.omni = omni_episode.segments();
-    out.objectives = {omni_speed_objective(out.omni), r.max_accel};
-    const double length = omni_episode.duration_s();
-    const double lost = r.fell ? std::max(0.0, length - r.fall_time_s) : 0.0;
-    const auto c = omni_constraints(out.omni, config_);
-    out.constraints = {r.fell ? -(1.0 + lost / length) : 0.0, c[0], c[1], c[2]};
-  } else {
-    const double d = std::clamp(r.ball_distance_m, 0.001, 10.0);
-    double sway = r.max_fps;
-    if (r.fell || sway <= 0.0 || sway > kFallPenalty) sway = kFallPenalty;
-    out.objectives = {sway, r.fell ? kFallPenalty : 1.0 / d};
-    const double yaw = std::abs(yaw_integral);
-    out.constraints = {r.fell ? -10.0 : 0.0, yaw > config_.yaw_drift_limit_rad
-                                                 ? -(yaw - config_.yaw_drift_limit_rad)
-                                                 : 0.0};
-  }
-  return {};
+  return task_episode->score(r, robot.world(), controller, out);
+}
+
+void RobotTask::merge_episode(const EpisodeScore& next, int count, EpisodeScore& total) {
+  // Running means of the values (count = episodes so far, `next` included).
+  const double w = 1.0 / count;
+  for (std::size_t i = 0; i < total.objectives.size() && i < next.objectives.size(); ++i)
+    total.objectives[i] += (next.objectives[i] - total.objectives[i]) * w;
+  for (std::size_t i = 0; i < total.constraints.size() && i < next.constraints.size(); ++i)
+    total.constraints[i] += (next.constraints[i] - total.constraints[i]) * w;
+  const bool all_stood = total.stand_time_s >= 0.0 && next.stand_time_s >= 0.0;
+  total.stand_time_s =
+      all_stood ? total.stand_time_s + (next.stand_time_s - total.stand_time_s) * w : -1.0;
+  total.stood += next.stood;
+  total.get_up_attempts += next.get_up_attempts;
+  total.fell = total.fell || next.fell;
+  total.max_accel = std::max(total.max_accel, next.max_accel);
+  total.max_fps = std::max(total.max_fps, next.max_fps);
+  total.sim_time_s += next.sim_time_s;
+  total.wall_time_s += next.wall_time_s;
+  total.setup_s += next.setup_s;
+  total.controller_s += next.controller_s;
+  if (total.world_failure.empty()) total.world_failure = next.world_failure;
 }
 
 EvaluationOutcome RobotTask::evaluate(const Genome& genome) const {

@@ -5,6 +5,7 @@
 #include <fstream>
 #include <system_error>
 
+#include "stride/optimiser/tasks/task_type.hpp"
 #include "stride/sim_hal/robot_model.hpp"
 
 namespace stride::opt {
@@ -219,8 +220,8 @@ Status parse_task_config(const nlohmann::json& doc, TaskConfig& out) {
   if (!doc.contains("task") || !doc.at("task").is_string())
     return Status::error("task: missing or not a string");
   c.task = doc.at("task").get<std::string>();
-  if (c.task != "walk" && c.task != "walk-omni" && c.task != "kick")
-    return Status::error("task: '" + c.task + "' is not walk, walk-omni or kick");
+  const TaskType* type = find_task_type(c.task);
+  if (type == nullptr) return Status::error("task: '" + c.task + "' is not " + task_type_list());
   std::int64_t v = 0;
   if (Status s = integer(doc, "seed", 0, INT64_MAX, v, true); !s) return s;
   c.settings.seed = static_cast<std::uint64_t>(v);

@@ -44,7 +44,6 @@ namespace stride::opt {
 
 inline constexpr double kGateMinReachedFraction = 0.8;
 inline constexpr double kGateMaxWorseFraction = 0.25;
-inline constexpr double kKickSuccessDistanceM = 0.5;
 /// First of the validation seeds, above trial_seed (the run's trials use trial_seed + k, k <
 /// trials <= 1000).
 inline constexpr std::uint64_t kValidationSeedOffset = 1000;

@@ -1,11 +1,12 @@
 // Task configuration: what a robot optimisation (optimiser/configs/*.json) asks for.
 //
-// A task config names the task ("walk", "walk-omni" or "kick"), the NSGA-II inputs (seed, pop,
-// generations, pc, pm, etaC, etaM, seed_fraction), the genome as parameter names with bounds and
-// start values (the firmware's current values, Ind_O), the episode settings and the robust
-// evaluation (trials under seeded randomised worlds, on one or more physics engines, aggregated
-// by mean or worst) and the validation that follows a run (`stride validate`, validation.hpp).
-// Every error names the offending field, e.g. "genes[3].max: must be greater than min".
+// A task config names the task (a TaskType: "walk", "walk-omni", "kick", "getup"), the NSGA-II
+// inputs (seed, pop, generations, pc, pm, etaC, etaM, seed_fraction), the genome as parameter names
+// with bounds and start values (the firmware's current values, Ind_O), the episode settings and the
+// robust evaluation (trials under seeded randomised worlds, on one or more physics engines,
+// aggregated by mean or worst) and the validation that follows a run (`stride validate`,
+// validation.hpp). Every error names the offending field, e.g. "genes[3].max: must be greater than
+// min".
 #pragma once
 
 #include <cstdint>
@@ -55,7 +56,7 @@ struct OmniTiming {
 };
 
 struct TaskConfig {
-  std::string task;  ///< "walk", "walk-omni" or "kick"
+  std::string task;  ///< a TaskType's name (task_type.hpp): "walk", "walk-omni", "kick", "getup"
   Nsga2Settings settings;
   std::vector<TaskGene> genes;
   // Episode.

@@ -1,0 +1,109 @@
+// The kick task (the seed's kick evaluator, igus.md 4.4 and 7.3): the script episode of
+// `stride sim kick` (sim::KickRequest: standing, the ball before the right foot, the script
+// requested at kick_at_s), scored as the seed does:
+//   Obj1 = max field-plane sway sqrt(ax^2 + ay^2) [m/s^2] (1000 if fell),
+//   Obj2 = 1 / ball distance, distance clamped to [0.001, 10] m (1000 if fell).
+//   c0 = fell ? -10 : 0; c1 = -(|integral of gyro z| - limit) when over the limit.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "stride/optimiser/tasks/task_type.hpp"
+#include "stride/sim_hal/script_episodes.hpp"
+
+namespace stride::opt {
+
+namespace {
+
+constexpr double kFallPenalty = 1000.0;
+/// A validation kick succeeds when the ball moves at least this far [m].
+constexpr double kKickSuccessDistanceM = 0.5;
+
+class KickEpisode final : public TaskEpisode {
+ public:
+  KickEpisode(const TaskConfig& config, double period_s)
+      : config_(config), period_s_(period_s), kick_(config.script, config.kick_at_s, period_s) {}
+  sim::EpisodeOptions options() const override {
+    sim::EpisodeOptions o;
+    o.duration_s = config_.duration_s;
+    o.goal_distance_m = config_.goal_distance_m;
+    o.stop_on_fall = true;
+    return o;
+  }
+  void before_step(const hal::SensorFrame& sensors, hal::Tick tick, const sim::SimWorld&,
+                   fw::Controller& controller) override {
+    kick_.before_step(tick, controller);
+    if (static_cast<double>(tick) * period_s_ > 0.25)
+      yaw_integral_ += sensors.cm730.gyro_rad_s[2] * period_s_;
+  }
+  Status score(const sim::EpisodeResult& r, const sim::SimWorld&, const fw::Controller& controller,
+               EpisodeScore& out) override {
+    if (controller.motion().refused_requests() > 0)
+      return Status::error("kick script '" + config_.script + "' refused");
+    const double d = std::clamp(r.ball_distance_m, 0.001, 10.0);
+    double sway = r.max_fps;
+    if (r.fell || sway <= 0.0 || sway > kFallPenalty) sway = kFallPenalty;
+    out.objectives = {sway, r.fell ? kFallPenalty : 1.0 / d};
+    const double yaw = std::abs(yaw_integral_);
+    out.constraints = {r.fell ? -10.0 : 0.0, yaw > config_.yaw_drift_limit_rad
+                                                 ? -(yaw - config_.yaw_drift_limit_rad)
+                                                 : 0.0};
+    return {};
+  }
+
+ private:
+  const TaskConfig& config_;
+  double period_s_;
+  sim::KickRequest kick_;
+  double yaw_integral_ = 0.0;
+};
+
+class KickTask final : public TaskType {
+ public:
+  std::string_view name() const override { return "kick"; }
+  int constraint_count() const override { return 2; }
+  ObjectiveLabels objective_labels(const nlohmann::json&) const override {
+    return {"max field-plane sway [m/s^2]", "1 / ball distance [1/m]"};
+  }
+  std::string objective_legend() const override {
+    return "f1 max sway [m/s^2], f2 1/ball distance [1/m]";
+  }
+  const char* best_f1_pick() const override { return "least_sway"; }
+  const char* best_f2_pick() const override { return "longest_kick"; }
+  ValidationWords validation_words() const override {
+    return {"kick the ball at least 0.5 m",
+            "kicks the ball at least 0.5 m",
+            "kicks the ball less than 0.5 m",
+            "1 / ball distance",
+            "kick",
+            "its median 1 / ball distance is {} % worse than in the run"};
+  }
+  int gate_objective() const override { return 1; }
+  bool succeeded(const TaskConfig&, const EpisodeScore& score) const override {
+    return score.ball_distance_m >= kKickSuccessDistanceM;
+  }
+  std::string outcome_note(const TaskConfig& config, const EpisodeScore& s,
+                           double end_s) const override {
+    if (s.fell) return TaskType::outcome_note(config, s, end_s);
+    char text[64];
+    std::snprintf(text, sizeof text, "ball kicked %.2f m", s.ball_distance_m);
+    return text;
+  }
+  bool uses_ball() const override { return true; }
+  sim::ResetSpec reset_spec(const TaskConfig&, int) const override {
+    return sim::kick_reset_spec({0.25, -0.06, std::nan("")});  // before the right foot
+  }
+  std::unique_ptr<TaskEpisode> start_episode(const TaskConfig& config, int, double period_s,
+                                             const sim::SimWorld&) const override {
+    return std::make_unique<KickEpisode>(config, period_s);
+  }
+};
+
+}  // namespace
+
+const TaskType& kick_task_type() {
+  static const KickTask type;
+  return type;
+}
+
+}  // namespace stride::opt

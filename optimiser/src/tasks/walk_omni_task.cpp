@@ -1,0 +1,96 @@
+// The omnidirectional walk task (issue 22): after start_s of walking in place, six segments
+// forward, backward, sideways both ways and turning both ways (TaskConfig::omni), each a ramp,
+// a hold where the speed is measured and a stop (walk_measures.hpp).
+//   Obj1 = -(v_f + v_b + 2 v_side + 0.2 w_turn), Obj2 = max |a| [m/s^2];
+//   c0 fell (-(1 + time lost / length)), c1 drift, c2 heading change, c3 translation while
+//   turning (omni_constraints).
+#include <algorithm>
+#include <array>
+
+#include "stride/firmware/motion_request.hpp"
+#include "stride/optimiser/tasks/task_type.hpp"
+
+namespace stride::opt {
+
+namespace {
+
+class WalkOmniEpisode final : public TaskEpisode {
+ public:
+  WalkOmniEpisode(const TaskConfig& config, double period_s)
+      : config_(config), segments_(config.omni, period_s) {}
+  sim::EpisodeOptions options() const override {
+    sim::EpisodeOptions o;
+    o.duration_s = segments_.duration_s();
+    o.goal_distance_m = 1e9;
+    o.stop_on_fall = true;
+    return o;
+  }
+  void before_step(const hal::SensorFrame&, hal::Tick tick, const sim::SimWorld& world,
+                   fw::Controller& controller) override {
+    segments_.observe(tick, world);
+    const auto c = segments_.command(tick);
+    if (!requested_ || c != requested_command_) {
+      controller.request(fw::MotionRequest::walk(c[0], c[1], c[2]));
+      requested_command_ = c;
+      requested_ = true;
+    }
+  }
+  Status score(const sim::EpisodeResult& r, const sim::SimWorld&, const fw::Controller& controller,
+               EpisodeScore& out) override {
+    if (controller.motion().refused_requests() > 0) return Status::error("walk request refused");
+    out.omni = segments_.segments();
+    out.objectives = {omni_speed_objective(out.omni), r.max_accel};
+    const double length = segments_.duration_s();
+    const double lost = r.fell ? std::max(0.0, length - r.fall_time_s) : 0.0;
+    const auto c = omni_constraints(out.omni, config_);
+    out.constraints = {r.fell ? -(1.0 + lost / length) : 0.0, c[0], c[1], c[2]};
+    return {};
+  }
+
+ private:
+  const TaskConfig& config_;
+  OmniEpisode segments_;
+  std::array<double, 3> requested_command_{0.0, 0.0, 0.0};
+  bool requested_ = false;
+};
+
+class WalkOmniTask final : public TaskType {
+ public:
+  std::string_view name() const override { return "walk-omni"; }
+  int constraint_count() const override { return 4; }
+  ObjectiveLabels objective_labels(const nlohmann::json&) const override {
+    return {"-(v_f + v_b + 2 v_side + 0.2 w_turn) [m/s]", "max |a| [m/s^2]"};
+  }
+  std::string objective_legend() const override {
+    return "f1 -(v_f + v_b + 2 v_side + 0.2 w_turn), f2 max |a| [m/s^2]";
+  }
+  const char* best_f1_pick() const override { return "fastest"; }
+  const char* best_f2_pick() const override { return "most_stable"; }
+  ValidationWords validation_words() const override {
+    return {"walk every segment",
+            "walks every segment",
+            "does not walk every segment",
+            "speed score",
+            "walk",
+            "its median speed score is {} % worse than in the run"};
+  }
+  bool succeeded(const TaskConfig&, const EpisodeScore& score) const override {
+    for (const OmniSegment& s : score.omni)
+      if (!s.measured) return false;
+    return true;
+  }
+  bool measures_directions() const override { return true; }
+  std::unique_ptr<TaskEpisode> start_episode(const TaskConfig& config, int, double period_s,
+                                             const sim::SimWorld&) const override {
+    return std::make_unique<WalkOmniEpisode>(config, period_s);
+  }
+};
+
+}  // namespace
+
+const TaskType& walk_omni_task_type() {
+  static const WalkOmniTask type;
+  return type;
+}
+
+}  // namespace stride::opt

@@ -1,0 +1,118 @@
+// The walk task (the seed's walk evaluator, igus.md 7.4): from standing, walk forward at the
+// config's command until goal_distance_m is covered or duration_s is up.
+//   Obj1 = time to cover goal_distance_m [s]; not reached: duration_s + 10 s/m * the distance
+//          still missing (a penalty that still rewards progress).
+//   Obj2 = max |a| of the IMU over the episode [m/s^2].
+//   c0 = fell ? -(1 + time lost / duration) : 0  (g >= 0 is feasible).
+//   Straightness at the goal (or the episode's end), from ground truth (walk_measures.hpp):
+//   c1 = min(0, 1 - (|lateral drift| / max(forward, 0.25 m)) / max_drift_ratio),
+//   c2 = min(0, 1 - |heading change| / max_heading_change_deg); a limit of null is off.
+#include <algorithm>
+#include <cstdio>
+#include <numbers>
+
+#include "stride/firmware/motion_request.hpp"
+#include "stride/optimiser/tasks/task_type.hpp"
+
+namespace stride::opt {
+
+namespace {
+
+class WalkEpisode final : public TaskEpisode {
+ public:
+  WalkEpisode(const TaskConfig& config, const sim::SimWorld& world)
+      : config_(config), start_(world.ground_truth()) {
+    yaw_.reset(torso_yaw(start_.torso));
+  }
+  sim::EpisodeOptions options() const override {
+    sim::EpisodeOptions o;
+    o.duration_s = config_.duration_s;
+    o.goal_distance_m = config_.goal_distance_m;
+    o.stop_on_fall = true;
+    o.stop_at_goal = true;
+    return o;
+  }
+  void before_step(const hal::SensorFrame&, hal::Tick, const sim::SimWorld& world,
+                   fw::Controller& controller) override {
+    yaw_.update(torso_yaw(world.torso_pose()));
+    if (!requested_) {
+      controller.request(fw::MotionRequest::walk(config_.walk_vx, 0.0, 0.0));
+      requested_ = true;
+    }
+  }
+  Status score(const sim::EpisodeResult& r, const sim::SimWorld& world,
+               const fw::Controller& controller, EpisodeScore& out) override {
+    if (controller.motion().refused_requests() > 0) return Status::error("walk request refused");
+    // Straightness in the start's walking frame, at the goal or the episode's end.
+    const PlanarPose a = walking_frame(start_, torso_yaw(start_.torso));
+    const PlanarPose b = walking_frame(world.ground_truth(), yaw_.yaw());
+    const Translation t = measure_translation(a, b, 1.0, 0.0);
+    out.lateral_drift_m = t.off_axis_m;
+    out.heading_change_rad = t.heading_change_rad;
+    const double heading_limit = config_.max_heading_change_deg * std::numbers::pi / 180.0;
+    const double missing = std::max(0.0, config_.goal_distance_m - r.distance_m);
+    const double time = r.time_to_goal_s ? *r.time_to_goal_s : config_.duration_s + 10.0 * missing;
+    out.objectives = {time, r.max_accel};
+    const double lost = r.fell ? std::max(0.0, config_.duration_s - r.fall_time_s) : 0.0;
+    out.constraints = {
+        r.fell ? -(1.0 + lost / config_.duration_s) : 0.0,
+        config_.max_drift_ratio > 0.0
+            ? limit_violation(t.drift_ratio() / config_.max_drift_ratio, 1.0)
+            : limit_violation(t.drift_ratio(), config_.max_drift_ratio),
+        heading_limit > 0.0 ? limit_violation(t.heading_change_rad / heading_limit, 1.0) : 0.0};
+    return {};
+  }
+
+ private:
+  const TaskConfig& config_;
+  const sim::GroundTruth start_;
+  YawTracker yaw_;
+  bool requested_ = false;
+};
+
+class WalkTask final : public TaskType {
+ public:
+  std::string_view name() const override { return "walk"; }
+  int constraint_count() const override { return 3; }
+  ObjectiveLabels objective_labels(const nlohmann::json& task_doc) const override {
+    double goal = 2.5;
+    if (task_doc.is_object() && task_doc.contains("goal_distance_m") &&
+        task_doc["goal_distance_m"].is_number())
+      goal = task_doc["goal_distance_m"].get<double>();
+    char f1[64];
+    std::snprintf(f1, sizeof f1, "time to %.3g m [s]", goal);
+    return {f1, "max |a| [m/s^2]"};
+  }
+  std::string objective_legend() const override {
+    return "f1 time to goal [s], f2 max |a| [m/s^2]";
+  }
+  const char* best_f1_pick() const override { return "fastest"; }
+  const char* best_f2_pick() const override { return "most_stable"; }
+  ValidationWords validation_words() const override {
+    return {"reach the goal",
+            "reaches the goal",
+            "does not reach the goal in time",
+            "time to the goal",
+            "walk",
+            "{} % slower than in the run"};
+  }
+  bool succeeded(const TaskConfig&, const EpisodeScore& score) const override {
+    return score.time_to_goal_s >= 0.0;
+  }
+  std::optional<double> replay_goal_m(const TaskConfig& config) const override {
+    return config.goal_distance_m;
+  }
+  std::unique_ptr<TaskEpisode> start_episode(const TaskConfig& config, int, double,
+                                             const sim::SimWorld& world) const override {
+    return std::make_unique<WalkEpisode>(config, world);
+  }
+};
+
+}  // namespace
+
+const TaskType& walk_task_type() {
+  static const WalkTask type;
+  return type;
+}
+
+}  // namespace stride::opt
