@@ -11,12 +11,13 @@ namespace stride::opt {
 const TaskType& walk_task_type();
 const TaskType& walk_omni_task_type();
 const TaskType& kick_task_type();
+const TaskType& getup_task_type();
 
 namespace {
 
 using TaskTypeGetter = const TaskType& (*)();
-constexpr std::array<TaskTypeGetter, 3> kTasks = {&walk_task_type, &walk_omni_task_type,
-                                                  &kick_task_type};
+constexpr std::array<TaskTypeGetter, 4> kTasks = {&walk_task_type, &walk_omni_task_type,
+                                                  &kick_task_type, &getup_task_type};
 
 }  // namespace
 

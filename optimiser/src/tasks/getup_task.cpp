@@ -1,0 +1,111 @@
+// The get-up task (the seed's future work): the robot lies still on its front, then on its back
+// (two episodes per world, sim::lying_reset_spec); the firmware's motion manager sees the fall,
+// waits motion.fallen_settle_time and plays get_up_front or get_up_back (get_up_front rolls onto
+// the back and hands over to get_up_back). The genes are those scripts' keyframes: targets and
+// frame durations (script.get_up_*.frameK.*, make_configs.py).
+//   Obj1 = time until standing [s], from lying still: when the last get-up handed over to stand
+//          (sim::GetUpWatch); an episode that does not end standing counts duration_s + 10 s.
+//   Obj2 = peak |a| of the IMU [m/s^2] over the episode (after the first 0.25 s).
+//   c0   = -(episodes that do not end standing within duration_s) / episodes (g >= 0 feasible).
+// Each value is the mean of the two episodes. Obj2 is the peak acceleration rather than the
+// peak servo load: the load register of the identified servo law is the PWM duty, which
+// saturates at 100 % whenever a joint is held against a stop or the ground, as every get-up
+// does when it pushes the body up, so its peak tells get-ups apart poorly; the IMU's peak is
+// the impact when the body drops onto its hands, back or feet, which is what breaks gears and
+// brackets, and it is the seed's stability measure.
+#include <algorithm>
+#include <cstdio>
+
+#include "stride/optimiser/tasks/task_type.hpp"
+#include "stride/sim_hal/script_episodes.hpp"
+
+namespace stride::opt {
+
+namespace {
+
+/// Added to the time limit for an episode that does not end standing [s].
+constexpr double kNotStandingPenaltyS = 10.0;
+
+class GetUpEpisode final : public TaskEpisode {
+ public:
+  GetUpEpisode(const TaskConfig& config, double period_s) : config_(config), watch_(period_s) {}
+  sim::EpisodeOptions options() const override {
+    sim::EpisodeOptions o;
+    o.duration_s = config_.duration_s;
+    o.stop_on_fall = false;  // it starts lying
+    return o;
+  }
+  void before_step(const hal::SensorFrame&, hal::Tick, const sim::SimWorld&,
+                   fw::Controller&) override {}
+  void after_step(const fw::Controller& controller, hal::Tick tick) override {
+    watch_.after_step(controller, tick);
+  }
+  Status score(const sim::EpisodeResult& r, const sim::SimWorld& world,
+               const fw::Controller& controller, EpisodeScore& out) override {
+    const bool stood = sim::stands_at_end(world, r.status, controller);
+    out.stood = stood ? 1 : 0;
+    out.get_up_attempts = watch_.attempts();
+    out.stand_time_s = stood ? std::max(0.0, watch_.stand_again_s()) : -1.0;
+    out.fell = !stood;
+    const double time = stood ? out.stand_time_s : config_.duration_s + kNotStandingPenaltyS;
+    out.objectives = {time, r.max_accel};
+    out.constraints = {stood ? 0.0 : -1.0};
+    return {};
+  }
+
+ private:
+  const TaskConfig& config_;
+  sim::GetUpWatch watch_;
+};
+
+class GetUpTask final : public TaskType {
+ public:
+  std::string_view name() const override { return "getup"; }
+  int constraint_count() const override { return 1; }
+  ObjectiveLabels objective_labels(const nlohmann::json&) const override {
+    return {"time until standing [s]", "max |a| [m/s^2]"};
+  }
+  std::string objective_legend() const override {
+    return "f1 time until standing [s], f2 max |a| [m/s^2]";
+  }
+  const char* best_f1_pick() const override { return "quickest"; }
+  const char* best_f2_pick() const override { return "gentlest"; }
+  ValidationWords validation_words() const override {
+    return {"stand up from the front and from the back",
+            "stands up from the front and from the back",
+            "does not stand up in time",
+            "time until standing",
+            "get-up",
+            "{} % slower than in the run"};
+  }
+  bool succeeded(const TaskConfig&, const EpisodeScore& score) const override {
+    return score.stood == episodes_per_world();
+  }
+  std::string outcome_note(const TaskConfig&, const EpisodeScore& s, double) const override {
+    char text[96];
+    if (s.stood == episodes_per_world())
+      std::snprintf(text, sizeof text, "stood up in %.2f s (mean of front and back)",
+                    s.stand_time_s);
+    else
+      std::snprintf(text, sizeof text, "stood up in %d of %d episodes", s.stood,
+                    episodes_per_world());
+    return text;
+  }
+  int episodes_per_world() const override { return 2; }
+  sim::ResetSpec reset_spec(const TaskConfig&, int episode) const override {
+    return sim::lying_reset_spec(episode == 0);
+  }
+  std::unique_ptr<TaskEpisode> start_episode(const TaskConfig& config, int, double period_s,
+                                             const sim::SimWorld&) const override {
+    return std::make_unique<GetUpEpisode>(config, period_s);
+  }
+};
+
+}  // namespace
+
+const TaskType& getup_task_type() {
+  static const GetUpTask type;
+  return type;
+}
+
+}  // namespace stride::opt
