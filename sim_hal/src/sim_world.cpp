@@ -7,6 +7,7 @@
 #include "robot_placement.hpp"
 #include "stride/sim_hal/collision_points.hpp"
 #include "stride/sim_hal/physics_engine.hpp"
+#include "stride/sim_hal/sim_servo.hpp"
 #include "stride/sim_hal/world_rng.hpp"
 
 namespace stride::sim {
@@ -24,11 +25,7 @@ struct SimWorld::Impl {
   std::vector<double> joint_tau;
   // Per servo.
   std::array<int, hal::kServoCount> servo_joint{};
-  std::array<ServoModel, hal::kServoCount> servos{};
-  std::array<MxServo, hal::kServoCount> mx_servos{};  ///< ServoLaw::kIdentified
-  bool identified = false;
-  /// Identified law: last step's joint torque, for the external torque estimate.
-  std::array<double, hal::kServoCount> last_torque{};
+  std::array<std::unique_ptr<SimServo>, hal::kServoCount> servos;  ///< the world's servo law
   std::array<fw::ServoModel, hal::kServoCount> servo_models{};
   std::array<hal::ServoCommand, hal::kServoCount> written{};
   /// The commands written 1, 2, ... periods ago (latency: RobotCalibration, Randomisation).
@@ -60,7 +57,6 @@ struct SimWorld::Impl {
 
   Status configure();
   void apply_pushes();
-  double armature(std::size_t servo) const;
   void servo_torques();
   bool step_once();
   TorsoMotion torso_motion() const {
@@ -138,8 +134,11 @@ Status SimWorld::Impl::configure() {
   em.robot = &model;
   em.link_mass_scale.assign(model.links().size(), 1.0);
   em.joint_armature.assign(model.joints().size(), 0.0);
-  for (std::size_t i = 0; i < hal::kServoCount; ++i)
-    em.joint_armature[static_cast<std::size_t>(servo_joint[i])] = armature(i);
+  for (std::size_t i = 0; i < hal::kServoCount; ++i) {
+    servos[i] = make_sim_servo(o.servo.law);
+    em.joint_armature[static_cast<std::size_t>(servo_joint[i])] =
+        servos[i]->armature(servo_models[i], o.battery_voltage_v, o.servo);
+  }
   em.left_foot = left_foot;
   em.right_foot = right_foot;
   em.contact = o.contact;
@@ -151,30 +150,13 @@ Status SimWorld::Impl::configure() {
   return Status::ok();
 }
 
-/// Rotor inertia reflected through the gearbox about servo `i`'s joint [kg m^2].
-double SimWorld::Impl::armature(std::size_t i) const {
-  if (options.servo.law == ServoLaw::kIdentified)
-    return mx_servo_params(servo_models[i], options.battery_voltage_v, options.servo.friction_model)
-        .armature_kg_m2;
-  const MotorCurve curve = motor_curve(servo_models[i], options.battery_voltage_v);
-  return options.servo.rotor_inertia_kg_m2 * curve.gear_ratio * curve.gear_ratio;
-}
-
 void SimWorld::Impl::servo_torques() {
   for (std::size_t j = 0; j < joint_tau.size(); ++j) {
     const double q = engine->joint_angle(j);
     const double w = engine->joint_speed(j);
     const int servo = joint_servo[j];
-    if (servo >= 0 && identified) {
-      // External torque on the joint: quasi-static, what balanced the servo's torque over the
-      // last step. (A finite-difference estimate, J dw/h - tau, adds the step-to-step noise
-      // of w to the friction's stopping torque and drove a 1/(2h) limit cycle of the whole
-      // body: 0.5 m/s^2 of torso chatter standing still, at any step size.)
-      const auto i = static_cast<std::size_t>(servo);
-      joint_tau[j] = mx_servos[i].step(q, w, -last_torque[i], h);
-      last_torque[i] = joint_tau[j];
-    } else if (servo >= 0) {
-      joint_tau[j] = servos[static_cast<std::size_t>(servo)].step(q, w, h);
+    if (servo >= 0) {
+      joint_tau[j] = servos[static_cast<std::size_t>(servo)]->step(q, w, h);
     } else {
       const JointSpec& spec = model.joints()[j];
       joint_tau[j] =
@@ -262,48 +244,26 @@ Status SimWorld::reset(const ResetSpec& spec) {
   if (Status s = w.engine->build(em); !s) return Status::error("reset: " + s.message());
   // Servo parameters.
   for (std::size_t i = 0; i < hal::kServoCount; ++i) {
-    const MotorCurve curve = motor_curve(w.servo_models[i], w.options.battery_voltage_v);
-    const JointSpec& joint = w.model.joints()[static_cast<std::size_t>(w.servo_joint[i])];
-    ServoParams p;
     const RobotCalibration& calibration = w.options.robot;
-    const double strength = w.strength[i] * calibration.torque_scale(w.servo_models[i]);
-    const double friction = calibration.friction_scale;
-    p.stall_torque_nm = curve.stall_torque_nm * strength;
-    p.no_load_speed_rad_s = curve.no_load_speed_rad_s;
-    p.kp_per_register = w.options.servo.kp_per_register;
-    p.viscous_friction = w.options.servo.viscous_friction * friction;
-    p.coulomb_friction = w.options.servo.coulomb_friction * friction;
-    p.reflected_inertia = w.options.servo.rotor_inertia_kg_m2 * curve.gear_ratio * curve.gear_ratio;
-    p.limited = joint.limited;
-    p.lower = joint.lower;
-    p.upper = joint.upper;
-    w.servos[i].configure(p);
-    w.servos[i].reset(spec.joint_angles[i]);
-    MxServoParams mx = mx_servo_params(w.servo_models[i], w.options.battery_voltage_v,
-                                       w.options.servo.friction_model);
-    mx.strength = strength;
-    if (friction != 1.0) mx.friction.scale(friction);
-    mx.backlash_rad = w.options.servo.backlash_rad;
-    mx.driver_drop_v = w.options.servo.driver_drop_v;
-    mx.limited = joint.limited;
-    mx.lower = joint.lower;
-    mx.upper = joint.upper;
-    w.mx_servos[i].configure(mx);
-    w.mx_servos[i].reset(spec.joint_angles[i]);
-    w.last_torque[i] = 0.0;
+    ServoSetup setup;
+    setup.model = w.servo_models[i];
+    setup.supply_voltage_v = w.options.battery_voltage_v;
+    setup.strength = w.strength[i] * calibration.torque_scale(w.servo_models[i]);
+    setup.friction_scale = calibration.friction_scale;
+    setup.options = &w.options.servo;
+    setup.joint = &w.model.joints()[static_cast<std::size_t>(w.servo_joint[i])];
+    // Before the first command the servos hold the start pose at the MX's power-on P (32,
+    // hal::ServoCommand's default).
     hal::ServoCommand hold;
     hold.position_rad = spec.joint_angles[i];
-    hold.p_gain = 32.0;
     hold.torque_enable = true;
+    w.servos[i]->reset(setup, spec.joint_angles[i], hold);
     w.written[i] = spec.previous_commands.empty() ? hold : spec.previous_commands[0].servos[i];
     for (std::size_t k = 0; k < w.delayed.size(); ++k)
       w.delayed[k][i] = k < spec.previous_commands.size() ? spec.previous_commands[k].servos[i]
                         : spec.previous_commands.empty()  ? hold
                                                           : spec.previous_commands.back().servos[i];
-    w.servos[i].set_input({hold.position_rad, 0.0, hold.p_gain, hold.torque_limit, true});
-    w.mx_servos[i].set_input({hold.position_rad, 0.0, hold.p_gain, hold.torque_limit, true});
   }
-  w.identified = w.options.servo.law == ServoLaw::kIdentified;
   w.torque_enable = true;
   // Pose.
   EngineStart start;
@@ -352,15 +312,14 @@ hal::ServoState SimWorld::servo_state(std::size_t index) const {
   if (index >= hal::kServoCount) return out;
   const Impl& w = *impl_;
   const auto joint = static_cast<std::size_t>(w.servo_joint[index]);
-  const ServoModel& servo = w.servos[index];
-  const MxServo& mx = w.mx_servos[index];
+  const SimServo& servo = *w.servos[index];
   const hal::ServoCommand& cmd = w.written[index];
   constexpr double kSpeedUnit = 0.114 * 2.0 * M_PI / 60.0;  // present speed register unit
   out.position_rad = quantise_encoder(w.engine->joint_angle(joint));
   out.speed_rad_s = std::round(w.engine->joint_speed(joint) / kSpeedUnit) * kSpeedUnit;
-  out.load = w.identified ? mx.load() : servo.load();
+  out.load = servo.load();
   out.voltage_v = w.options.battery_voltage_v;
-  out.temperature_c = std::round(w.identified ? mx.temperature_c() : servo.temperature_c());
+  out.temperature_c = std::round(servo.temperature_c());
   out.goal_position_rad = cmd.position_rad;
   out.p_gain = cmd.p_gain;
   out.i_gain = cmd.i_gain;
@@ -387,10 +346,7 @@ bool SimWorld::advance_period() {
     const int d = w.latency_ticks;
     const hal::ServoCommand c =
         d == 0 ? w.written[i] : w.delayed[static_cast<std::size_t>(d - 1)][i];
-    w.servos[i].set_input({c.position_rad, c.moving_speed_rad_s, c.p_gain, c.torque_limit,
-                           c.torque_enable && w.torque_enable});
-    w.mx_servos[i].set_input({c.position_rad, c.moving_speed_rad_s, c.p_gain, c.torque_limit,
-                              c.torque_enable && w.torque_enable});
+    w.servos[i]->set_command(c, c.torque_enable && w.torque_enable);
     for (std::size_t k = w.delayed.size() - 1; k > 0; --k) w.delayed[k][i] = w.delayed[k - 1][i];
     w.delayed[0][i] = w.written[i];
   }
@@ -458,14 +414,7 @@ Eigen::Isometry3d SimWorld::torso_pose() const {
 std::uint64_t SimWorld::state_hash() const {
   const Impl& w = *impl_;
   std::uint64_t hash = w.engine->hash(0xcbf29ce484222325ULL);
-  for (std::size_t i = 0; i < hal::kServoCount; ++i) {
-    const double sp = w.identified ? w.mx_servos[i].setpoint() : w.servos[i].setpoint();
-    hash = fnv1a(hash, &sp, sizeof sp);
-    if (w.identified) {
-      const double gap = w.mx_servos[i].backlash_gap();
-      hash = fnv1a(hash, &gap, sizeof gap);
-    }
-  }
+  for (std::size_t i = 0; i < hal::kServoCount; ++i) hash = w.servos[i]->hash(hash);
   return hash;
 }
 

@@ -1,7 +1,7 @@
 // SimWorld: the simulated igus robot on a grass field with a ball, on a physics engine.
 //
 // Built from a URDF (RobotModel). What does not depend on the engine lives here: the servo
-// models (ServoModel, the seed's law, or MxServo, the identified MX servo) turn each joint's
+// models (SimServo, sim_servo.hpp: the seed's law or the identified MX servo) turn each joint's
 // angle and speed into a torque every physics step; the IMU (ImuSampler) reads the torso's
 // motion; the seeded randomisation (friction, masses, servo strength, command latency, IMU
 // bias) is drawn at every reset; the robot is placed by forward kinematics. The engine
