@@ -132,9 +132,9 @@ std::string fail_reason(const ValidationWords& words, const json& cell, int seed
     return text + "worse than in the run";
   }
   if (falls > 0 && misses > 0)
-    return "falls in " + std::to_string(falls) + " and " + words.misses + " in " +
+    return words.falls + " in " + std::to_string(falls) + " and " + words.misses + " in " +
            std::to_string(misses) + of;
-  if (falls > 0) return "falls in " + std::to_string(falls) + of;
+  if (falls > 0) return words.falls + " in " + std::to_string(falls) + of;
   if (misses > 0) return words.misses + " in " + std::to_string(misses) + of;
   return "no seed run";
 }
@@ -390,13 +390,14 @@ std::string validation_words(const json& result) {
     out << "  no pick holds in any world\n";
   char legend[768];
   std::snprintf(legend, sizeof legend,
-                "pass (holds): at least %.0f %% of the seeds %s without a fall, and the median %s "
+                "pass (holds): at least %.0f %% of the seeds %s%s, and the median %s "
                 "is at most %.0f %% worse than the individual's own value in the run.\n"
                 "fail: not so in that world: the %s does not carry over to it (for a pick: "
                 "what the run tuned does not hold there). A finding about the %s in that "
                 "world, not an error of the program.\n",
-                100.0 * min_reached, words.reach.c_str(), words.measure.c_str(), 100.0 * max_worse,
-                words.motion.c_str(), words.motion.c_str());
+                100.0 * min_reached, words.reach.c_str(), words.without_fall.c_str(),
+                words.measure.c_str(), 100.0 * max_worse, words.motion.c_str(),
+                words.motion.c_str());
   out << legend;
   return out.str();
 }

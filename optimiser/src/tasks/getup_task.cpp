@@ -76,7 +76,9 @@ class GetUpTask final : public TaskType {
             "does not stand up in time",
             "time until standing",
             "get-up",
-            "{} % slower than in the run"};
+            "{} % slower than in the run",
+            "stays down",
+            " within the time limit"};
   }
   bool succeeded(const TaskConfig&, const EpisodeScore& score) const override {
     return score.stood == episodes_per_world();

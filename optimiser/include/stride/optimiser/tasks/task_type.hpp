@@ -51,8 +51,10 @@ class TaskEpisode {
 /// How the validation's plain-language summary names a task's goal and gate measure.
 struct ValidationWords {
   std::string reach, reaches, misses, measure;
-  std::string motion;  ///< "walk", "kick" or "get-up": what does or does not carry over
-  std::string worse;   ///< "{} % slower than in the run": {} is the percentage
+  std::string motion;           ///< "walk", "kick" or "get-up": what does or does not carry over
+  std::string worse;            ///< "{} % slower than in the run": {} is the percentage
+  std::string falls = "falls";  ///< "falls in 3 of 10 seeds"
+  std::string without_fall = " without a fall";  ///< after `reach` in the gate's legend
 };
 
 /// Labels of the two objectives with their units.
