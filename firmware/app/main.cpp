@@ -36,7 +36,7 @@ double us(std::int64_t ns) {
 
 int main(int argc, char** argv) {
   using namespace stride;
-  fw::CliArgs args;
+  core::CliArgs args;
   std::string backends;
   for (const auto& b : fw::hal_backends())
     backends += (backends.empty() ? "" : "|") + std::string(b.name);

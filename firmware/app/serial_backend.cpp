@@ -14,7 +14,7 @@ namespace {
 using stride::Status;
 namespace dxl = stride::hal::dxl;
 
-void declare(stride::fw::CliArgs& args) {
+void declare(stride::core::CliArgs& args) {
   args.option("port", "serial: bus device (e.g. /dev/ttyUSB0, or a stride vbus link)")
       .option("baud", "serial: baud rate", true, "1000000")
       .option("bus-margin-us", "serial: time added to every bus transaction's wire time", true,
@@ -37,7 +37,8 @@ const char* health_name(stride::hal::DeviceHealth h) {
   return "?";
 }
 
-Status make(const stride::fw::CliArgs& args, std::int64_t period_ns, stride::fw::HalInstance& out) {
+Status make(const stride::core::CliArgs& args, std::int64_t period_ns,
+            stride::fw::HalInstance& out) {
   if (!args.has("port")) return Status::error("--hal serial needs --port DEV");
   std::int64_t baud = 0;
   if (Status s = args.get_int("baud", baud); !s) return s;

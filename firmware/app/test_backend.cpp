@@ -5,9 +5,9 @@
 
 namespace {
 
-void declare(stride::fw::CliArgs&) {}
+void declare(stride::core::CliArgs&) {}
 
-stride::Status make(const stride::fw::CliArgs&, std::int64_t period_ns,
+stride::Status make(const stride::core::CliArgs&, std::int64_t period_ns,
                     stride::fw::HalInstance& out) {
   stride::hal::ScriptedRobot::Options options;
   options.period_ns = period_ns;

@@ -1,6 +1,8 @@
 // Firmware composition root: registration order, parameter file, loop period.
 #include "stride/firmware/firmware.hpp"
 
+#include "stride/core/data_dir.hpp"
+
 #include <cmath>
 #include <cstdlib>
 #include <exception>
@@ -15,20 +17,7 @@
 namespace stride::fw {
 
 std::filesystem::path data_dir() {
-  if (const char* env = std::getenv("STRIDE_DATA_DIR"); env != nullptr && *env != '\0') {
-    return env;
-  }
-  // An installed binary finds its data beside it: <prefix>/bin/stride-fw and
-  // <prefix>/share/stride/, wherever the prefix was copied to.
-  std::error_code error;
-  const auto exe = std::filesystem::read_symlink("/proc/self/exe", error);
-  if (!error) {
-    const auto installed = exe.parent_path().parent_path() / "share" / "stride";
-    if (std::filesystem::exists(installed / "config" / "servo_table.json", error)) {
-      return installed;
-    }
-  }
-  return STRIDE_FIRMWARE_DATA_DIR;  // the source tree (development builds)
+  return core::data_dir("config/servo_table.json", STRIDE_FIRMWARE_DATA_DIR);
 }
 
 // The motion engines the controller drives. Each engine registers its parameters in its

@@ -9,7 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "stride/firmware/atomic_file.hpp"
+#include "stride/core/atomic_file.hpp"
 
 namespace stride::fw {
 
@@ -295,7 +295,7 @@ nlohmann::json ParameterStore::describe_json(std::string_view prefix) const {
 }
 
 Status ParameterStore::save_file(const std::filesystem::path& path, std::string_view prefix) const {
-  return write_file_atomically(path, to_json(prefix).dump(2) + "\n");
+  return core::write_file_atomically(path, to_json(prefix).dump(2) + "\n");
 }
 
 }  // namespace stride::fw

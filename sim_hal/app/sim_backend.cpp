@@ -9,12 +9,12 @@
 
 namespace {
 
-void declare(stride::fw::CliArgs& args) {
+void declare(stride::core::CliArgs& args) {
   stride::sim::declare_world_options(args);
   args.option("realtime", "sim: pace the simulation at real time", false);
 }
 
-stride::Status make(const stride::fw::CliArgs& args, std::int64_t period_ns,
+stride::Status make(const stride::core::CliArgs& args, std::int64_t period_ns,
                     stride::fw::HalInstance& out) {
   stride::sim::WorldOptions options;
   if (stride::Status s = stride::sim::read_world_options(args, options); !s) return s;

@@ -1,6 +1,8 @@
 // `stride replay`'s outputs: text table, JSON summary, HTML page with inline SVG traces.
 #include "stride/sim_hal/log_replay_report.hpp"
 
+#include "stride/core/text_escape.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -35,29 +37,6 @@ std::string format(const char* pattern, double v) {
   char text[64];
   std::snprintf(text, sizeof text, pattern, v);
   return text;
-}
-
-std::string escape(const std::string& text) {
-  std::string out;
-  for (const char c : text) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
 }
 
 /// The servo with the largest position error, as "name x.x".
@@ -194,7 +173,8 @@ class Chart {
     hi += pad;
     std::ostringstream s;
     s << "<svg viewBox='0 0 " << kWidth << ' ' << kHeight << "' class='chart'>";
-    s << "<text x='4' y='12' class='title'>" << escape(title) << " [" << escape(unit) << "]</text>";
+    s << "<text x='4' y='12' class='title'>" << core::xml_escape(title) << " ["
+      << core::xml_escape(unit) << "]</text>";
     s << "<text x='4' y='" << kTop + 8 << "'>" << format("%.3g", hi) << "</text>";
     s << "<text x='4' y='" << kHeight - kBottom << "'>" << format("%.3g", lo) << "</text>";
     for (const ReplayWindow& w : r_.windows)
@@ -235,7 +215,8 @@ class Chart {
 std::string replay_html(const ReplayResult& r, const std::string& title,
                         const std::vector<std::pair<std::string, std::string>>& facts) {
   std::ostringstream page;
-  page << "<!DOCTYPE html>\n<html lang='en'><head><meta charset='utf-8'><title>" << escape(title)
+  page << "<!DOCTYPE html>\n<html lang='en'><head><meta charset='utf-8'><title>"
+       << core::xml_escape(title)
        << "</title>\n<style>body{font-family:sans-serif;margin:1.5em;max-width:960px}"
           "table{border-collapse:collapse}td,th{padding:2px 8px;border-bottom:1px solid #ddd;"
           "text-align:left}pre{font-size:12px}svg.chart{width:100%;height:auto;display:block;"
@@ -243,10 +224,11 @@ std::string replay_html(const ReplayResult& r, const std::string& title,
           "path{fill:none;stroke-width:1.2}path.logged{stroke:#555}path.sim{stroke:#d33}"
           "line.win{stroke:#99c;stroke-dasharray:3 3}.key span{padding:0 1em}</style>"
           "</head><body>\n<h1>"
-       << escape(title) << "</h1>\n<table>";
+       << core::xml_escape(title) << "</h1>\n<table>";
   for (const auto& [name, value] : facts)
-    page << "<tr><th>" << escape(name) << "</th><td>" << escape(value) << "</td></tr>";
-  page << "</table>\n<h2>RMS errors</h2>\n<pre>" << escape(replay_table(r)) << "</pre>\n";
+    page << "<tr><th>" << core::xml_escape(name) << "</th><td>" << core::xml_escape(value)
+         << "</td></tr>";
+  page << "</table>\n<h2>RMS errors</h2>\n<pre>" << core::xml_escape(replay_table(r)) << "</pre>\n";
   page << "<h2>Traces</h2><p class='key'><span style='color:#555'>&#9473; logged</span>"
           "<span style='color:#d33'>&#9473; simulated</span><span style='color:#99c'>"
           "&#9476; window start (the simulated robot is placed in the logged state)</span></p>\n";

@@ -5,7 +5,7 @@
 
 #include <vector>
 
-#include "stride/hal/status.hpp"
+#include "stride/core/status.hpp"
 #include "stride/sim_hal/collision_points.hpp"
 #include "stride/sim_hal/physics_engine.hpp"
 #include "stride/sim_hal/sim_world.hpp"

@@ -14,7 +14,7 @@
 
 namespace stride::sim {
 
-void declare_world_options(fw::CliArgs& args) {
+void declare_world_options(core::CliArgs& args) {
   args.option("push",
               "T,DIR,IMPULSE: push the trunk T s after the start, DIR forward|backward|left|right "
               "or degrees anticlockwise from the robot's heading, IMPULSE in N s (a force over "
@@ -42,7 +42,7 @@ void declare_world_options(fw::CliArgs& args) {
               true, "the world's");
 }
 
-Status read_world_options(const fw::CliArgs& args, WorldOptions& out) {
+Status read_world_options(const core::CliArgs& args, WorldOptions& out) {
   std::int64_t seed = 1;
   if (Status s = args.get_int("seed", seed); !s) return s;
   if (seed < 0) return Status::error("--seed: must be >= 0, got " + std::to_string(seed));

@@ -3,7 +3,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "stride/firmware/atomic_file.hpp"
+#include "stride/core/atomic_file.hpp"
 
 namespace stride::sim {
 namespace {
@@ -60,7 +60,7 @@ void TrajectoryRecorder::record(hal::Tick tick, const SimWorld& world,
 }
 
 Status TrajectoryRecorder::save(const std::filesystem::path& path) const {
-  return fw::write_file_atomically(path, text_);
+  return core::write_file_atomically(path, text_);
 }
 
 }  // namespace stride::sim

@@ -19,7 +19,7 @@
 #include <string>
 #include <vector>
 
-#include "stride/firmware/cli_args.hpp"
+#include "stride/core/cli_args.hpp"
 #include "stride/firmware/firmware.hpp"
 #include "stride/sim_hal/episode.hpp"
 #include "stride/sim_hal/script_episodes.hpp"
@@ -29,6 +29,7 @@
 namespace {
 
 namespace fw = stride::fw;
+namespace core = stride::core;
 namespace hal = stride::hal;
 namespace sim = stride::sim;
 
@@ -87,7 +88,7 @@ std::vector<std::int64_t> parse_steps(const std::string& text) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  fw::CliArgs args;
+  core::CliArgs args;
   args.option("seeds", "seeds for the forward walk, the kick and the get-up", true, "3");
   args.option("steps-us", "physics steps [us], the finest last (the reference)", true,
               "2000,1000,500,250");

@@ -18,7 +18,7 @@
 #include <memory>
 #include <vector>
 
-#include "stride/firmware/cli_args.hpp"
+#include "stride/core/cli_args.hpp"
 #include "stride/firmware/firmware.hpp"
 #include "stride/sim_hal/collision_points.hpp"
 #include "stride/sim_hal/episode.hpp"
@@ -28,6 +28,7 @@
 namespace {
 
 namespace fw = stride::fw;
+namespace core = stride::core;
 namespace hal = stride::hal;
 namespace sim = stride::sim;
 
@@ -183,7 +184,7 @@ double median(std::vector<double> v) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  fw::CliArgs args;
+  core::CliArgs args;
   args.option("params", "firmware parameter file (JSON)", true);
   args.option("vx", "walk command x", true, "0");
   args.option("vy", "walk command y", true, "0");

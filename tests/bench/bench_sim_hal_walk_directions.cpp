@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "stride/firmware/cli_args.hpp"
+#include "stride/core/cli_args.hpp"
 #include "stride/firmware/firmware.hpp"
 #include "stride/sim_hal/episode.hpp"
 #include "stride/sim_hal/sim_cli.hpp"
@@ -25,6 +25,7 @@
 namespace {
 
 namespace fw = stride::fw;
+namespace core = stride::core;
 namespace hal = stride::hal;
 namespace sim = stride::sim;
 
@@ -126,7 +127,7 @@ double percentile(std::vector<double> v, double p) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  fw::CliArgs args;
+  core::CliArgs args;
   args.option("seeds", "seeds per direction", true, "3");
   args.option("duration", "walk length [s]", true, "20");
   args.option("directions", "comma-separated: fwd,back,left,right,turn_l,turn_r", true,

@@ -11,8 +11,8 @@
 #include <system_error>
 #include <vector>
 
-#include "stride/firmware/atomic_file.hpp"
-#include "stride/firmware/cli_args.hpp"
+#include "stride/core/atomic_file.hpp"
+#include "stride/core/cli_args.hpp"
 #include "stride/firmware/recorder/flight_log_reader.hpp"
 #include "stride/host_tools/command.hpp"
 #include "stride/sim_hal/calibration.hpp"
@@ -23,6 +23,7 @@ namespace {
 using stride::Status;
 namespace sim = stride::sim;
 namespace fw = stride::fw;
+namespace core = stride::core;
 
 std::atomic<bool> g_stop{false};
 extern "C" void on_sigint(int) {
@@ -42,7 +43,7 @@ int failure(const std::string& message) {
 }  // namespace
 
 int run_calibrate(int argc, char** argv) {
-  fw::CliArgs args;
+  core::CliArgs args;
   args.option("help", "show this help", false);
   args.option("fit", "parameters to fit, comma-separated (see below)", true);
   args.option("out", "the world file to write (required)", true);
@@ -195,7 +196,7 @@ int run_calibrate(int argc, char** argv) {
   result.world.calibration["supply_voltage_from"] = fit_voltage ? "fit" : "logs";
   if (args.has("robot-mass"))
     result.world.calibration["robot_mass_kg"] = std::stod(args.get("robot-mass"));
-  if (Status w = fw::write_file_atomically(out, sim::to_json(result.world).dump(2) + "\n"); !w)
+  if (Status w = core::write_file_atomically(out, sim::to_json(result.world).dump(2) + "\n"); !w)
     return failure(w.message());
   std::filesystem::remove(options.progress_file, error);
 

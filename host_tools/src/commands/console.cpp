@@ -18,7 +18,7 @@
 #include <editline/readline.h>
 #include <nlohmann/json.hpp>
 
-#include "stride/firmware/cli_args.hpp"
+#include "stride/core/cli_args.hpp"
 #include "stride/firmware/console/line_editor.hpp"
 #include "stride/host_tools/command.hpp"
 #include "stride/host_tools/console_client.hpp"
@@ -145,7 +145,7 @@ int fail(int code, const std::string& message) {
 }  // namespace
 
 int run_console(int argc, char** argv) {
-  fw::CliArgs args;
+  core::CliArgs args;
   args.option("port", "serial device or pseudo-terminal of the console")
       .option("baud", "baud rate", true, "115200")
       .option("timeout", "seconds to wait for each reply", true, "5")

@@ -5,8 +5,8 @@
 #include <cstdio>
 #include <string>
 
-#include "stride/firmware/atomic_file.hpp"
-#include "stride/firmware/cli_args.hpp"
+#include "stride/core/atomic_file.hpp"
+#include "stride/core/cli_args.hpp"
 #include "stride/firmware/robot_description.hpp"
 #include "stride/host_tools/command.hpp"
 #include "stride/sim_hal/robot_description_writer.hpp"
@@ -23,7 +23,7 @@ int bad_input(const std::string& message) {
 }  // namespace
 
 int run_describe(int argc, char** argv) {
-  stride::fw::CliArgs args;
+  stride::core::CliArgs args;
   args.option("urdf", "robot model to describe", true,
               stride::sim::RobotModel::igus_path().string())
       .option("servo-table", "servo table the description must match", true,
@@ -64,7 +64,7 @@ int run_describe(int argc, char** argv) {
     std::fputs(text.c_str(), stdout);
     return 0;
   }
-  if (auto st = stride::fw::write_file_atomically(out, text); !st)
+  if (auto st = stride::core::write_file_atomically(out, text); !st)
     return bad_input("--out: " + st.message());
   std::fprintf(stderr, "stride describe: %s: %zu joints, %.4f kg\n", out.c_str(),
                check.joints().size(), check.total_mass());

@@ -12,7 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "stride/firmware/cli_args.hpp"
+#include "stride/core/cli_args.hpp"
 #include "stride/hal/dynamixel/codec_v1.hpp"
 #include "stride/hal/dynamixel/codec_v2.hpp"
 #include "stride/hal/dynamixel/control_table.hpp"
@@ -151,7 +151,7 @@ Status resolve_register(Client& client, std::uint8_t id, const std::string& text
 }
 
 int run_dxl(int argc, char** argv) {
-  stride::fw::CliArgs args;
+  stride::core::CliArgs args;
   args.option("port", "bus device (e.g. /dev/ttyUSB0 or a stride vbus link)")
       .option("baud", "baud rate", true, "1000000")
       .option("protocol", "Dynamixel protocol 1 or 2", true, "1")

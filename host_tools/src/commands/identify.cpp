@@ -10,7 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "stride/firmware/cli_args.hpp"
+#include "stride/core/cli_args.hpp"
 #include "stride/host_tools/command.hpp"
 #include "stride/sim_hal/identification_run.hpp"
 #include "stride/sim_hal/sim_cli.hpp"
@@ -28,7 +28,7 @@ int bad_input(const std::string& message) {
 }  // namespace
 
 int run_identify(int argc, char** argv) {
-  stride::fw::CliArgs args;
+  stride::core::CliArgs args;
   args.option("help", "show this help", false);
   args.option("out", "the flight log to write (required)", true);
   args.option("parts", "comma-separated parts in order", true,

@@ -17,7 +17,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "stride/firmware/cli_args.hpp"
+#include "stride/core/cli_args.hpp"
 #include "stride/host_tools/command.hpp"
 #include "stride/optimiser/nsga2/evaluator.hpp"
 #include "stride/optimiser/nsga2/mpi_evaluator.hpp"
@@ -97,8 +97,8 @@ struct Settings {
   std::int64_t slow_ms = 0;
 };
 
-Status read_int(const stride::fw::CliArgs& args, const char* name, std::int64_t lo, std::int64_t hi,
-                std::int64_t& out) {
+Status read_int(const stride::core::CliArgs& args, const char* name, std::int64_t lo,
+                std::int64_t hi, std::int64_t& out) {
   if (auto st = args.get_int(name, out); !st) return st;
   if (out < lo || out > hi) {
     return Status::error("--" + std::string(name) + " = " + std::to_string(out) + " is outside [" +
@@ -108,7 +108,7 @@ Status read_int(const stride::fw::CliArgs& args, const char* name, std::int64_t 
 }
 
 /// Reads the NSGA-II inputs; values not given keep what `s` holds.
-Status read_settings(const stride::fw::CliArgs& args, std::size_t real_genes, Settings& s) {
+Status read_settings(const stride::core::CliArgs& args, std::size_t real_genes, Settings& s) {
   opt::Nsga2Settings& n = s.config.settings;
   std::int64_t v = 0;
   if (args.has("seed")) {
@@ -143,7 +143,7 @@ Status read_settings(const stride::fw::CliArgs& args, std::size_t real_genes, Se
 }  // namespace
 
 int run_optimise(int argc, char** argv) {
-  stride::fw::CliArgs args;
+  stride::core::CliArgs args;
   args.option("problem", "test problem: " + problem_list())
       .option("config", "robot task config (optimiser/configs/walk.json, kick.json, ...)")
       .option("trials",

@@ -8,8 +8,8 @@
 #include <utility>
 #include <vector>
 
-#include "stride/firmware/atomic_file.hpp"
-#include "stride/firmware/cli_args.hpp"
+#include "stride/core/atomic_file.hpp"
+#include "stride/core/cli_args.hpp"
 #include "stride/firmware/recorder/flight_log_reader.hpp"
 #include "stride/host_tools/command.hpp"
 #include "stride/sim_hal/log_replay.hpp"
@@ -21,6 +21,7 @@ namespace {
 using stride::Status;
 namespace sim = stride::sim;
 namespace fw = stride::fw;
+namespace core = stride::core;
 
 int bad_input(const std::string& message) {
   std::fprintf(stderr, "stride replay: %s\n", message.c_str());
@@ -46,7 +47,7 @@ Status check_output_path(const std::string& option, const std::string& path) {
 }  // namespace
 
 int run_replay(int argc, char** argv) {
-  fw::CliArgs args;
+  core::CliArgs args;
   args.option("help", "show this help", false);
   args.option("window", "window length [s]: the robot is placed in the logged state at each start",
               true, "2");
@@ -124,7 +125,7 @@ int run_replay(int argc, char** argv) {
                                           : "logged joint angles, at rest"}};
   if (args.has("html")) {
     const std::string page = sim::replay_html(result, "Stride replay: " + log_path, facts);
-    if (Status s = fw::write_file_atomically(args.get("html"), page); !s)
+    if (Status s = core::write_file_atomically(args.get("html"), page); !s)
       return failure(s.message());
   }
   if (args.has("json")) {

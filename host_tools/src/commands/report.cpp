@@ -12,7 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "stride/firmware/cli_args.hpp"
+#include "stride/core/cli_args.hpp"
 #include "stride/host_tools/command.hpp"
 #include "stride/optimiser/report/report_page.hpp"
 #include "stride/optimiser/report/run_data.hpp"
@@ -54,7 +54,7 @@ void print_member(const std::string& label, const nlohmann::json& m, const nlohm
 }  // namespace
 
 int run_report(int argc, char** argv) {
-  stride::fw::CliArgs args;
+  stride::core::CliArgs args;
   args.option("json", "print the summary as one JSON object", false)
       .option("help", "show this help", false);
   if (auto st = args.parse(argc, argv); !st) return bad_input(st.message());

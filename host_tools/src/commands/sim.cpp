@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "stride/firmware/atomic_file.hpp"
-#include "stride/firmware/cli_args.hpp"
+#include "stride/core/atomic_file.hpp"
+#include "stride/core/cli_args.hpp"
 #include "stride/firmware/firmware.hpp"
 #include "stride/firmware/motion_request.hpp"
 #include "stride/host_tools/command.hpp"
@@ -55,7 +55,7 @@ std::string fixed(double v, const char* unit) {
 }
 
 // The --html page: the episode's settings and results, accelerometer, poses and replay.
-Status write_html(const stride::fw::CliArgs& args, const std::string& motion,
+Status write_html(const stride::core::CliArgs& args, const std::string& motion,
                   const sim::WorldOptions& world, sim::SimRobot& robot,
                   const sim::EpisodeResult& result, const sim::EpisodeCapture& capture) {
   namespace report = stride::opt::report;
@@ -107,7 +107,7 @@ int run_sim_servo(int argc, char** argv);  // sim_servo.cpp
 
 int run_sim(int argc, char** argv) {
   if (argc >= 2 && std::string(argv[1]) == "servo") return run_sim_servo(argc - 1, argv + 1);
-  stride::fw::CliArgs args;
+  stride::core::CliArgs args;
   args.option("help", "show this help", false);
   args.option("params", "parameter file (JSON) loaded into the controller", true);
   args.option("vx", "walk forward command, normalised [-1, 1]", true, "0");
@@ -228,7 +228,7 @@ int run_sim(int argc, char** argv) {
     const std::string svg = sim::render_pose_svg(
         robot.world().model(), result.snapshots, world_options.contact.grass_thickness_m,
         world_options.ball.present ? world_options.ball.radius_m : 0.0);
-    if (Status s = stride::fw::write_file_atomically(args.get("snapshot"), svg); !s) {
+    if (Status s = stride::core::write_file_atomically(args.get("snapshot"), svg); !s) {
       std::fprintf(stderr, "stride sim: %s\n", s.message().c_str());
       return 1;
     }

@@ -7,7 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "stride/firmware/cli_args.hpp"
+#include "stride/core/cli_args.hpp"
 #include "stride/sim_hal/servo_bench.hpp"
 
 namespace {
@@ -24,7 +24,7 @@ int bad_input(const std::string& message) {
 
 /// argv starts at "servo".
 int run_sim_servo(int argc, char** argv) {
-  stride::fw::CliArgs args;
+  stride::core::CliArgs args;
   args.option("help", "show this help", false);
   args.option("model", "servo: mx64 or mx106", true, "mx106");
   args.option("experiment", "no-load, blocked or pendulum", true, "no-load");

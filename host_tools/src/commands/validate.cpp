@@ -12,7 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "stride/firmware/cli_args.hpp"
+#include "stride/core/cli_args.hpp"
 #include "stride/host_tools/command.hpp"
 #include "stride/optimiser/run/validation.hpp"
 
@@ -27,7 +27,7 @@ int bad_input(const std::string& message) {
 }
 
 /// Every value of --engine (repeatable, each may be a comma-separated list).
-Status engines_of(const stride::fw::CliArgs& args, std::vector<stride::sim::EngineKind>& out) {
+Status engines_of(const stride::core::CliArgs& args, std::vector<stride::sim::EngineKind>& out) {
   for (const std::string& value : args.get_all("engine")) {
     std::stringstream list(value);
     std::string name;
@@ -46,7 +46,7 @@ Status engines_of(const stride::fw::CliArgs& args, std::vector<stride::sim::Engi
 }  // namespace
 
 int run_validate(int argc, char** argv) {
-  stride::fw::CliArgs args;
+  stride::core::CliArgs args;
   args.option("engine",
               "engine of the other-engine worlds, repeatable: simbody|mujoco "
               "(default: every engine the run did not use)")

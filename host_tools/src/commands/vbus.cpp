@@ -14,7 +14,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "stride/firmware/cli_args.hpp"
+#include "stride/core/cli_args.hpp"
 #include "stride/firmware/dynamixel_config.hpp"
 #include "stride/hal/dynamixel/pty_bus_server.hpp"
 #include "stride/hal/dynamixel/virtual_bus.hpp"
@@ -64,7 +64,7 @@ int run_vbus(int argc, char** argv) {
       start = comma + 1;
     }
   }
-  fw::CliArgs args;
+  core::CliArgs args;
   args.option("link", "path of the symlink to create to the pseudo-terminal (required)")
       .option(
           "fault",

@@ -1,6 +1,8 @@
 // HtmlPage: skeleton, style sheet and scripts of the self-contained report pages.
 #include "stride/optimiser/report/html_page.hpp"
 
+#include "stride/core/text_escape.hpp"
+
 #include <cmath>
 #include <cstdio>
 
@@ -10,7 +12,7 @@
 namespace stride::opt::report {
 
 std::string html_escape(const std::string& text) {
-  return xml_escape(text);
+  return core::xml_escape(text);
 }
 
 std::string missing_note(const std::string& text) {

@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <thread>
 
-#include "stride/firmware/atomic_file.hpp"
+#include "stride/core/atomic_file.hpp"
 #include "stride/optimiser/report/html_page.hpp"
 #include "stride/optimiser/report/html_replay3d.hpp"
 #include "stride/optimiser/report/html_tables.hpp"
@@ -143,7 +143,7 @@ Status write_report_html(const fs::path& dir, const RobotTask& task, ReportOutco
   const std::string html = page.str();
   out.file = dir / "report.html";
   out.bytes = html.size();
-  return fw::write_file_atomically(out.file, html);
+  return core::write_file_atomically(out.file, html);
 }
 
 Status write_episode_html(const fs::path& file, const std::string& title,
@@ -170,7 +170,7 @@ Status write_episode_html(const fs::path& file, const std::string& title,
   page.add_warnings(replay_warnings);
   if (warnings != nullptr)
     warnings->insert(warnings->end(), replay_warnings.begin(), replay_warnings.end());
-  return fw::write_file_atomically(file, page.str());
+  return core::write_file_atomically(file, page.str());
 }
 
 }  // namespace stride::opt::report

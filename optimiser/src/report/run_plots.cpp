@@ -7,7 +7,7 @@
 #include <limits>
 #include <map>
 
-#include "stride/firmware/atomic_file.hpp"
+#include "stride/core/atomic_file.hpp"
 #include "stride/optimiser/report/svg_chart.hpp"
 
 namespace stride::opt::report {
@@ -169,11 +169,11 @@ Status write_plots(const std::filesystem::path& dir) {
   report::RunData data;
   if (Status s = report::load_run_data(dir, data); !s) return s;
   const auto picks = report::run_picks(data);
-  if (Status s = fw::write_file_atomically(dir / "pareto_by_generation.svg",
-                                           report::pareto_chart_svg(data, picks));
+  if (Status s = core::write_file_atomically(dir / "pareto_by_generation.svg",
+                                             report::pareto_chart_svg(data, picks));
       !s)
     return s;
-  return fw::write_file_atomically(dir / "hypervolume.svg", report::hypervolume_chart_svg(data));
+  return core::write_file_atomically(dir / "hypervolume.svg", report::hypervolume_chart_svg(data));
 }
 
 }  // namespace stride::opt

@@ -1,6 +1,8 @@
 // SVG charts with 1-2-5 ticks, the legend outside the plot area and hover tooltips.
 #include "stride/optimiser/report/svg_chart.hpp"
 
+#include "stride/core/text_escape.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -78,32 +80,6 @@ std::string tick_label(double value, double step) {
   return buf;
 }
 
-std::string xml_escape(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      case '\'':
-        out += "&#39;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
-
 std::string render_chart(const ChartSpec& spec) {
   const double W = spec.width, H = spec.height;
   const double right = W - kLegendW, bottom = H - kBottomPad;
@@ -120,7 +96,7 @@ std::string render_chart(const ChartSpec& spec) {
 
   std::ostringstream svg;
   svg << "<svg xmlns=\"http://www.w3.org/2000/svg\"";
-  if (!spec.id.empty()) svg << " id=\"" << xml_escape(spec.id) << "\"";
+  if (!spec.id.empty()) svg << " id=\"" << core::xml_escape(spec.id) << "\"";
   // The plot area and its x range, for the page's scripts (the replay's time cursor).
   svg << " data-plot=\"" << kLeft << ' ' << kTop << ' ' << num(right) << ' ' << num(bottom) << ' '
       << num(x0) << ' ' << num(x1) << '"';
@@ -128,12 +104,12 @@ std::string render_chart(const ChartSpec& spec) {
       << "\" font-family=\"sans-serif\" font-size=\"12\">\n"
       << "<rect width=\"" << W << "\" height=\"" << H << "\" fill=\"white\"/>\n"
       << "<text x=\"" << num((kLeft + right) / 2) << "\" y=\"22\" text-anchor=\"middle\" "
-      << "font-size=\"15\">" << xml_escape(spec.title) << "</text>\n"
+      << "font-size=\"15\">" << core::xml_escape(spec.title) << "</text>\n"
       << "<text x=\"" << num((kLeft + right) / 2) << "\" y=\"" << num(H - 12)
-      << "\" text-anchor=\"middle\">" << xml_escape(spec.x_label) << "</text>\n"
+      << "\" text-anchor=\"middle\">" << core::xml_escape(spec.x_label) << "</text>\n"
       << "<text x=\"16\" y=\"" << num((kTop + bottom) / 2)
       << "\" text-anchor=\"middle\" transform=\"rotate(-90 16 " << num((kTop + bottom) / 2)
-      << ")\">" << xml_escape(spec.y_label) << "</text>\n";
+      << ")\">" << core::xml_escape(spec.y_label) << "</text>\n";
   for (double t : xt) {
     if (t < x0 - 1e-9 * xs || t > x1 + 1e-9 * xs) continue;
     svg << "<line x1=\"" << num(px(t)) << "\" x2=\"" << num(px(t)) << "\" y1=\"" << kTop
@@ -153,7 +129,7 @@ std::string render_chart(const ChartSpec& spec) {
 
   for (const ChartSeries& s : spec.series) {
     svg << "<g";
-    if (!s.css_class.empty()) svg << " class=\"" << xml_escape(s.css_class) << "\"";
+    if (!s.css_class.empty()) svg << " class=\"" << core::xml_escape(s.css_class) << "\"";
     svg << ">\n";
     if (s.line && s.points.size() > 1) {
       svg << "<polyline fill=\"none\" stroke=\"" << s.colour << "\" stroke-width=\"" << s.line_width
@@ -170,7 +146,7 @@ std::string render_chart(const ChartSpec& spec) {
         if (p.tip.empty()) {
           svg << "/>\n";
         } else {
-          svg << "><title>" << xml_escape(p.tip) << "</title></circle>\n";
+          svg << "><title>" << core::xml_escape(p.tip) << "</title></circle>\n";
         }
       }
     svg << "</g>\n";
@@ -185,7 +161,7 @@ std::string render_chart(const ChartSpec& spec) {
     const double cy = py(std::clamp(std::isfinite(m.y) ? m.y : y1, y0, y1));
     svg << "<g class=\"marker\">";
     marker_path(svg, m.shape, cx, cy, 6, "white", m.colour, 2.5);
-    svg << "><title>" << xml_escape(m.tip.empty() ? m.label : m.tip) << "</title>";
+    svg << "><title>" << core::xml_escape(m.tip.empty() ? m.label : m.tip) << "</title>";
     svg << (m.shape == 's' ? "</rect>" : "</path>");
     const std::string text = m.label + (off ? " (off scale)" : "");
     const double tw = 7.2 * static_cast<double>(text.size()), th = 14;
@@ -206,8 +182,8 @@ std::string render_chart(const ChartSpec& spec) {
     placed.push_back({bx0, ty - th, bx0 + tw, ty});
     svg << "<text x=\"" << num(tx) << "\" y=\"" << num(ty) << "\" text-anchor=\""
         << (anchor_end ? "end" : "start") << "\" font-weight=\"bold\" fill=\"" << m.colour
-        << "\" stroke=\"white\" stroke-width=\"3\" paint-order=\"stroke\">" << xml_escape(text)
-        << "</text></g>\n";
+        << "\" stroke=\"white\" stroke-width=\"3\" paint-order=\"stroke\">"
+        << core::xml_escape(text) << "</text></g>\n";
   }
 
   if (spec.legend) {
@@ -223,14 +199,14 @@ std::string render_chart(const ChartSpec& spec) {
             << (s.hollow ? "fill=\"white\" stroke=\"" + s.colour + "\""
                          : "fill=\"" + s.colour + "\"")
             << "/>";
-      svg << "<text x=\"" << num(lx + 28) << "\" y=\"" << num(y + 4) << "\">" << xml_escape(s.label)
-          << "</text>\n";
+      svg << "<text x=\"" << num(lx + 28) << "\" y=\"" << num(y + 4) << "\">"
+          << core::xml_escape(s.label) << "</text>\n";
       y += 18;
     }
     for (const ChartMarker& m : spec.markers) {
       marker_path(svg, m.shape, lx + 11, y, 5, "white", m.colour, 2);
       svg << "/><text x=\"" << num(lx + 28) << "\" y=\"" << num(y + 4) << "\">"
-          << xml_escape(m.label) << "</text>\n";
+          << core::xml_escape(m.label) << "</text>\n";
       y += 18;
     }
   }

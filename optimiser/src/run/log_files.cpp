@@ -9,7 +9,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "stride/firmware/atomic_file.hpp"
+#include "stride/core/atomic_file.hpp"
 
 namespace stride::opt {
 
@@ -69,7 +69,7 @@ Status keep_first_lines(const std::filesystem::path& path, std::size_t count,
     pos = end + 1;
   }
   if (pos == text.size() && std::filesystem::exists(path)) return {};
-  return fw::write_file_atomically(path, std::string_view(text).substr(0, pos));
+  return core::write_file_atomically(path, std::string_view(text).substr(0, pos));
 }
 
 }  // namespace stride::opt

@@ -9,7 +9,7 @@
 #include <set>
 #include <sstream>
 
-#include "stride/firmware/atomic_file.hpp"
+#include "stride/core/atomic_file.hpp"
 #include "stride/optimiser/nsga2/indicators.hpp"
 #include "stride/optimiser/run/log_files.hpp"
 
@@ -279,7 +279,7 @@ Status run_optimisation(const Problem& problem, const RunConfig& config, Evaluat
     if (auto st = Nsga2::create(config.settings, problem.shape(), config.start, engine); !st) {
       return st;
     }
-    if (auto st = fw::write_file_atomically(run_path, description.dump(2) + "\n"); !st) return st;
+    if (auto st = core::write_file_atomically(run_path, description.dump(2) + "\n"); !st) return st;
   }
 
   LineLog evaluations;
@@ -295,7 +295,7 @@ Status run_optimisation(const Problem& problem, const RunConfig& config, Evaluat
         {"engine", engine->checkpoint()},
         {"run",
          {{"evaluation_lines", evaluations.lines()}, {"generation_lines", generations.lines()}}}};
-    return fw::write_file_atomically(checkpoint_path, cp.dump() + "\n");
+    return core::write_file_atomically(checkpoint_path, cp.dump() + "\n");
   };
   if (!options.resume) {
     if (auto st = write_checkpoint(); !st) return st;
@@ -338,7 +338,7 @@ Status run_optimisation(const Problem& problem, const RunConfig& config, Evaluat
     if (auto st = generations.append(generation_line(record).dump()); !st) return st;
     std::size_t rows = 0;
     const std::string csv = pareto_csv(problem.shape(), engine->population(), rows);
-    if (auto st = fw::write_file_atomically(pareto_path, csv); !st) return st;
+    if (auto st = core::write_file_atomically(pareto_path, csv); !st) return st;
     if (auto st = write_checkpoint(); !st) return st;
     summary.last = record;
     summary.pareto_size = rows;

@@ -8,7 +8,7 @@
 #include <limits>
 #include <sstream>
 
-#include "stride/firmware/atomic_file.hpp"
+#include "stride/core/atomic_file.hpp"
 #include "stride/optimiser/report/run_data.hpp"
 
 namespace stride::opt {
@@ -30,7 +30,7 @@ Status write_front_files(const fs::path& dir, const RobotTask& task) {
     g.reals = members[i].genes;
     char name[32];
     std::snprintf(name, sizeof name, "%03zu.json", i);
-    if (Status s = fw::write_file_atomically(front / name, task.parameter_file(g).dump(2) + "\n");
+    if (Status s = core::write_file_atomically(front / name, task.parameter_file(g).dump(2) + "\n");
         !s)
       return s;
   }

@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <memory>
 
-#include "stride/firmware/atomic_file.hpp"
+#include "stride/core/atomic_file.hpp"
 #include "stride/optimiser/nsga2/evaluator.hpp"
 #include "stride/optimiser/report/run_data.hpp"
 #include "stride/optimiser/run/optimisation_run.hpp"
@@ -197,7 +197,7 @@ Status run_validation(const ValidationSubject& subject, const ValidationOptions&
 }
 
 Status write_validation_file(const fs::path& dir, const json& result) {
-  return fw::write_file_atomically(dir / "validation.json", result.dump(1) + "\n");
+  return core::write_file_atomically(dir / "validation.json", result.dump(1) + "\n");
 }
 
 std::function<void(std::size_t, std::size_t)> validation_progress_printer(bool terminal) {

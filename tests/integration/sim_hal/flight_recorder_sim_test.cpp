@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "child_process.hpp"
-#include "stride/firmware/cli_args.hpp"
+#include "stride/core/cli_args.hpp"
 #include "stride/firmware/control_loop.hpp"
 #include "stride/firmware/firmware.hpp"
 #include "stride/firmware/recorder/flight_log_reader.hpp"
@@ -38,7 +38,7 @@ TEST(FlightRecorderSim, TheLogHoldsTheFramesTheLoopRan) {
   EXPECT_EQ(report["record"]["ticks_dropped"], 0);
 
   // The same run in process: the same world options as stride-fw parses them.
-  fw::CliArgs args;
+  core::CliArgs args;
   declare_world_options(args);
   const char* argv[] = {"x", "--seed", "5"};
   ASSERT_TRUE(args.parse(3, argv));

@@ -41,7 +41,7 @@ const std::string kBin = STRIDE_BIN_DIR;
 constexpr int kTicks = 801;  // 8 s at 100 Hz: four windows of 2 s
 
 WorldOptions world_from(std::vector<const char*> argv) {
-  fw::CliArgs args;
+  core::CliArgs args;
   declare_world_options(args);
   argv.insert(argv.begin(), "x");
   EXPECT_TRUE(args.parse(static_cast<int>(argv.size()), argv.data()));

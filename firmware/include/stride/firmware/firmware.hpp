@@ -13,12 +13,12 @@
 #include <optional>
 #include <vector>
 
+#include "stride/core/status.hpp"
 #include "stride/firmware/controller.hpp"
 #include "stride/firmware/parameter_store.hpp"
 #include "stride/firmware/robot_description.hpp"
 #include "stride/firmware/script/script.hpp"
 #include "stride/firmware/servo_table.hpp"
-#include "stride/hal/status.hpp"
 
 namespace stride::fw {
 

@@ -16,9 +16,9 @@
 
 #include <nlohmann/json_fwd.hpp>
 
-#include "stride/firmware/cli_args.hpp"
+#include "stride/core/cli_args.hpp"
+#include "stride/core/status.hpp"
 #include "stride/hal/robot.hpp"
-#include "stride/hal/status.hpp"
 
 namespace stride::fw {
 
@@ -32,8 +32,8 @@ struct HalInstance {
 struct HalBackend {
   std::string_view name;
   std::string_view help;
-  void (*declare_options)(CliArgs& args);
-  Status (*make)(const CliArgs& args, std::int64_t period_ns, HalInstance& out);
+  void (*declare_options)(core::CliArgs& args);
+  Status (*make)(const core::CliArgs& args, std::int64_t period_ns, HalInstance& out);
 };
 
 /// All registered backends, sorted by name.

@@ -30,7 +30,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
-#include "stride/hal/status.hpp"
+#include "stride/core/status.hpp"
 
 namespace stride::fw {
 

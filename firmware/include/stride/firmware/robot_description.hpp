@@ -22,8 +22,8 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "stride/core/status.hpp"
 #include "stride/firmware/servo_table.hpp"
-#include "stride/hal/status.hpp"
 #include "stride/hal/types.hpp"
 
 namespace stride::fw {

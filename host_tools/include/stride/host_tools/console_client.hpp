@@ -9,8 +9,8 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "stride/core/status.hpp"
 #include "stride/firmware/console/tty_port.hpp"
-#include "stride/hal/status.hpp"
 
 namespace stride::tools {
 

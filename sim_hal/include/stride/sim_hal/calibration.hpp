@@ -32,8 +32,8 @@
 #include <string>
 #include <vector>
 
+#include "stride/core/status.hpp"
 #include "stride/firmware/recorder/flight_log_reader.hpp"
-#include "stride/hal/status.hpp"
 #include "stride/sim_hal/log_replay.hpp"
 #include "stride/sim_hal/world_file.hpp"
 

@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
+#include "stride/core/status.hpp"
 #include "stride/firmware/firmware.hpp"
-#include "stride/hal/status.hpp"
 #include "stride/sim_hal/world_options.hpp"
 
 namespace stride::sim {

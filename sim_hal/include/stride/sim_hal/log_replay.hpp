@@ -17,10 +17,10 @@
 
 #include <Eigen/Core>
 
+#include "stride/core/status.hpp"
 #include "stride/firmware/recorder/flight_log_reader.hpp"
 #include "stride/firmware/robot_description.hpp"
 #include "stride/firmware/servo_table.hpp"
-#include "stride/hal/status.hpp"
 #include "stride/sim_hal/world_options.hpp"
 
 namespace stride::sim {

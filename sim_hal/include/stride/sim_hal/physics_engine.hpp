@@ -29,7 +29,7 @@
 #include <string>
 #include <vector>
 
-#include "stride/hal/status.hpp"
+#include "stride/core/status.hpp"
 #include "stride/sim_hal/robot_model.hpp"
 #include "stride/sim_hal/world_options.hpp"
 

@@ -7,8 +7,8 @@
 #include <array>
 #include <string>
 
+#include "stride/core/status.hpp"
 #include "stride/firmware/servo_table.hpp"
-#include "stride/hal/status.hpp"
 #include "stride/sim_hal/robot_model.hpp"
 
 namespace stride::sim {

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "stride/hal/status.hpp"
+#include "stride/core/status.hpp"
 
 namespace stride::sim {
 

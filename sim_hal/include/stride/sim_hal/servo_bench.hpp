@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "stride/hal/status.hpp"
+#include "stride/core/status.hpp"
 #include "stride/sim_hal/mx_servo.hpp"
 
 namespace stride::sim {

@@ -5,16 +5,16 @@
 #include <string>
 #include <vector>
 
-#include "stride/firmware/cli_args.hpp"
+#include "stride/core/cli_args.hpp"
 #include "stride/sim_hal/sim_world.hpp"
 
 namespace stride::sim {
 
 /// Declares --seed, --noise on|off, --physics-step-us, --urdf, --world faithful|seed, --imu,
 /// --servo-law, --engine, --contact, --push.
-void declare_world_options(fw::CliArgs& args);
+void declare_world_options(core::CliArgs& args);
 /// Reads them into `out` (whose control period the caller sets). The error names the option.
-Status read_world_options(const fw::CliArgs& args, WorldOptions& out);
+Status read_world_options(const core::CliArgs& args, WorldOptions& out);
 
 /// One line naming the world's engine, servo law, IMU, contact and physics step, e.g.
 /// "simbody, identified servo law, cm730 IMU, turf, step 2000 us".

@@ -26,9 +26,9 @@
 #include <string>
 #include <vector>
 
+#include "stride/core/status.hpp"
 #include "stride/hal/command_frame.hpp"
 #include "stride/hal/sensor_frame.hpp"
-#include "stride/hal/status.hpp"
 #include "stride/sim_hal/imu_model.hpp"
 #include "stride/sim_hal/imu_sampler.hpp"
 #include "stride/sim_hal/mx_servo.hpp"

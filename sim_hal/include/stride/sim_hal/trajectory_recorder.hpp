@@ -16,8 +16,8 @@
 #include <filesystem>
 #include <string>
 
+#include "stride/core/status.hpp"
 #include "stride/hal/sensor_frame.hpp"
-#include "stride/hal/status.hpp"
 #include "stride/sim_hal/sim_world.hpp"
 
 namespace stride::sim {

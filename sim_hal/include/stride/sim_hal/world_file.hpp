@@ -20,7 +20,7 @@
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>
 
-#include "stride/hal/status.hpp"
+#include "stride/core/status.hpp"
 #include "stride/sim_hal/world_options.hpp"
 
 namespace stride::sim {

@@ -15,9 +15,9 @@
 #include <string>
 #include <vector>
 
+#include "stride/core/status.hpp"
 #include "stride/firmware/motion_manager.hpp"
 #include "stride/firmware/parameter_store.hpp"
-#include "stride/hal/status.hpp"
 
 namespace stride::fw::console {
 

@@ -10,7 +10,7 @@
 #include <string>
 #include <string_view>
 
-#include "stride/hal/status.hpp"
+#include "stride/core/status.hpp"
 
 namespace stride::fw::console {
 

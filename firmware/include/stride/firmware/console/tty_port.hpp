@@ -12,7 +12,7 @@
 #include <string>
 #include <string_view>
 
-#include "stride/hal/status.hpp"
+#include "stride/core/status.hpp"
 
 struct sp_port;
 

@@ -10,8 +10,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "stride/core/status.hpp"
 #include "stride/firmware/recorder/flight_log_format.hpp"
-#include "stride/hal/status.hpp"
 
 namespace stride::fw {
 

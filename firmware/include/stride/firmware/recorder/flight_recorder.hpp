@@ -13,12 +13,12 @@
 #include <thread>
 #include <vector>
 
+#include "stride/core/status.hpp"
 #include "stride/firmware/control_loop.hpp"
 #include "stride/firmware/controller.hpp"
 #include "stride/firmware/recorder/flight_log_format.hpp"
 #include "stride/firmware/recorder/flight_log_header.hpp"
 #include "stride/firmware/recorder/record_ring.hpp"
-#include "stride/hal/status.hpp"
 
 namespace stride::fw {
 

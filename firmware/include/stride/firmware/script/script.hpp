@@ -16,8 +16,8 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "stride/core/status.hpp"
 #include "stride/firmware/servo_table.hpp"
-#include "stride/hal/status.hpp"
 
 namespace stride::fw {
 

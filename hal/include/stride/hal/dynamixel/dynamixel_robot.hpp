@@ -32,11 +32,11 @@
 #include <memory>
 #include <string>
 
+#include "stride/core/status.hpp"
 #include "stride/hal/dynamixel/byte_stream.hpp"
 #include "stride/hal/dynamixel/packet_parser.hpp"
 #include "stride/hal/dynamixel/units.hpp"
 #include "stride/hal/robot.hpp"
-#include "stride/hal/status.hpp"
 
 namespace stride::hal::dxl {
 

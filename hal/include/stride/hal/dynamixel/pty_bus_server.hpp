@@ -13,8 +13,8 @@
 #include <memory>
 #include <string>
 
+#include "stride/core/status.hpp"
 #include "stride/hal/dynamixel/bus_responder.hpp"
-#include "stride/hal/status.hpp"
 
 namespace stride::hal::dxl {
 

@@ -16,8 +16,8 @@
 #include <memory>
 #include <string>
 
+#include "stride/core/status.hpp"
 #include "stride/hal/dynamixel/byte_stream.hpp"
-#include "stride/hal/status.hpp"
 
 struct sp_port;
 

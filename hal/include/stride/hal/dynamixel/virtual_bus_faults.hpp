@@ -9,7 +9,7 @@
 #include <span>
 #include <string>
 
-#include "stride/hal/status.hpp"
+#include "stride/core/status.hpp"
 
 namespace stride::hal::dxl {
 

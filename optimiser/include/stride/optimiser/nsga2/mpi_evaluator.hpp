@@ -8,7 +8,7 @@
 // only, never into the firmware.
 #pragma once
 
-#include "stride/hal/status.hpp"
+#include "stride/core/status.hpp"
 #include "stride/optimiser/nsga2/evaluator.hpp"
 
 namespace stride::opt {

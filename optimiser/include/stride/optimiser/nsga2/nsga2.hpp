@@ -28,7 +28,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "stride/hal/status.hpp"
+#include "stride/core/status.hpp"
 #include "stride/optimiser/nsga2/evaluation.hpp"
 #include "stride/optimiser/nsga2/genome.hpp"
 #include "stride/optimiser/nsga2/rng.hpp"

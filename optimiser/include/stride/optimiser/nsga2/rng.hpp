@@ -11,7 +11,7 @@
 #include <random>
 #include <string>
 
-#include "stride/hal/status.hpp"
+#include "stride/core/status.hpp"
 
 namespace stride::opt {
 

@@ -19,7 +19,7 @@
 
 #include <cstdint>
 
-#include "stride/hal/status.hpp"
+#include "stride/core/status.hpp"
 #include "stride/optimiser/nsga2/genome.hpp"
 
 namespace stride::opt {

@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "stride/hal/status.hpp"
+#include "stride/core/status.hpp"
 #include "stride/optimiser/report/html_replay.hpp"
 #include "stride/optimiser/tasks/robot_task.hpp"
 

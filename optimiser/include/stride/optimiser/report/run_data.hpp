@@ -11,7 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "stride/hal/status.hpp"
+#include "stride/core/status.hpp"
 #include "stride/optimiser/report/pareto_front.hpp"
 
 namespace stride::opt::report {

@@ -58,8 +58,6 @@ struct ChartSpec {
 std::vector<double> nice_ticks(double lo, double hi, int target = 6);
 /// A tick label with the decimals the step needs (step 0.5 -> "24.5", step 2 -> "24").
 std::string tick_label(double value, double step);
-/// Escapes &, <, >, " and ' for XML and HTML text and attributes.
-std::string xml_escape(const std::string& text);
 
 /// The chart as a standalone <svg> element (with the xmlns attribute).
 std::string render_chart(const ChartSpec& spec);

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "stride/hal/status.hpp"
+#include "stride/core/status.hpp"
 
 namespace stride::opt {
 

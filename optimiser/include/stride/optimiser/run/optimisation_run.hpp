@@ -23,7 +23,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "stride/hal/status.hpp"
+#include "stride/core/status.hpp"
 #include "stride/optimiser/nsga2/evaluator.hpp"
 #include "stride/optimiser/nsga2/nsga2.hpp"
 #include "stride/optimiser/nsga2/problem.hpp"

@@ -16,7 +16,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "stride/hal/status.hpp"
+#include "stride/core/status.hpp"
 #include "stride/optimiser/report/pareto_front.hpp"
 #include "stride/optimiser/tasks/robot_task.hpp"
 

@@ -36,7 +36,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "stride/hal/status.hpp"
+#include "stride/core/status.hpp"
 #include "stride/optimiser/nsga2/genome.hpp"
 #include "stride/optimiser/tasks/robot_task.hpp"
 

@@ -18,7 +18,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "stride/hal/status.hpp"
+#include "stride/core/status.hpp"
 #include "stride/optimiser/nsga2/settings.hpp"
 #include "stride/sim_hal/world_file.hpp"
 #include "stride/sim_hal/world_options.hpp"

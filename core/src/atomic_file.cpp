@@ -1,5 +1,5 @@
 // write_file_atomically: temporary file + fsync + rename (POSIX).
-#include "stride/firmware/atomic_file.hpp"
+#include "stride/core/atomic_file.hpp"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -9,7 +9,7 @@
 #include <cstring>
 #include <string>
 
-namespace stride::fw {
+namespace stride::core {
 
 Status write_file_atomically(const std::filesystem::path& path, std::string_view contents) {
   const std::filesystem::path dir = path.has_parent_path() ? path.parent_path() : ".";
@@ -49,4 +49,4 @@ Status write_file_atomically(const std::filesystem::path& path, std::string_view
   return {};
 }
 
-}  // namespace stride::fw
+}  // namespace stride::core

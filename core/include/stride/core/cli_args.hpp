@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "stride/hal/status.hpp"
+#include "stride/core/status.hpp"
 
-namespace stride::fw {
+namespace stride::core {
 
 class CliArgs {
  public:
@@ -49,4 +49,4 @@ class CliArgs {
   std::vector<std::string> positional_;
 };
 
-}  // namespace stride::fw
+}  // namespace stride::core

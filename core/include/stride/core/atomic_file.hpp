@@ -5,11 +5,11 @@
 #include <filesystem>
 #include <string_view>
 
-#include "stride/hal/status.hpp"
+#include "stride/core/status.hpp"
 
-namespace stride::fw {
+namespace stride::core {
 
 /// Replaces `path` with `contents` atomically. The error names the file and the OS reason.
 Status write_file_atomically(const std::filesystem::path& path, std::string_view contents);
 
-}  // namespace stride::fw
+}  // namespace stride::core

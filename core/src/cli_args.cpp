@@ -1,11 +1,11 @@
 // CliArgs implementation.
-#include "stride/firmware/cli_args.hpp"
+#include "stride/core/cli_args.hpp"
 
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
 
-namespace stride::fw {
+namespace stride::core {
 
 CliArgs& CliArgs::option(const std::string& name, const std::string& help, bool takes_value,
                          std::optional<std::string> default_value) {
@@ -101,4 +101,4 @@ std::string CliArgs::help() const {
   return text;
 }
 
-}  // namespace stride::fw
+}  // namespace stride::core
