@@ -63,6 +63,40 @@ TEST(GetUpTask, OnTurfTheStockScriptsDoNotStandAndTheGenomeIsInfeasible) {
   EXPECT_TRUE(s.fell);
 }
 
+/// The genome of a parameter file (the config's genes, in order).
+Genome genome_from_file(const TaskConfig& config, const std::string& file) {
+  nlohmann::json doc;
+  std::ifstream(file) >> doc;
+  Genome g;
+  for (const TaskGene& gene : config.genes) g.reals.push_back(doc.at(gene.parameter).get<double>());
+  return g;
+}
+
+// The shipped pick (firmware/config/get-up-turf.json, the getup run's knee): it stands up from
+// both sides on the faithful world's turf, where the stock scripts stay down, on both engines.
+TEST(GetUpTask, TheShippedPickStandsUpOnTurfOnBothEngines) {
+  TaskConfig config = getup_config();
+  const Genome pick =
+      genome_from_file(config, std::string(STRIDE_SOURCE_DIR) + "/firmware/config/get-up-turf.json");
+  for (const sim::EngineKind engine : {sim::EngineKind::kSimbody, sim::EngineKind::kMujoco}) {
+    config.engines = {engine};
+    config.trials = 1;  // the nominal world
+    const RobotTask task(config);
+    EpisodeScore stock, picked;
+    ASSERT_TRUE(task.run_trial(task.start_genome(), 0, stock));
+    ASSERT_TRUE(task.run_trial(pick, 0, picked));
+    std::printf("%s: stock stood %d of 2 (%.2f s), the pick %d of 2 in %.2f s, peak |a| %.1f\n",
+                sim::to_string(engine), stock.stood, stock.stand_time_s, picked.stood,
+                picked.stand_time_s, picked.objectives[1]);
+    EXPECT_EQ(picked.stood, 2) << sim::to_string(engine);
+    EXPECT_GT(picked.stand_time_s, 0.0);
+    EXPECT_LT(picked.stand_time_s, 12.0) << sim::to_string(engine);
+    if (engine == sim::EngineKind::kSimbody) {
+      EXPECT_EQ(stock.stood, 0);
+    }
+  }
+}
+
 TEST(GetUpTask, IsOneEntryOfTheRegistryAndAnUnknownTaskNamesTheChoices) {
   const TaskType* type = find_task_type("getup");
   ASSERT_NE(type, nullptr);
