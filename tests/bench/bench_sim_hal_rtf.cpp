@@ -28,9 +28,12 @@ std::int64_t physics_step_ns() {
   return (env ? std::atoll(env) : 2000) * 1000;
 }
 
-std::unique_ptr<SimWorld> make_world(std::int64_t step_ns = physics_step_ns()) {
+std::unique_ptr<SimWorld> make_world(
+    std::int64_t step_ns = physics_step_ns(),
+    stride::sim::ServoLaw law = stride::sim::WorldOptions{}.servo.law) {
   stride::sim::WorldOptions options;
   options.physics_step_ns = step_ns;
+  options.servo.law = law;
   std::unique_ptr<SimWorld> world;
   const stride::Status s = SimWorld::create(options, world);
   if (!s) std::abort();
@@ -193,6 +196,46 @@ void BM_TwoThreadsAgainstOne(benchmark::State& state) {
   state.counters["ratio_q3"] = ratios[3 * ratios.size() / 4];
 }
 
+/// The identified MX servo law against the seed's, measured in alternation as above: each round
+/// times a seed-law world and an identified-law world stepping in place for the same simulated
+/// time; the counter is the median of (identified time / seed time), the cost of the law per
+/// simulated second (issue 31: at most 1.1x).
+void BM_IdentifiedAgainstSeedLaw(benchmark::State& state) {
+  constexpr int kRounds = 21, kPeriods = 200;
+  using Clock = std::chrono::steady_clock;
+  using stride::sim::ServoLaw;
+  std::vector<double> ratios;
+  for (auto _ : state) {
+    auto seed = make_world(physics_step_ns(), ServoLaw::kSeed);
+    auto identified = make_world(physics_step_ns(), ServoLaw::kIdentified);
+    const auto run = [](SimWorld& world) {
+      for (int k = 0; k < kPeriods; ++k) {
+        command_stepping(world, world.time_s());
+        world.advance_period();
+      }
+    };
+    for (int round = 0; round < kRounds; ++round) {
+      const auto t0 = Clock::now();
+      run(*seed);
+      const auto t1 = Clock::now();
+      run(*identified);
+      const auto t2 = Clock::now();
+      ratios.push_back(std::chrono::duration<double>(t2 - t1).count() /
+                       std::chrono::duration<double>(t1 - t0).count());
+    }
+    if (seed->status() != stride::sim::WorldStatus::kRunning ||
+        identified->status() != stride::sim::WorldStatus::kRunning)
+      state.SkipWithError("a world failed");
+    // Both still up (torso height [m]): a fallen robot's contacts would cost, not its law.
+    state.counters["seed_torso_z"] = seed->torso_pose().translation().z();
+    state.counters["identified_torso_z"] = identified->torso_pose().translation().z();
+  }
+  std::sort(ratios.begin(), ratios.end());
+  state.counters["ratio_median"] = ratios[ratios.size() / 2];
+  state.counters["ratio_q1"] = ratios[ratios.size() / 4];
+  state.counters["ratio_q3"] = ratios[3 * ratios.size() / 4];
+}
+
 long resident_bytes() {
   std::ifstream statm("/proc/self/statm");
   long pages = 0, resident = 0;
@@ -227,6 +270,7 @@ BENCHMARK(BM_SteppingThreads)
     ->Threads(2)
     ->UseRealTime();
 BENCHMARK(BM_TwoThreadsAgainstOne)->Iterations(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_IdentifiedAgainstSeedLaw)->Iterations(1)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_MemoryPerWorld)->Iterations(1);
 BENCHMARK(BM_AccuracyAgainstFineStep)->Iterations(1)->Unit(benchmark::kMillisecond);
 BENCHMARK_MAIN();
