@@ -6,6 +6,7 @@
 #include "stride/sim_hal/episode.hpp"
 #include "stride/sim_hal/sim_cli.hpp"
 #include "stride/sim_hal/sim_robot.hpp"
+#include "stride/sim_hal/world_spec.hpp"
 
 namespace {
 
@@ -19,6 +20,10 @@ stride::Status make(const stride::core::CliArgs& args, std::int64_t period_ns,
   stride::sim::WorldOptions options;
   if (stride::Status s = stride::sim::read_world_options(args, options); !s) return s;
   options.control_period_ns = period_ns;
+  if (stride::Status s =
+          stride::sim::check_physics_step(options.physics_step_ns, period_ns, "--physics-step-us");
+      !s)
+    return s;
   std::unique_ptr<stride::sim::SimWorld> world;
   if (stride::Status s = stride::sim::SimWorld::create(options, world); !s) return s;
   auto robot = std::make_unique<stride::sim::SimRobot>(std::move(world));

@@ -11,6 +11,7 @@
 
 #include "stride/sim_hal/physics_engine.hpp"
 #include "stride/sim_hal/world_file.hpp"
+#include "stride/sim_hal/world_spec.hpp"
 
 namespace stride::sim {
 
@@ -22,24 +23,19 @@ void declare_world_options(core::CliArgs& args) {
               true);
   args.option("seed", "world random seed (randomisation and sensor noise)", true, "1");
   args.option("noise", "sensor noise and per-episode IMU bias: on|off", true, "on");
-  args.option("physics-step-us", "fixed physics step [us], must divide the control period", true,
-              "2000");
   args.option("urdf", "robot description (URDF) to simulate instead of the igus model", true);
   args.option("world",
               "named world: faithful (identified servo law, CM730 IMU, turf), seed (the "
               "thesis's: seed servo law, ideal IMU, 2 cm grass) or a world file (.json, from "
               "stride calibrate); --servo-law, --imu and --contact override its parts",
               true, "faithful");
-  args.option("imu", "IMU model: ideal (true value plus white noise) or cm730 (chips and CM730)",
-              true, "the world's");
-  args.option("engine", "physics engine: simbody (Stride's contact) or mujoco (MuJoCo's)", true,
-              "simbody");
-  args.option("servo-law", "servo model: seed (Gazebo figures) or identified (MX, BAM M6)", true,
-              "the world's");
-  args.option("contact",
-              "field contact: seed (the seed's 2 cm grass) or turf (a 5 mm layer over solid "
-              "ground, sim_hal/models/README.md)",
-              true, "the world's");
+  // The rest from the world option table (world_spec.hpp), as the task configs name them.
+  for (const WorldOptionInfo& o : world_option_table()) {
+    if (o.key == "base") continue;  // --world above: a named world or a world file
+    std::string help(o.help);
+    if (!o.unit.empty()) help += " [" + std::string(o.unit) + "]";
+    args.option(world_option_flag(o.key).substr(2), help, true, std::string(o.default_text));
+  }
 }
 
 Status read_world_options(const core::CliArgs& args, WorldOptions& out) {
@@ -55,11 +51,6 @@ Status read_world_options(const core::CliArgs& args, WorldOptions& out) {
   } else {
     return Status::error("--noise: expected on or off, got '" + noise + "'");
   }
-  std::int64_t step_us = 2000;
-  if (Status s = args.get_int("physics-step-us", step_us); !s) return s;
-  if (step_us <= 0 || step_us > 20000)
-    return Status::error("--physics-step-us: must be in 1..20000, got " + std::to_string(step_us));
-  out.physics_step_ns = step_us * 1000;
   if (args.has("urdf")) {
     out.urdf = args.get("urdf");
     std::error_code error;
@@ -83,29 +74,14 @@ Status read_world_options(const core::CliArgs& args, WorldOptions& out) {
     return Status::error("--world: expected faithful, seed or a world file (.json), got '" + world +
                          "'");
   }
-  if (args.has("imu")) {
-    const std::string imu = args.get("imu");
-    if (imu != "cm730" && imu != "ideal")
-      return Status::error("--imu: expected ideal or cm730, got '" + imu + "'");
-    out.use_cm730_imu(imu == "cm730");
-  }
-  const std::string engine = args.get("engine", "simbody");
-  if (!parse_engine_kind(engine, out.engine))
-    return Status::error("--engine: expected simbody or mujoco, got '" + engine + "'");
-  if (args.has("contact")) {
-    const std::string contact = args.get("contact");
-    if (!parse_contact_kind(contact, out.contact))
-      return Status::error("--contact: expected seed or turf, got '" + contact + "'");
-  }
-  if (args.has("servo-law")) {
-    const std::string law = args.get("servo-law");
-    if (law == "seed") {
-      out.servo.law = ServoLaw::kSeed;
-    } else if (law == "identified") {
-      out.servo.law = ServoLaw::kIdentified;
-    } else {
-      return Status::error("--servo-law: expected seed or identified, got '" + law + "'");
-    }
+  // The table's options in its order (after the world, whose parts they override); the step
+  // is checked against the firmware's period when the world is built (check_physics_step).
+  for (const WorldOptionInfo& o : world_option_table()) {
+    if (o.key == "base") continue;
+    const std::string flag = world_option_flag(o.key);
+    const std::string name = flag.substr(2);
+    if (!args.has(name)) continue;
+    if (Status s = apply_world_option(o, args.get(name), flag, out); !s) return s;
   }
   // Pushes (repeatable); their times are checked against the episode by its runner.
   for (const std::string& text : args.get_all("push")) {

@@ -9,6 +9,7 @@
 #include "stride/sim_hal/physics_engine.hpp"
 #include "stride/sim_hal/sim_servo.hpp"
 #include "stride/sim_hal/world_rng.hpp"
+#include "stride/sim_hal/world_spec.hpp"
 
 namespace stride::sim {
 
@@ -67,11 +68,7 @@ struct SimWorld::Impl {
 
 Status SimWorld::Impl::configure() {
   const WorldOptions& o = options;
-  if (o.physics_step_ns <= 0 || o.control_period_ns <= 0 ||
-      o.control_period_ns % o.physics_step_ns != 0)
-    return Status::error("physics step must be positive and divide the control period (step " +
-                         std::to_string(o.physics_step_ns) + " ns, period " +
-                         std::to_string(o.control_period_ns) + " ns)");
+  if (Status s = check_physics_step(o.physics_step_ns, o.control_period_ns); !s) return s;
   if (!(o.battery_voltage_v > 0.0) || !(o.max_speed > 0.0))
     return Status::error("battery voltage and max speed must be positive");
   const RobotCalibration& c = o.robot;

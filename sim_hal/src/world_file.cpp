@@ -1,6 +1,8 @@
 // World files (world_file.hpp): reading with one-line errors naming the field, writing.
 #include "stride/sim_hal/world_file.hpp"
 
+#include "stride/sim_hal/world_spec.hpp"
+
 #include <cmath>
 #include <fstream>
 #include <initializer_list>
@@ -120,8 +122,11 @@ Status parse_world_file(const json& doc, WorldFile& out) {
     return s;
   if (doc.contains("base")) {
     const json& b = doc.at("base");
-    if (!b.is_string() || !parse_world_preset(b.get<std::string>(), w.base))
-      return Status::error("base: must be \"faithful\" or \"seed\", got " + b.dump());
+    const std::string text = b.is_string() ? b.get<std::string>() : b.dump();
+    WorldOptions scratch;
+    if (Status s = apply_world_option(*find_world_option("base"), text, "base", scratch); !s)
+      return s;
+    parse_world_preset(text, w.base);
   }
   if (Status s = read_number(doc, "", "supply_voltage_v", 9.0, 18.0, w.supply_voltage_v); !s)
     return s;

@@ -28,6 +28,7 @@
 #include "stride/optimiser/run/run_report.hpp"
 #include "stride/optimiser/run/validation.hpp"
 #include "stride/optimiser/tasks/robot_task.hpp"
+#include "stride/sim_hal/world_spec.hpp"
 
 namespace {
 
@@ -238,15 +239,18 @@ int run_optimise(int argc, char** argv) {
       task.aggregate = a == "mean" ? opt::Aggregate::kMean : opt::Aggregate::kWorst;
     }
     if (args.has("engine")) {
-      stride::sim::EngineKind engine{};
-      if (!stride::sim::parse_engine_kind(args.get("engine"), engine))
-        return bad_input("--engine: must be simbody or mujoco, got '" + args.get("engine") + "'");
-      task.engines = {engine};
+      stride::sim::WorldOptions engine_world;
+      if (auto st = stride::sim::apply_world_option(*stride::sim::find_world_option("engine"),
+                                                    args.get("engine"), "--engine", engine_world);
+          !st)
+        return bad_input(st.message());
+      task.engines = {engine_world.engine};
     }
     s.config.settings = task.settings;
     if (auto st = read_settings(args, 0, s); !st) return bad_input(st.message());
     task.settings = s.config.settings;
     auto robot_task = std::make_unique<opt::RobotTask>(task);
+    if (auto st = robot_task->check(); !st) return bad_input(st.message());
     s.config.problem = task.task;
     s.config.start = robot_task->start_genome();
     s.config.task = opt::to_json(task);

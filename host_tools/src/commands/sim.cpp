@@ -20,6 +20,7 @@
 #include "stride/sim_hal/script_episodes.hpp"
 #include "stride/sim_hal/sim_cli.hpp"
 #include "stride/sim_hal/trajectory_recorder.hpp"
+#include "stride/sim_hal/world_spec.hpp"
 
 namespace {
 
@@ -160,6 +161,10 @@ int run_sim(int argc, char** argv) {
   if (Status s = stride::fw::Firmware::create(fw_options, firmware); !s)
     return bad_input(s.message());
   world_options.control_period_ns = firmware->period_ns();
+  if (Status s = sim::check_physics_step(world_options.physics_step_ns, firmware->period_ns(),
+                                         "--physics-step-us");
+      !s)
+    return bad_input(s.message());
 
   sim::TrajectoryRecorder recorder;
   sim::EpisodeOptions episode;

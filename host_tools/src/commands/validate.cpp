@@ -15,6 +15,7 @@
 #include "stride/core/cli_args.hpp"
 #include "stride/host_tools/command.hpp"
 #include "stride/optimiser/run/validation.hpp"
+#include "stride/sim_hal/world_spec.hpp"
 
 namespace {
 
@@ -32,9 +33,12 @@ Status engines_of(const stride::core::CliArgs& args, std::vector<stride::sim::En
     std::stringstream list(value);
     std::string name;
     while (std::getline(list, name, ',')) {
-      stride::sim::EngineKind kind{};
-      if (!stride::sim::parse_engine_kind(name, kind))
-        return Status::error("--engine: '" + name + "' is not simbody or mujoco");
+      stride::sim::WorldOptions world;
+      if (Status s = stride::sim::apply_world_option(*stride::sim::find_world_option("engine"),
+                                                     name, "--engine", world);
+          !s)
+        return s;
+      const stride::sim::EngineKind kind = world.engine;
       bool seen = false;
       for (auto e : out) seen = seen || e == kind;
       if (!seen) out.push_back(kind);
@@ -88,10 +92,15 @@ int run_validate(int argc, char** argv) {
     options.seeds = static_cast<int>(v);
   }
   if (args.has("physics-step-us")) {
-    if (auto st = args.get_int("physics-step-us", v); !st) return bad_input(st.message());
-    if (v < 1 || v > 10000)
-      return bad_input("--physics-step-us: " + std::to_string(v) + " is outside [1, 10000]");
-    options.physics_step_ns = v * 1000;
+    // Its range here (the world option table), the firmware's period in validation_worlds
+    // below (check_physics_step).
+    stride::sim::WorldOptions world;
+    if (auto st = stride::sim::apply_world_option(
+            *stride::sim::find_world_option("physics_step_us"), args.get("physics-step-us"),
+            "--physics-step-us", world);
+        !st)
+      return bad_input(st.message());
+    options.physics_step_ns = world.physics_step_ns;
   }
   options.jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   if (args.has("jobs")) {

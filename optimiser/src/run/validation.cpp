@@ -11,6 +11,7 @@
 #include "stride/optimiser/report/run_data.hpp"
 #include "stride/optimiser/run/optimisation_run.hpp"
 #include "stride/optimiser/run/validation_summary.hpp"
+#include "stride/sim_hal/world_spec.hpp"
 
 namespace stride::opt {
 
@@ -114,13 +115,11 @@ Status validation_worlds(const RobotTask& task, const ValidationOptions& options
   const TaskConfig& config = task.config();
   sim::WorldOptions base = task.world_options(0);
   base.imu.set_noise(true);  // the run's IMU model, with its noise on
-  const std::int64_t period_ns = sim::WorldOptions{}.control_period_ns;
   const std::int64_t step_ns =
       options.physics_step_ns > 0 ? options.physics_step_ns : base.physics_step_ns / 2;
-  if (step_ns <= 0 || period_ns % step_ns != 0)
-    return Status::error("--physics-step-us: " + std::to_string(step_ns / 1000) +
-                         " us does not divide the control period of " +
-                         std::to_string(period_ns / 1000) + " us");
+  if (Status s = sim::check_physics_step(step_ns, task.control_period_ns(), "--physics-step-us");
+      !s)
+    return s;
   std::vector<std::uint64_t> seeds;
   for (int i = 0; i < options.seeds; ++i)
     seeds.push_back(config.trial_seed + kValidationSeedOffset + static_cast<std::uint64_t>(i));

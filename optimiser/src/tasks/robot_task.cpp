@@ -11,6 +11,7 @@
 #include "stride/sim_hal/episode.hpp"
 #include "stride/sim_hal/sim_robot.hpp"
 #include "stride/sim_hal/sim_world.hpp"
+#include "stride/sim_hal/world_spec.hpp"
 
 namespace stride::opt {
 
@@ -47,10 +48,27 @@ RobotTask::RobotTask(TaskConfig config)
   shape_.objectives = 2;
   shape_.constraints = type_ != nullptr ? type_->constraint_count() : 0;
   auto files = std::make_shared<fw::FirmwareFiles>();
-  if (fw::FirmwareFiles::load({}, *files)) firmware_files_ = std::move(files);
+  if (fw::FirmwareFiles::load({}, *files)) {
+    firmware_files_ = std::move(files);
+    std::unique_ptr<fw::Firmware> firmware;
+    if (fw::Firmware::create({}, *firmware_files_, firmware))
+      control_period_ns_ = firmware->period_ns();
+  }
   auto model = std::make_shared<sim::RobotModel>();
   const std::filesystem::path urdf = config_.urdf.empty() ? sim::WorldOptions{}.urdf : config_.urdf;
   if (sim::RobotModel::load_file(urdf, *model)) robot_model_ = std::move(model);
+}
+
+Status RobotTask::check() const {
+  if (type_ == nullptr)
+    return Status::error("task: '" + config_.task + "' is not " + task_type_list());
+  if (control_period_ns_ <= 0) {
+    std::unique_ptr<fw::Firmware> firmware;
+    if (Status s = fw::Firmware::create({}, firmware); !s) return s;
+  }
+  if (Status s = sim::check_physics_step(config_.physics_step_us * 1000, control_period_ns_); !s)
+    return s;
+  return type_->check(config_);
 }
 
 Genome RobotTask::start_genome() const {

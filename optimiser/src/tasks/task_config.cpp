@@ -7,6 +7,7 @@
 
 #include "stride/optimiser/tasks/task_type.hpp"
 #include "stride/sim_hal/robot_model.hpp"
+#include "stride/sim_hal/world_spec.hpp"
 
 namespace stride::opt {
 
@@ -93,31 +94,89 @@ const char* const kKnownFields[] = {"task",
                                     "hypervolume_nadir",
                                     "_comment"};
 
+/// A JSON value as the text the world option table reads (a string as is, else its JSON).
+std::string option_text(const nlohmann::json& v) {
+  return v.is_string() ? v.get<std::string>() : v.dump();
+}
+
+/// The config's world options (the world option table, world_spec.hpp) into its fields: read
+/// into the world they describe, then kept as the servo law, IMU, contact and step.
+Status apply_world_fields(const nlohmann::json& fields, const std::string& prefix, TaskConfig& c) {
+  sim::WorldOptions w;
+  w.servo.law = c.servo_law;
+  w.use_cm730_imu(c.imu_cm730);
+  sim::parse_contact_kind(c.contact, w.contact);
+  w.physics_step_ns = c.physics_step_us * 1000;
+  for (const sim::WorldOptionInfo& o : sim::world_option_table()) {
+    if (o.key == "engine" || !fields.contains(std::string(o.key))) continue;  // engines: below
+    const std::string key(o.key);
+    if (Status s = sim::apply_world_option(o, option_text(fields.at(key)), prefix + key, w); !s)
+      return s;
+  }
+  c.servo_law = w.servo.law;
+  c.imu_cm730 = !w.imu.chain.is_ideal();
+  if (fields.contains("base")) c.contact = fields.at("base") == "seed" ? "seed" : "turf";
+  if (fields.contains("contact")) c.contact = fields.at("contact").get<std::string>();
+  c.physics_step_us = w.physics_step_ns / 1000;
+  return {};
+}
+
 // `engine` ("simbody" | "mujoco") or `engines` (a list of distinct engines), not both.
 // The simulated robot: `urdf` (parsed here, so that a broken file is named at load time),
-// `world` (a named world: its servo law, IMU and contact), then `servo_law`, `imu`, `contact`
-// (each overriding the world's), `physics_step_us`.
+// `world`: a named world ("faithful", "seed"), a world file (its path or its object, with
+// "format": "stride-world") or an object of the world option table's fields ({"base",
+// "engine", "physics_step_us", "servo_law", "imu", "contact"}); the same fields may also stand
+// at the top level, as before the table (each overriding the world's parts). The physics step
+// is checked against the firmware's control period when the task is built (RobotTask::check).
 Status parse_robot(const nlohmann::json& doc, TaskConfig& c) {
   if (doc.contains("world")) {
     const auto& w = doc.at("world");
     sim::WorldPreset preset = sim::WorldPreset::kFaithful;
     c.world_file.reset();
-    if (w.is_object() || (w.is_string() && sim::looks_like_world_file(w.get<std::string>()))) {
-      sim::WorldFile file;
-      const Status s = w.is_object() ? sim::parse_world_file(w, file)
-                                     : sim::load_world_file(w.get<std::string>(), file);
-      if (!s) return Status::error("world: " + s.message());
-      preset = file.base;
-      c.world_file = file;
-    } else if (!w.is_string() || !sim::parse_world_preset(w.get<std::string>(), preset)) {
-      return Status::error(
-          "world: must be \"faithful\", \"seed\", a world file (.json) or its object, got " +
-          w.dump());
+    const bool file_object = w.is_object() && w.contains("format");
+    if (w.is_object() && !file_object) {
+      for (const auto& [key, value] : w.items())
+        if (sim::find_world_option(key) == nullptr)
+          return Status::error("world." + key +
+                               ": unknown world option (known: " + sim::world_option_keys() + ")");
+      if (!w.contains("base")) {
+        c.servo_law = sim::ServoLaw::kIdentified;  // the faithful world
+        c.imu_cm730 = true;
+        c.contact = "turf";
+      }
+      if (Status s = apply_world_fields(w, "world.", c); !s) return s;
+      if (w.contains("engine")) {
+        if (doc.contains("engine") || doc.contains("engines"))
+          return Status::error(
+              "world.engine: give the engine in world or at the top level, "
+              "not both");
+        sim::WorldOptions engine_world;
+        if (Status s =
+                sim::apply_world_option(*sim::find_world_option("engine"),
+                                        option_text(w.at("engine")), "world.engine", engine_world);
+            !s)
+          return s;
+        c.engines = {engine_world.engine};
+      }
+    } else {
+      if (file_object || (w.is_string() && sim::looks_like_world_file(w.get<std::string>()))) {
+        sim::WorldFile file;
+        const Status s = w.is_object() ? sim::parse_world_file(w, file)
+                                       : sim::load_world_file(w.get<std::string>(), file);
+        if (!s) return Status::error("world: " + s.message());
+        preset = file.base;
+        c.world_file = file;
+      } else if (!w.is_string() || !sim::parse_world_preset(w.get<std::string>(), preset)) {
+        return Status::error(
+            "world: must be \"faithful\", \"seed\", a world file (.json), its object or an "
+            "object of world options, got " +
+            w.dump());
+      }
+      const bool seed = preset == sim::WorldPreset::kSeed;
+      c.servo_law = seed ? sim::ServoLaw::kSeed : sim::ServoLaw::kIdentified;
+      c.imu_cm730 = !seed;
+      c.contact = seed ? "seed" : "turf";
     }
-    const bool seed = preset == sim::WorldPreset::kSeed;
-    c.servo_law = seed ? sim::ServoLaw::kSeed : sim::ServoLaw::kIdentified;
-    c.imu_cm730 = !seed;
-    c.contact = seed ? "seed" : "turf";
   }
   if (doc.contains("urdf")) {
     const auto& u = doc.at("urdf");
@@ -131,25 +190,11 @@ Status parse_robot(const nlohmann::json& doc, TaskConfig& c) {
     if (Status s = sim::RobotModel::load_file(c.urdf, model); !s)
       return Status::error("urdf: " + s.message());
   }
-  if (doc.contains("servo_law")) {
-    const auto& l = doc.at("servo_law");
-    if (!l.is_string() || (l != "seed" && l != "identified"))
-      return Status::error("servo_law: must be \"seed\" or \"identified\", got " + l.dump());
-    c.servo_law = l == "identified" ? sim::ServoLaw::kIdentified : sim::ServoLaw::kSeed;
-  }
-  if (doc.contains("imu")) {
-    const auto& i = doc.at("imu");
-    if (!i.is_string() || (i != "ideal" && i != "cm730"))
-      return Status::error("imu: must be \"ideal\" or \"cm730\", got " + i.dump());
-    c.imu_cm730 = i == "cm730";
-  }
-  if (doc.contains("contact")) {
-    const auto& k = doc.at("contact");
-    sim::ContactOptions parsed;
-    if (!k.is_string() || !sim::parse_contact_kind(k.get<std::string>(), parsed))
-      return Status::error("contact: must be \"seed\" or \"turf\", got " + k.dump());
-    c.contact = k.get<std::string>();
-  }
+  // The world option table's fields at the top level (the flat form of before the table).
+  nlohmann::json flat = nlohmann::json::object();
+  for (const char* key : {"servo_law", "imu", "contact", "physics_step_us"})
+    if (doc.contains(key)) flat[key] = doc.at(key);
+  if (Status s = apply_world_fields(flat, "", c); !s) return s;
   if (doc.contains("params")) {
     nlohmann::json values = doc.at("params");
     if (values.is_string()) {
@@ -168,24 +213,23 @@ Status parse_robot(const nlohmann::json& doc, TaskConfig& c) {
       c.base_params.emplace_back(name, value.get<double>());
     }
   }
-  std::int64_t step = c.physics_step_us;
-  if (Status s = integer(doc, "physics_step_us", 1, 10000, step, false); !s) return s;
-  if (10000 % step != 0)
-    return Status::error("physics_step_us: must divide the 10000 us control period, got " +
-                         std::to_string(step));
-  c.physics_step_us = step;
   return {};
 }
 
 Status parse_engines(const nlohmann::json& doc, std::vector<sim::EngineKind>& out) {
-  const char* const allowed = "must be \"simbody\" or \"mujoco\"";
+  const sim::WorldOptionInfo& engine = *sim::find_world_option("engine");
+  const auto parse = [&engine](const nlohmann::json& v, const std::string& field,
+                               sim::EngineKind& kind) {
+    sim::WorldOptions w;
+    if (Status s = sim::apply_world_option(engine, option_text(v), field, w); !s) return s;
+    kind = w.engine;
+    return Status::ok();
+  };
   if (doc.contains("engine") && doc.contains("engines"))
     return Status::error("engines: give either engine or engines, not both");
   if (doc.contains("engine")) {
     sim::EngineKind kind{};
-    const auto& e = doc.at("engine");
-    if (!e.is_string() || !sim::parse_engine_kind(e.get<std::string>(), kind))
-      return Status::error(std::string("engine: ") + allowed + ", got " + e.dump());
+    if (Status s = parse(doc.at("engine"), "engine", kind); !s) return s;
     out = {kind};
   }
   if (doc.contains("engines")) {
@@ -196,8 +240,7 @@ Status parse_engines(const nlohmann::json& doc, std::vector<sim::EngineKind>& ou
     for (std::size_t i = 0; i < list.size(); ++i) {
       const std::string field = "engines[" + std::to_string(i) + "]";
       sim::EngineKind kind{};
-      if (!list[i].is_string() || !sim::parse_engine_kind(list[i].get<std::string>(), kind))
-        return Status::error(field + ": " + allowed + ", got " + list[i].dump());
+      if (Status s = parse(list[i], field, kind); !s) return s;
       for (sim::EngineKind other : out)
         if (other == kind)
           return Status::error(field + ": '" + sim::to_string(kind) + "' appears twice");

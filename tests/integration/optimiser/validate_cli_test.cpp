@@ -204,10 +204,15 @@ TEST(ValidateCli, BadInputIsOneLineNamingItAndExitTwo) {
     EXPECT_NE(e.find(says), std::string::npos) << e;
   };
   expect_bad(tmp.path().string(), "is not a run directory (no run.json)");
-  expect_bad(run.string() + " --engine bullet", "--engine: 'bullet' is not simbody or mujoco");
-  expect_bad(run.string() + " --engine simbody --engine=ode", "'ode' is not simbody or mujoco");
-  expect_bad(run.string() + " --physics-step-us 3000",
-             "--physics-step-us: 3000 us does not divide the control period of 10000 us");
+  expect_bad(run.string() + " --engine bullet",
+             "--engine: expected simbody or mujoco, got 'bullet'");
+  expect_bad(run.string() + " --engine simbody --engine=ode",
+             "--engine: expected simbody or mujoco, got 'ode'");
+  expect_bad(
+      run.string() + " --physics-step-us 3000",
+      "--physics-step-us: 3000 us does not divide the firmware's control period of 10000 us");
+  expect_bad(run.string() + " --physics-step-us 0",
+             "--physics-step-us: must be in 1..20000 us, got 0");
   expect_bad(run.string() + " --seeds 0", "--seeds: 0 is outside [1, 1000]");
   expect_bad("", "expected one run directory");
   EXPECT_FALSE(fs::exists(run / "validation.json"));
@@ -229,14 +234,14 @@ TEST(ValidateCli, BadInputIsOneLineNamingItAndExitTwo) {
          err, code);
   EXPECT_EQ(code, 2);
   EXPECT_EQ(lines(test::read_file(err)), 1);
-  EXPECT_NE(test::read_file(err).find("engine: must be \"simbody\" or \"mujoco\", got \"bullet\""),
+  EXPECT_NE(test::read_file(err).find("engine: expected simbody or mujoco, got 'bullet'"),
             std::string::npos)
       << test::read_file(err);
   stride("optimise --config " + tiny_walk_config(tmp.path()).string() + " --engine ode --out " +
              (tmp.path() / "bad").string(),
          err, code);
   EXPECT_EQ(code, 2);
-  EXPECT_NE(test::read_file(err).find("--engine: must be simbody or mujoco, got 'ode'"),
+  EXPECT_NE(test::read_file(err).find("--engine: expected simbody or mujoco, got 'ode'"),
             std::string::npos);
   EXPECT_FALSE(fs::exists(tmp.path() / "bad"));
 }

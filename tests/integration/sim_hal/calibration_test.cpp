@@ -78,8 +78,7 @@ TEST(WorldFile, ReadsWritesAndNamesTheBadField) {
             "supply_voltage_v: must be a number in [9, 18], got 30");
   EXPECT_EQ(parse_error(with({{"robot", {{"trunk_com_offset_m", {0.01}}}}})),
             "robot.trunk_com_offset_m: must be 2 numbers, each in [-0.1, 0.1], got [0.01]");
-  EXPECT_EQ(parse_error(with({{"base", "moon"}})),
-            "base: must be \"faithful\" or \"seed\", got \"moon\"");
+  EXPECT_EQ(parse_error(with({{"base", "moon"}})), "base: expected faithful or seed, got 'moon'");
   EXPECT_EQ(parse_error(with({{"gravity", 9.81}})), "gravity: unknown field");
 }
 

@@ -210,10 +210,10 @@ TEST(TaskConfig, EnginesAndValidateSeedsParseRoundTripAndNameTheFieldOnError) {
   }
   d = minimal();
   d["engine"] = "bullet";
-  EXPECT_EQ(error_of(d), "engine: must be \"simbody\" or \"mujoco\", got \"bullet\"");
+  EXPECT_EQ(error_of(d), "engine: expected simbody or mujoco, got 'bullet'");
   d = minimal();
   d["engines"] = {"simbody", "ode"};
-  EXPECT_EQ(error_of(d), "engines[1]: must be \"simbody\" or \"mujoco\", got \"ode\"");
+  EXPECT_EQ(error_of(d), "engines[1]: expected simbody or mujoco, got 'ode'");
   d = minimal();
   d["engines"] = {"mujoco", "mujoco"};
   EXPECT_EQ(error_of(d), "engines[1]: 'mujoco' appears twice");
@@ -258,7 +258,8 @@ TEST(TaskConfig, RobotFieldsReachTheWorldsAndNameTheFieldOnError) {
   seed["world"] = "gazebo";
   EXPECT_EQ(
       error_of(seed),
-      "world: must be \"faithful\", \"seed\", a world file (.json) or its object, got \"gazebo\"");
+      "world: must be \"faithful\", \"seed\", a world file (.json), its object or an object of "
+      "world options, got \"gazebo\"");
   test::TempDir tmp;
   std::filesystem::create_directories(tmp.path() / "robots");
   std::filesystem::copy_file(sim::RobotModel::igus_path(), tmp.path() / "robots" / "mine.urdf");
@@ -293,16 +294,59 @@ TEST(TaskConfig, RobotFieldsReachTheWorldsAndNameTheFieldOnError) {
   EXPECT_EQ(error_of(d).rfind("urdf: ", 0), 0u) << error_of(d);
   d = minimal();
   d["servo_law"] = "gazebo";
-  EXPECT_EQ(error_of(d), "servo_law: must be \"seed\" or \"identified\", got \"gazebo\"");
+  EXPECT_EQ(error_of(d), "servo_law: expected seed or identified, got 'gazebo'");
   d = minimal();
   d["imu"] = 3;
-  EXPECT_EQ(error_of(d), "imu: must be \"ideal\" or \"cm730\", got 3");
+  EXPECT_EQ(error_of(d), "imu: expected ideal or cm730, got '3'");
   d = minimal();
   d["contact"] = "lawn";
-  EXPECT_EQ(error_of(d), "contact: must be \"seed\" or \"turf\", got \"lawn\"");
+  EXPECT_EQ(error_of(d), "contact: expected seed or turf, got 'lawn'");
   d = minimal();
+  d["physics_step_us"] = 0;
+  EXPECT_EQ(error_of(d), "physics_step_us: must be in 1..20000 us, got 0");
+  // A step in range that does not divide the firmware's control period: the task's check,
+  // against the period of the firmware it runs (stride optimise: exit 2 before any episode).
   d["physics_step_us"] = 3000;
-  EXPECT_EQ(error_of(d), "physics_step_us: must divide the 10000 us control period, got 3000");
+  ASSERT_TRUE(parse_task_config(d, c));
+  EXPECT_EQ(RobotTask(c).check().message(),
+            "physics_step_us: 3000 us does not divide the firmware's control period of 10000 us");
+  d["physics_step_us"] = 2500;
+  ASSERT_TRUE(parse_task_config(d, c));
+  EXPECT_TRUE(RobotTask(c).check());
+}
+
+// The world option table (issue 31 point 1): the `world` object takes its fields, the flat
+// fields of before still load, and an unknown option is named with the known ones.
+TEST(TaskConfig, AWorldObjectTakesTheTablesOptions) {
+  auto d = minimal();
+  d["world"] = {
+      {"base", "seed"}, {"contact", "turf"}, {"physics_step_us", 1000}, {"engine", "mujoco"}};
+  TaskConfig c;
+  ASSERT_TRUE(parse_task_config(d, c));
+  const sim::WorldOptions w = RobotTask(c).world_options(0);
+  EXPECT_EQ(w.servo.law, sim::ServoLaw::kSeed);  // the seed world's
+  EXPECT_TRUE(w.imu.chain.is_ideal());           // the seed world's
+  EXPECT_TRUE(w.contact.mujoco_solid_ground);    // turf overrides its grass
+  EXPECT_EQ(w.physics_step_ns, 1'000'000);
+  EXPECT_EQ(w.engine, sim::EngineKind::kMujoco);
+  // The same world in the flat fields of before.
+  auto flat = minimal();
+  flat["world"] = "seed";
+  flat["contact"] = "turf";
+  flat["physics_step_us"] = 1000;
+  flat["engine"] = "mujoco";
+  TaskConfig f;
+  ASSERT_TRUE(parse_task_config(flat, f));
+  EXPECT_EQ(to_json(f), to_json(c));
+  d["world"] = {{"gravity", 3.7}};
+  EXPECT_EQ(error_of(d),
+            "world.gravity: unknown world option (known: base, engine, physics_step_us, "
+            "servo_law, imu, contact)");
+  d["world"] = {{"physics_step_us", 30000}};
+  EXPECT_EQ(error_of(d), "world.physics_step_us: must be in 1..20000 us, got 30000");
+  d["world"] = {{"engine", "mujoco"}};
+  d["engine"] = "simbody";
+  EXPECT_EQ(error_of(d), "world.engine: give the engine in world or at the top level, not both");
 }
 
 // Base parameters (issue 29 point 6): a file relative to the config or an object, stored by

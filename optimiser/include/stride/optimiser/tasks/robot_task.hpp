@@ -40,6 +40,12 @@ class RobotTask final : public Problem {
   std::optional<FrontReference> reference() const override;
 
   const TaskConfig& config() const { return config_; }
+  /// The task against the firmware it runs, before any episode: a robot task's name, and a
+  /// physics step that divides the firmware's control period (sim::check_physics_step; the
+  /// error names physics_step_us).
+  Status check() const;
+  /// The control period of the firmware the episodes run [ns] (0 if it could not be built).
+  std::int64_t control_period_ns() const { return control_period_ns_; }
   /// The config's task type (null if its name is not a robot task's).
   const TaskType* type() const { return type_; }
   /// The start genome (Ind_O: every gene's start value).
@@ -66,6 +72,7 @@ class RobotTask final : public Problem {
   std::shared_ptr<const fw::FirmwareFiles> firmware_files_;
   std::shared_ptr<const sim::RobotModel> robot_model_;
   const TaskType* type_ = nullptr;  ///< null: not a robot task (every episode is an error)
+  std::int64_t control_period_ns_ = 0;
 
   Status run_episode(const Genome& genome, const sim::WorldOptions& options, int index,
                      EpisodeScore& out, sim::EpisodeCapturer* capture) const;
