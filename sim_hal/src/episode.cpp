@@ -76,6 +76,7 @@ EpisodeResult run_episode(SimRobot& robot, const StepFunction& controller,
       if (options.stop_on_fall) break;
     }
     if (options.stop_at_goal && result.time_to_goal_s) break;
+    if (options.stop_when && options.stop_when()) break;
     if (tick - first_tick >= total_ticks) break;
     ++tick;
     robot.sleep_until(tick);

@@ -58,6 +58,9 @@ struct EpisodeOptions {
   /// it only reads the world, so the episode is the same with or without it.
   std::function<void(hal::Tick, const SimWorld&, const hal::SensorFrame&)> on_tick;
   std::vector<double> snapshot_times_s;  ///< moments to capture link poses at
+  /// Optional: asked after every tick; true ends the episode there (a task that has measured
+  /// what it needs). Unset: the episode runs to its other ends.
+  std::function<bool()> stop_when;
 };
 
 struct EpisodeResult {
