@@ -206,6 +206,9 @@ void RobotTask::merge_episode(const EpisodeScore& next, int count, EpisodeScore&
   const bool all_stood = total.stand_time_s >= 0.0 && next.stand_time_s >= 0.0;
   total.stand_time_s =
       all_stood ? total.stand_time_s + (next.stand_time_s - total.stand_time_s) * w : -1.0;
+  // Per-direction figures: each episode fills its own direction (walk-ramp).
+  for (std::size_t d = 0; d < total.omni.size(); ++d)
+    if (next.omni[d].measured || next.omni[d].speed != 0.0) total.omni[d] = next.omni[d];
   total.stood += next.stood;
   total.get_up_attempts += next.get_up_attempts;
   total.fell = total.fell || next.fell;

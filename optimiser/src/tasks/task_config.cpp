@@ -76,6 +76,7 @@ const char* const kKnownFields[] = {"task",
                                     "max_heading_change_deg",
                                     "max_turn_translation_m",
                                     "omni",
+                                    "ramp",
                                     "trials",
                                     "aggregate",
                                     "trial_seed",
@@ -344,6 +345,8 @@ Status parse_task_config(const nlohmann::json& doc, TaskConfig& out) {
     }
     if (!(c.omni.hold_s >= 1.0)) return Status::error("omni.hold_s: must be at least 1 s");
   }
+  if (doc.contains("ramp"))
+    if (Status s = parse_ramp(doc.at("ramp"), c.ramp); !s) return s;
   if (Status s = integer(doc, "trials", 1, 1000, v, false); !s) return s;
   if (doc.contains("trials")) c.trials = static_cast<int>(v);
   if (doc.contains("aggregate")) {
@@ -463,6 +466,7 @@ nlohmann::json to_json(const TaskConfig& c) {
   j["max_drift_ratio"] = limit(c.max_drift_ratio);
   j["max_heading_change_deg"] = limit(c.max_heading_change_deg);
   j["max_turn_translation_m"] = limit(c.max_turn_translation_m);
+  j["ramp"] = to_json(c.ramp);
   j["omni"] = {{"start_s", c.omni.start_s},
                {"ramp_s", c.omni.ramp_s},
                {"hold_s", c.omni.hold_s},

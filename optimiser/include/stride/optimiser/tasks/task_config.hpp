@@ -20,6 +20,7 @@
 
 #include "stride/core/status.hpp"
 #include "stride/optimiser/nsga2/settings.hpp"
+#include "stride/optimiser/tasks/speed_ramp.hpp"
 #include "stride/sim_hal/world_file.hpp"
 #include "stride/sim_hal/world_options.hpp"
 
@@ -74,6 +75,7 @@ struct TaskConfig {
   double max_heading_change_deg = 10.0;
   double max_turn_translation_m = 0.1;
   OmniTiming omni;  ///< walk-omni
+  RampTiming ramp;  ///< walk-ramp (speed_ramp.hpp)
   // Robust evaluation.
   int trials = 1;  ///< 1: the nominal world; K > 1: K seeded randomised worlds
   Aggregate aggregate = Aggregate::kMean;
