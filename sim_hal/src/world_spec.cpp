@@ -2,7 +2,8 @@
 #include "stride/sim_hal/world_spec.hpp"
 
 #include <cmath>
-#include <cstdio>
+
+#include "stride/firmware/parameter_store.hpp"
 
 namespace stride::sim {
 
@@ -17,12 +18,6 @@ std::string choices_text(const WorldOptionInfo& o) {
     if (i > 0) text += i + 1 == o.choices.size() ? " or " : ", ";
     text += o.choices[i];
   }
-  return text;
-}
-
-std::string format_number(double v) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.10g", v);
   return text;
 }
 
@@ -91,12 +86,12 @@ Status check_physics_step(std::int64_t step_ns, std::int64_t control_period_ns,
                           const std::string& shown) {
   const double step_us = static_cast<double>(step_ns) * 1e-3;
   if (!(step_us >= kMinStepUs && step_us <= kMaxStepUs))
-    return Status::error(shown + ": must be in " + format_number(kMinStepUs) + ".." +
-                         format_number(kMaxStepUs) + " us, got " + format_number(step_us));
+    return Status::error(shown + ": must be in " + fw::format_number(kMinStepUs) + ".." +
+                         fw::format_number(kMaxStepUs) + " us, got " + fw::format_number(step_us));
   if (control_period_ns <= 0 || control_period_ns % step_ns != 0)
-    return Status::error(shown + ": " + format_number(step_us) +
+    return Status::error(shown + ": " + fw::format_number(step_us) +
                          " us does not divide the firmware's control period of " +
-                         format_number(static_cast<double>(control_period_ns) * 1e-3) + " us");
+                         fw::format_number(static_cast<double>(control_period_ns) * 1e-3) + " us");
   return {};
 }
 
@@ -133,8 +128,8 @@ Status apply_world_option(const WorldOptionInfo& option, const std::string& valu
     return Status::error(shown + ": expected an integer number of " + std::string(option.unit) +
                          ", got '" + value + "'");
   if (!(v >= option.min && v <= option.max))
-    return Status::error(shown + ": must be in " + format_number(option.min) + ".." +
-                         format_number(option.max) + " " + std::string(option.unit) + ", got " +
+    return Status::error(shown + ": must be in " + fw::format_number(option.min) + ".." +
+                         fw::format_number(option.max) + " " + std::string(option.unit) + ", got " +
                          value);
   if (option.key == "physics_step_us") out.physics_step_ns = static_cast<std::int64_t>(v) * 1000;
   return {};

@@ -150,6 +150,12 @@ void OmniEpisode::observe(hal::Tick tick, const sim::SimWorld& world) {
   }
 }
 
+bool every_segment_measured(const OmniSegments& segments) {
+  for (const OmniSegment& s : segments)
+    if (!s.measured) return false;
+  return true;
+}
+
 double omni_speed_objective(const OmniSegments& s) {
   auto v = [&](OmniDirection d) { return s[static_cast<int>(d)].speed; };
   const double sideways = 0.5 * (v(OmniDirection::kLeft) + v(OmniDirection::kRight));

@@ -162,9 +162,7 @@ class WalkRampTask final : public TaskType {
             "its median speed score is {} % worse than in the run"};
   }
   bool succeeded(const TaskConfig&, const EpisodeScore& score) const override {
-    for (const OmniSegment& s : score.omni)
-      if (!s.measured) return false;
-    return true;
+    return every_segment_measured(score.omni);
   }
   bool measures_directions() const override { return true; }
   int episodes_per_world() const override { return kOmniSegments; }

@@ -115,6 +115,8 @@ class OmniEpisode {
   OmniSegments segments_{};
 };
 
+/// Every segment (direction) was measured: the walk-omni and walk-ramp validation success.
+bool every_segment_measured(const OmniSegments& segments);
 /// Obj1 of the walk-omni task from the segments' speeds (see the header comment).
 double omni_speed_objective(const OmniSegments& segments);
 /// Constraints c1..c3 of the walk-omni task (c0, the fall, is the caller's).
