@@ -123,10 +123,9 @@ Status parse_world_file(const json& doc, WorldFile& out) {
   if (doc.contains("base")) {
     const json& b = doc.at("base");
     const std::string text = b.is_string() ? b.get<std::string>() : b.dump();
-    WorldOptions scratch;
-    if (Status s = apply_world_option(*find_world_option("base"), text, "base", scratch); !s)
-      return s;
-    parse_world_preset(text, w.base);
+    if (!parse_world_preset(text, w.base))
+      return Status::error("base: expected " + world_option_choices(*find_world_option("base")) +
+                           ", got '" + text + "'");
   }
   if (Status s = read_number(doc, "", "supply_voltage_v", 9.0, 18.0, w.supply_voltage_v); !s)
     return s;

@@ -239,10 +239,8 @@ int run_optimise(int argc, char** argv) {
       task.aggregate = a == "mean" ? opt::Aggregate::kMean : opt::Aggregate::kWorst;
     }
     if (args.has("engine")) {
-      stride::sim::WorldOptions engine_world;
-      if (auto st = stride::sim::apply_world_option(*stride::sim::find_world_option("engine"),
-                                                    args.get("engine"), "--engine", engine_world);
-          !st)
+      stride::sim::WorldSpec engine_world;
+      if (auto st = engine_world.set("engine", args.get("engine"), "--engine"); !st)
         return bad_input(st.message());
       task.engines = {engine_world.engine};
     }

@@ -33,11 +33,8 @@ Status engines_of(const stride::core::CliArgs& args, std::vector<stride::sim::En
     std::stringstream list(value);
     std::string name;
     while (std::getline(list, name, ',')) {
-      stride::sim::WorldOptions world;
-      if (Status s = stride::sim::apply_world_option(*stride::sim::find_world_option("engine"),
-                                                     name, "--engine", world);
-          !s)
-        return s;
+      stride::sim::WorldSpec world;
+      if (Status s = world.set("engine", name, "--engine"); !s) return s;
       const stride::sim::EngineKind kind = world.engine;
       bool seen = false;
       for (auto e : out) seen = seen || e == kind;
@@ -94,13 +91,11 @@ int run_validate(int argc, char** argv) {
   if (args.has("physics-step-us")) {
     // Its range here (the world option table), the firmware's period in validation_worlds
     // below (check_physics_step).
-    stride::sim::WorldOptions world;
-    if (auto st = stride::sim::apply_world_option(
-            *stride::sim::find_world_option("physics_step_us"), args.get("physics-step-us"),
-            "--physics-step-us", world);
+    stride::sim::WorldSpec world;
+    if (auto st = world.set("physics_step_us", args.get("physics-step-us"), "--physics-step-us");
         !st)
       return bad_input(st.message());
-    options.physics_step_ns = world.physics_step_ns;
+    options.physics_step_ns = world.physics_step_us * 1000;
   }
   options.jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   if (args.has("jobs")) {

@@ -17,26 +17,24 @@ namespace stride::opt {
 
 namespace {
 
+/// The config's world with the trial's engine, seed, noise and randomisation: trial 1 of 1 is
+/// the nominal world (no noise, no randomisation); K > 1 trials are randomised worlds.
 sim::WorldOptions world_for_trial(const TaskConfig& config, int world) {
-  sim::WorldOptions w;
+  sim::WorldSpec spec = config.world;
   const int trial = world % config.trials;
-  w.engine =
+  spec.engine =
       config.engines[static_cast<std::size_t>(world / config.trials) % config.engines.size()];
-  w.seed = config.trial_seed + static_cast<std::uint64_t>(trial);
+  spec.seed = config.trial_seed + static_cast<std::uint64_t>(trial);
+  spec.noise = config.trials > 1 && config.randomisation.imu_noise;
+  spec.randomise = {};
   if (config.trials > 1) {
-    if (config.randomisation.imu_noise) w.imu.set_noise(true);
-    w.randomise.friction_range = config.randomisation.friction_range;
-    w.randomise.mass_range = config.randomisation.mass_range;
-    w.randomise.strength_range = config.randomisation.strength_range;
+    spec.randomise.friction_range = config.randomisation.friction_range;
+    spec.randomise.mass_range = config.randomisation.mass_range;
+    spec.randomise.strength_range = config.randomisation.strength_range;
   }
+  sim::WorldOptions w = spec.to_options();
   const TaskType* type = find_task_type(config.task);
   if (type == nullptr || !type->uses_ball()) w.ball.present = false;
-  if (!config.urdf.empty()) w.urdf = config.urdf;
-  w.servo.law = config.servo_law;
-  w.use_cm730_imu(config.imu_cm730);
-  w.physics_step_ns = config.physics_step_us * 1000;
-  sim::parse_contact_kind(config.contact, w.contact);  // checked when the config was read
-  if (config.world_file) config.world_file->apply_calibration(w);
   return w;
 }
 
@@ -54,9 +52,14 @@ RobotTask::RobotTask(TaskConfig config)
     if (fw::Firmware::create({}, *firmware_files_, firmware))
       control_period_ns_ = firmware->period_ns();
   }
-  auto model = std::make_shared<sim::RobotModel>();
-  const std::filesystem::path urdf = config_.urdf.empty() ? sim::WorldOptions{}.urdf : config_.urdf;
-  if (sim::RobotModel::load_file(urdf, *model)) robot_model_ = std::move(model);
+  if (config_.world.model != nullptr) {
+    robot_model_ = config_.world.model;
+  } else {
+    auto model = std::make_shared<sim::RobotModel>();
+    const std::filesystem::path urdf =
+        config_.world.urdf.empty() ? sim::WorldOptions{}.urdf : config_.world.urdf;
+    if (sim::RobotModel::load_file(urdf, *model)) robot_model_ = std::move(model);
+  }
 }
 
 Status RobotTask::check() const {
@@ -66,7 +69,8 @@ Status RobotTask::check() const {
     std::unique_ptr<fw::Firmware> firmware;
     if (Status s = fw::Firmware::create({}, firmware); !s) return s;
   }
-  if (Status s = sim::check_physics_step(config_.physics_step_us * 1000, control_period_ns_); !s)
+  if (Status s = sim::check_physics_step(config_.world.physics_step_us * 1000, control_period_ns_);
+      !s)
     return s;
   return type_->check(config_);
 }
@@ -109,7 +113,7 @@ Status RobotTask::run_world(const Genome& genome, sim::WorldOptions options, Epi
   if (genome.reals.size() != config_.genes.size())
     return Status::error("genome has " + std::to_string(genome.reals.size()) + " genes, the task " +
                          std::to_string(config_.genes.size()));
-  if (options.urdf == (config_.urdf.empty() ? sim::WorldOptions{}.urdf : config_.urdf))
+  if (options.urdf == (config_.world.urdf.empty() ? sim::WorldOptions{}.urdf : config_.world.urdf))
     options.model = robot_model_;
   const int episodes = type_->episodes_per_world();
   for (int e = 0; e < episodes; ++e) {

@@ -100,102 +100,63 @@ std::string option_text(const nlohmann::json& v) {
   return v.is_string() ? v.get<std::string>() : v.dump();
 }
 
-/// The config's world options (the world option table, world_spec.hpp) into its fields: read
-/// into the world they describe, then kept as the servo law, IMU, contact and step.
-Status apply_world_fields(const nlohmann::json& fields, const std::string& prefix, TaskConfig& c) {
-  sim::WorldOptions w;
-  w.servo.law = c.servo_law;
-  w.use_cm730_imu(c.imu_cm730);
-  sim::parse_contact_kind(c.contact, w.contact);
-  w.physics_step_ns = c.physics_step_us * 1000;
-  for (const sim::WorldOptionInfo& o : sim::world_option_table()) {
-    if (o.key == "engine" || !fields.contains(std::string(o.key))) continue;  // engines: below
-    const std::string key(o.key);
-    if (Status s = sim::apply_world_option(o, option_text(fields.at(key)), prefix + key, w); !s)
-      return s;
-  }
-  c.servo_law = w.servo.law;
-  c.imu_cm730 = !w.imu.chain.is_ideal();
-  if (fields.contains("base")) c.contact = fields.at("base") == "seed" ? "seed" : "turf";
-  if (fields.contains("contact")) c.contact = fields.at("contact").get<std::string>();
-  c.physics_step_us = w.physics_step_ns / 1000;
-  return {};
-}
+/// The world options a task's trials set (trial_seed, randomisation), not its world.
+constexpr const char* kTrialWorldOptions[] = {
+    "noise", "seed", "friction_range", "mass_range", "strength_range", "latency_probability"};
 
-// `engine` ("simbody" | "mujoco") or `engines` (a list of distinct engines), not both.
-// The simulated robot: `urdf` (parsed here, so that a broken file is named at load time),
-// `world`: a named world ("faithful", "seed"), a world file (its path or its object, with
-// "format": "stride-world") or an object of the world option table's fields ({"base",
-// "engine", "physics_step_us", "servo_law", "imu", "contact"}); the same fields may also stand
-// at the top level, as before the table (each overriding the world's parts). The physics step
-// is checked against the firmware's control period when the task is built (RobotTask::check).
+// The simulated world (TaskConfig::world): `world` is a named world ("faithful", "seed"), a
+// world file (its path or its object, with "format": "stride-world") or an object of the
+// world option table's fields (sim::read_world_spec), whose `engine` is the run's engine. The
+// flat fields of before the table (`urdf`, `servo_law`, `imu`, `contact`, `physics_step_us`)
+// override its parts. The physics step is checked against the firmware's control period when
+// the task is built (RobotTask::check).
 Status parse_robot(const nlohmann::json& doc, TaskConfig& c) {
+  sim::WorldSpec spec = c.world;
   if (doc.contains("world")) {
     const auto& w = doc.at("world");
-    sim::WorldPreset preset = sim::WorldPreset::kFaithful;
-    c.world_file.reset();
-    const bool file_object = w.is_object() && w.contains("format");
-    if (w.is_object() && !file_object) {
-      for (const auto& [key, value] : w.items())
-        if (sim::find_world_option(key) == nullptr)
-          return Status::error("world." + key +
-                               ": unknown world option (known: " + sim::world_option_keys() + ")");
-      if (!w.contains("base")) {
-        c.servo_law = sim::ServoLaw::kIdentified;  // the faithful world
-        c.imu_cm730 = true;
-        c.contact = "turf";
-      }
-      if (Status s = apply_world_fields(w, "world.", c); !s) return s;
+    spec = sim::WorldSpec{};  // the world replaces the one before
+    if (w.is_object() && !w.contains("format")) {
+      for (const char* key : kTrialWorldOptions)
+        if (w.contains(key))
+          return Status::error("world." + std::string(key) +
+                               ": set per trial by the task (trial_seed, randomisation), not "
+                               "in world");
+      if (Status s = sim::read_world_spec(w, "world", spec); !s) return s;
       if (w.contains("engine")) {
         if (doc.contains("engine") || doc.contains("engines"))
           return Status::error(
-              "world.engine: give the engine in world or at the top level, "
-              "not both");
-        sim::WorldOptions engine_world;
-        if (Status s =
-                sim::apply_world_option(*sim::find_world_option("engine"),
-                                        option_text(w.at("engine")), "world.engine", engine_world);
-            !s)
-          return s;
-        c.engines = {engine_world.engine};
+              "world.engine: give the engine in world or at the top level, not both");
+        c.engines = {spec.engine};
+        spec.engine = sim::WorldSpec{}.engine;  // the run's engines are c.engines
       }
+    } else if (w.is_object()) {
+      sim::WorldFile file;
+      if (Status s = sim::parse_world_file(w, file); !s)
+        return Status::error("world: " + s.message());
+      spec.base = file.base;
+      spec.file = file;
     } else {
-      if (file_object || (w.is_string() && sim::looks_like_world_file(w.get<std::string>()))) {
-        sim::WorldFile file;
-        const Status s = w.is_object() ? sim::parse_world_file(w, file)
-                                       : sim::load_world_file(w.get<std::string>(), file);
-        if (!s) return Status::error("world: " + s.message());
-        preset = file.base;
-        c.world_file = file;
-      } else if (!w.is_string() || !sim::parse_world_preset(w.get<std::string>(), preset)) {
+      const std::string text = w.is_string() ? w.get<std::string>() : std::string();
+      const Status s = w.is_string() ? spec.set("base", text, "world") : Status::error("");
+      if (!s && w.is_string() && sim::looks_like_world_file(text)) return s;  // names the file
+      if (!s)
         return Status::error(
             "world: must be \"faithful\", \"seed\", a world file (.json), its object or an "
             "object of world options, got " +
             w.dump());
-      }
-      const bool seed = preset == sim::WorldPreset::kSeed;
-      c.servo_law = seed ? sim::ServoLaw::kSeed : sim::ServoLaw::kIdentified;
-      c.imu_cm730 = !seed;
-      c.contact = seed ? "seed" : "turf";
     }
   }
   if (doc.contains("urdf")) {
     const auto& u = doc.at("urdf");
     if (!u.is_string() || u.get<std::string>().empty())
       return Status::error("urdf: must be the path of a robot description (URDF)");
-    c.urdf = u.get<std::string>();
-    std::error_code error;
-    if (!std::filesystem::is_regular_file(c.urdf, error))
-      return Status::error("urdf: no such file '" + c.urdf.string() + "'");
-    sim::RobotModel model;
-    if (Status s = sim::RobotModel::load_file(c.urdf, model); !s)
-      return Status::error("urdf: " + s.message());
+    if (Status s = spec.set("urdf", u.get<std::string>(), "urdf"); !s) return s;
   }
   // The world option table's fields at the top level (the flat form of before the table).
-  nlohmann::json flat = nlohmann::json::object();
   for (const char* key : {"servo_law", "imu", "contact", "physics_step_us"})
-    if (doc.contains(key)) flat[key] = doc.at(key);
-  if (Status s = apply_world_fields(flat, "", c); !s) return s;
+    if (doc.contains(key))
+      if (Status s = spec.set(key, option_text(doc.at(key)), key); !s) return s;
+  c.world = std::move(spec);
   if (doc.contains("params")) {
     nlohmann::json values = doc.at("params");
     if (values.is_string()) {
@@ -218,11 +179,9 @@ Status parse_robot(const nlohmann::json& doc, TaskConfig& c) {
 }
 
 Status parse_engines(const nlohmann::json& doc, std::vector<sim::EngineKind>& out) {
-  const sim::WorldOptionInfo& engine = *sim::find_world_option("engine");
-  const auto parse = [&engine](const nlohmann::json& v, const std::string& field,
-                               sim::EngineKind& kind) {
-    sim::WorldOptions w;
-    if (Status s = sim::apply_world_option(engine, option_text(v), field, w); !s) return s;
+  const auto parse = [](const nlohmann::json& v, const std::string& field, sim::EngineKind& kind) {
+    sim::WorldSpec w;
+    if (Status s = w.set("engine", option_text(v), field); !s) return s;
     kind = w.engine;
     return Status::ok();
   };
@@ -365,12 +324,19 @@ Status parse_task_config(const nlohmann::json& doc, TaskConfig& out) {
         return Status::error("randomisation.imu_noise: must be true or false");
       c.randomisation.imu_noise = r.at("imu_noise").get<bool>();
     }
+    // The ranges as the world option table has them (names, range, message).
+    sim::WorldSpec ranges;
     for (auto [name, target] : {std::pair{"friction_range", &c.randomisation.friction_range},
                                 {"mass_range", &c.randomisation.mass_range},
                                 {"strength_range", &c.randomisation.strength_range}}) {
-      if (Status s = number(r, name, *target, false, "randomisation."); !s) return s;
-      if (*target < 0.0 || *target >= 1.0)
-        return Status::error(std::string("randomisation.") + name + ": must be in [0, 1)");
+      if (!r.contains(name)) continue;
+      if (!r.at(name).is_number())
+        return Status::error(std::string("randomisation.") + name + ": must be a number");
+      if (Status s =
+              ranges.set(name, option_text(r.at(name)), std::string("randomisation.") + name);
+          !s)
+        return s;
+      *target = r.at(name).get<double>();
     }
   }
   if (Status s = parse_engines(doc, c.engines); !s) return s;
@@ -405,14 +371,20 @@ Status load_task_config(const std::filesystem::path& path, TaskConfig& out) {
   nlohmann::json doc = nlohmann::json::parse(in, nullptr, false);
   if (doc.is_discarded()) return Status::error(path.string() + ": not valid JSON");
   // A relative robot description or parameter file is relative to the config file.
-  for (const char* key : {"urdf", "params", "world"}) {
-    if (!doc.is_object() || !doc.contains(key) || !doc.at(key).is_string()) continue;
-    if (std::string(key) == "world" && !sim::looks_like_world_file(doc.at(key).get<std::string>()))
-      continue;
-    const std::filesystem::path file = doc.at(key).get<std::string>();
+  const auto relative_to_config = [&path](nlohmann::json& object, const char* key) {
+    if (!object.is_object() || !object.contains(key) || !object.at(key).is_string()) return;
+    const std::string text = object.at(key).get<std::string>();
+    if ((std::string(key) == "world" || std::string(key) == "base") &&
+        !sim::looks_like_world_file(text))
+      return;  // a named world
+    const std::filesystem::path file = text;
     if (file.is_relative() && !file.empty())
-      doc[key] = (std::filesystem::absolute(path).parent_path() / file).lexically_normal().string();
-  }
+      object[key] =
+          (std::filesystem::absolute(path).parent_path() / file).lexically_normal().string();
+  };
+  for (const char* key : {"urdf", "params", "world"}) relative_to_config(doc, key);
+  if (doc.is_object() && doc.contains("world"))
+    for (const char* key : {"urdf", "base"}) relative_to_config(doc["world"], key);
   if (Status s = parse_task_config(doc, out); !s)
     return Status::error(path.string() + ": " + s.message());
   return {};
@@ -451,17 +423,12 @@ nlohmann::json to_json(const TaskConfig& c) {
   for (sim::EngineKind e : c.engines) engines.push_back(sim::to_string(e));
   j["engines"] = engines;
   j["validate"] = {{"seeds", c.validate_seeds}};
-  if (!c.urdf.empty()) j["urdf"] = std::filesystem::absolute(c.urdf).string();
   if (!c.base_params.empty()) {
     nlohmann::json params = nlohmann::json::object();
     for (const auto& [name, value] : c.base_params) params[name] = value;
     j["params"] = params;  // the values, so that run.json stands alone
   }
-  if (c.world_file) j["world"] = sim::to_json(*c.world_file);  // by value, as the params
-  j["servo_law"] = c.servo_law == sim::ServoLaw::kIdentified ? "identified" : "seed";
-  j["imu"] = c.imu_cm730 ? "cm730" : "ideal";
-  j["contact"] = c.contact;
-  j["physics_step_us"] = c.physics_step_us;
+  j["world"] = sim::to_json(c.world);  // a world file by value, as the params
   auto limit = [](double v) { return v < 0.0 ? nlohmann::json(nullptr) : nlohmann::json(v); };
   j["max_drift_ratio"] = limit(c.max_drift_ratio);
   j["max_heading_change_deg"] = limit(c.max_heading_change_deg);

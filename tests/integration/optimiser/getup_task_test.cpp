@@ -23,7 +23,7 @@ TaskConfig getup_config() {
 }
 
 EpisodeScore nominal_episodes(TaskConfig config, const std::string& contact) {
-  config.contact = contact;
+  config.world.contact = contact;
   config.trials = 1;  // the nominal world
   const RobotTask task(config);
   EpisodeScore score;
@@ -76,8 +76,8 @@ Genome genome_from_file(const TaskConfig& config, const std::string& file) {
 // both sides on the faithful world's turf, where the stock scripts stay down, on both engines.
 TEST(GetUpTask, TheShippedPickStandsUpOnTurfOnBothEngines) {
   TaskConfig config = getup_config();
-  const Genome pick =
-      genome_from_file(config, std::string(STRIDE_SOURCE_DIR) + "/firmware/config/get-up-turf.json");
+  const Genome pick = genome_from_file(
+      config, std::string(STRIDE_SOURCE_DIR) + "/firmware/config/get-up-turf.json");
   for (const sim::EngineKind engine : {sim::EngineKind::kSimbody, sim::EngineKind::kMujoco}) {
     config.engines = {engine};
     config.trials = 1;  // the nominal world

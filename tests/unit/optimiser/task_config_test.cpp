@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <numbers>
 
 #include "stride/optimiser/run/progress.hpp"
 #include "stride/optimiser/run/run_report.hpp"
@@ -238,7 +239,7 @@ TEST(TaskConfig, EnginesAndValidateSeedsParseRoundTripAndNameTheFieldOnError) {
 TEST(TaskConfig, RobotFieldsReachTheWorldsAndNameTheFieldOnError) {
   TaskConfig c;
   ASSERT_TRUE(parse_task_config(minimal(), c));
-  EXPECT_TRUE(c.urdf.empty());
+  EXPECT_TRUE(c.world.urdf.empty());
   EXPECT_EQ(RobotTask(c).world_options(0).servo.law, sim::ServoLaw::kIdentified);
   EXPECT_FALSE(RobotTask(c).world_options(0).imu.chain.is_ideal());
   EXPECT_FALSE(RobotTask(c).world_options(0).imu.chain.noise);  // one trial: no noise
@@ -272,11 +273,11 @@ TEST(TaskConfig, RobotFieldsReachTheWorldsAndNameTheFieldOnError) {
   d["trials"] = 2;
   tmp.write("config.json", d.dump());
   ASSERT_TRUE(load_task_config(tmp.path() / "config.json", c));
-  EXPECT_EQ(c.urdf, tmp.path() / "robots" / "mine.urdf");
+  EXPECT_EQ(c.world.urdf, tmp.path() / "robots" / "mine.urdf");
   const RobotTask task(c);
   for (int k = 0; k < 2; ++k) {
     const sim::WorldOptions w = task.world_options(k);
-    EXPECT_EQ(w.urdf, c.urdf);
+    EXPECT_EQ(w.urdf, c.world.urdf);
     EXPECT_EQ(w.servo.law, sim::ServoLaw::kIdentified);
     EXPECT_FALSE(w.imu.chain.is_ideal());
     EXPECT_TRUE(w.imu.chain.noise);  // trials randomise with IMU noise on
@@ -338,10 +339,45 @@ TEST(TaskConfig, AWorldObjectTakesTheTablesOptions) {
   TaskConfig f;
   ASSERT_TRUE(parse_task_config(flat, f));
   EXPECT_EQ(to_json(f), to_json(c));
+  // Contact parameters, latency and pushes reach every trial world and survive run.json.
+  d["world"] = {{"friction", 0.6}, {"latency_ticks", 2}, {"push", {"3,left,1.5", "5.5,30,2"}}};
+  d["trials"] = 2;
+  ASSERT_TRUE(parse_task_config(d, c));
+  for (int k = 0; k < 2; ++k) {
+    const sim::WorldOptions o = RobotTask(c).world_options(k);
+    EXPECT_EQ(o.contact.friction, 0.6);
+    EXPECT_EQ(o.robot.latency_ticks, 2);
+    ASSERT_EQ(o.pushes.size(), 2u);
+    EXPECT_EQ(o.pushes[0].time_s, 3.0);
+    EXPECT_DOUBLE_EQ(o.pushes[0].direction_rad, std::numbers::pi / 2);
+    EXPECT_DOUBLE_EQ(o.pushes[1].direction_rad, std::numbers::pi / 6);
+    EXPECT_EQ(o.pushes[1].impulse_n_s, 2.0);
+  }
+  TaskConfig back;
+  ASSERT_TRUE(parse_task_config(to_json(c), back));
+  EXPECT_EQ(to_json(back), to_json(c));
+  EXPECT_EQ(back.world.pushes[1].direction_rad, c.world.pushes[1].direction_rad);
+  d.erase("trials");
   d["world"] = {{"gravity", 3.7}};
   EXPECT_EQ(error_of(d),
             "world.gravity: unknown world option (known: base, engine, physics_step_us, "
-            "servo_law, imu, contact)");
+            "servo_law, imu, contact, friction, urdf, noise, seed, friction_range, mass_range, "
+            "strength_range, latency_probability, latency_ticks, push)");
+  d["world"] = {{"friction", 9}};
+  EXPECT_EQ(error_of(d), "world.friction: must be in 0.05..3, got 9");
+  d["world"] = {{"push", {"3,up,1"}}};
+  EXPECT_EQ(error_of(d),
+            "world.push[0]: direction must be forward, backward, left, right or degrees, got "
+            "'up' in '3,up,1' (expected T,DIR,IMPULSE, e.g. 5.2,forward,1.5)");
+  // The trials own the seed, the noise and the randomisation ranges.
+  d["world"] = {{"mass_range", 0.1}};
+  EXPECT_EQ(error_of(d),
+            "world.mass_range: set per trial by the task (trial_seed, randomisation), not in "
+            "world");
+  d.erase("world");
+  d["randomisation"] = {{"mass_range", 1.5}};
+  EXPECT_EQ(error_of(d), "randomisation.mass_range: must be in 0..0.99, got 1.5");
+  d.erase("randomisation");
   d["world"] = {{"physics_step_us", 30000}};
   EXPECT_EQ(error_of(d), "world.physics_step_us: must be in 1..20000 us, got 30000");
   d["world"] = {{"engine", "mujoco"}};
@@ -391,9 +427,8 @@ TEST(TaskConfig, AWorldFileReachesEveryTrialWorld) {
   TaskConfig c;
   const Status s = load_task_config(tmp.path() / "walk" / "config.json", c);
   ASSERT_TRUE(s) << s.message();
-  ASSERT_TRUE(c.world_file.has_value());
-  EXPECT_EQ(c.servo_law, sim::ServoLaw::kSeed);
-  EXPECT_EQ(c.contact, "seed");
+  ASSERT_TRUE(c.world.file.has_value());
+  EXPECT_EQ(c.world.base, sim::WorldPreset::kSeed);
   const RobotTask task(c);
   for (int w = 0; w < 3; ++w) {
     const sim::WorldOptions o = task.world_options(w);
@@ -403,8 +438,8 @@ TEST(TaskConfig, AWorldFileReachesEveryTrialWorld) {
   }
   TaskConfig back;
   ASSERT_TRUE(parse_task_config(to_json(c), back));
-  ASSERT_TRUE(back.world_file.has_value());
-  EXPECT_EQ(sim::to_json(*back.world_file), sim::to_json(*c.world_file));
+  ASSERT_TRUE(back.world.file.has_value());
+  EXPECT_EQ(sim::to_json(*back.world.file), sim::to_json(*c.world.file));
   d["world"] = {{"format", "stride-world"}, {"robot", {{"latency_ticks", 9}}}};
   EXPECT_EQ(error_of(d), "world: robot.latency_ticks: must be an integer in 0..3, got 9");
 }

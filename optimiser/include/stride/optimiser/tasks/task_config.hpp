@@ -21,8 +21,7 @@
 #include "stride/core/status.hpp"
 #include "stride/optimiser/nsga2/settings.hpp"
 #include "stride/optimiser/tasks/speed_ramp.hpp"
-#include "stride/sim_hal/world_file.hpp"
-#include "stride/sim_hal/world_options.hpp"
+#include "stride/sim_hal/world_spec.hpp"
 
 namespace stride::opt {
 
@@ -86,23 +85,14 @@ struct TaskConfig {
   /// k % trials, so both engines see the same seeds).
   std::vector<sim::EngineKind> engines{sim::EngineKind::kSimbody};
   int world_count() const { return trials * static_cast<int>(engines.size()); }
-  // The simulated robot (issue 20): another robot description (config `urdf`, a path relative
-  // to the config file; empty: the igus model), the named world (`world`: "faithful", the
-  // default, or "seed", the thesis's; sim::WorldPreset), whose parts the servo law
-  // (`servo_law`: "seed" or "identified"), the IMU (`imu`: "ideal" or "cm730") and the contact
-  // override, and the physics step (`physics_step_us`, dividing the 10 ms control period).
-  std::filesystem::path urdf;
-  sim::ServoLaw servo_law = sim::ServoLaw::kIdentified;
-  bool imu_cm730 = true;
-  std::int64_t physics_step_us = 2000;
-  /// The field contact (issue 29, config `contact`): "seed" (the seed's 2 cm grass) or "turf"
-  /// (sim::ContactOptions::turf(), sim_hal/models/README.md).
-  std::string contact = "turf";
-  /// A world file (config `world`: its path, relative to the config, or its object;
-  /// sim::WorldFile, e.g. from `stride calibrate`): its base world sets the servo law, IMU and
-  /// contact above, and its calibration (supply voltage, servo torque and friction, latency,
-  /// trunk mass and centre of mass, IMU biases) applies to every trial and validation world.
-  std::optional<sim::WorldFile> world_file;
+  /// The simulated world every trial and validation world starts from (config `world`: a
+  /// named world, a world file's path or object, or an object of the world option table's
+  /// fields, sim::WorldSpec; the flat fields `urdf`, `servo_law`, `imu`, `contact` and
+  /// `physics_step_us` of before the table still load). Its engine is `engines`; its seed,
+  /// noise and randomisation ranges are the trials' (trial_seed, randomisation), so a config
+  /// that sets them in `world` is an error naming the field. A relative path (a URDF, a world
+  /// file) is relative to the config file.
+  sim::WorldSpec world;
   /// Parameter values every episode's firmware takes before the genome (config `params`: a
   /// parameter file's path, relative to the config, or an object {name: number}); genes
   /// override them. Sorted by name. E.g. firmware/config/seed-walk.json with `"world": "seed"`
