@@ -3,6 +3,7 @@
 
 #include <cstdio>
 #include <optional>
+#include <sstream>
 
 #include "stride/sim_hal/physics_engine.hpp"
 #include "stride/sim_hal/world_spec.hpp"
@@ -34,6 +35,25 @@ Status read_world_options(const core::CliArgs& args, WorldOptions& out) {
   WorldSpec spec;
   if (Status s = read_world_spec(args, spec); !s) return s;
   out = spec.to_options();
+  return {};
+}
+
+Status read_engine_list(const core::CliArgs& args, const std::string& name,
+                        std::vector<EngineKind>& out) {
+  std::vector<EngineKind> engines;
+  const std::string flag = "--" + name;
+  for (const std::string& value : args.get_all(name)) {
+    std::stringstream list(value);
+    std::string item;
+    while (std::getline(list, item, ',')) {
+      WorldSpec world;
+      if (Status s = world.set("engine", item, flag); !s) return s;
+      bool seen = false;
+      for (const EngineKind e : engines) seen = seen || e == world.engine;
+      if (!seen) engines.push_back(world.engine);
+    }
+  }
+  out = std::move(engines);
   return {};
 }
 

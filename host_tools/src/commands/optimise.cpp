@@ -28,7 +28,7 @@
 #include "stride/optimiser/run/run_report.hpp"
 #include "stride/optimiser/run/validation.hpp"
 #include "stride/optimiser/tasks/robot_task.hpp"
-#include "stride/sim_hal/world_spec.hpp"
+#include "stride/sim_hal/sim_cli.hpp"
 
 namespace {
 
@@ -150,7 +150,9 @@ int run_optimise(int argc, char** argv) {
       .option("trials",
               "robust evaluation: K seeded randomised worlds per genome (overrides the config)")
       .option("aggregate", "how trials combine: mean or worst (overrides the config)")
-      .option("engine", "robot tasks: physics engine simbody|mujoco (overrides the config's)")
+      .option("engine",
+              "robot tasks: physics engines of every trial, simbody|mujoco or a list "
+              "(simbody,mujoco; repeatable; overrides the config's)")
       .option("out", "run directory to write (or resume)")
       .option("resume", "continue the run in --out from its checkpoint", false)
       .option("seed", "random seed", true, "1")
@@ -239,10 +241,10 @@ int run_optimise(int argc, char** argv) {
       task.aggregate = a == "mean" ? opt::Aggregate::kMean : opt::Aggregate::kWorst;
     }
     if (args.has("engine")) {
-      stride::sim::WorldSpec engine_world;
-      if (auto st = engine_world.set("engine", args.get("engine"), "--engine"); !st)
+      std::vector<stride::sim::EngineKind> engines;
+      if (auto st = stride::sim::read_engine_list(args, "engine", engines); !st)
         return bad_input(st.message());
-      task.engines = {engine_world.engine};
+      task.engines = engines;
     }
     s.config.settings = task.settings;
     if (auto st = read_settings(args, 0, s); !st) return bad_input(st.message());

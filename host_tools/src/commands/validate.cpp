@@ -5,7 +5,6 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -15,7 +14,7 @@
 #include "stride/core/cli_args.hpp"
 #include "stride/host_tools/command.hpp"
 #include "stride/optimiser/run/validation.hpp"
-#include "stride/sim_hal/world_spec.hpp"
+#include "stride/sim_hal/sim_cli.hpp"
 
 namespace {
 
@@ -25,23 +24,6 @@ using stride::Status;
 int bad_input(const std::string& message) {
   std::fprintf(stderr, "stride validate: %s\n", message.c_str());
   return 2;
-}
-
-/// Every value of --engine (repeatable, each may be a comma-separated list).
-Status engines_of(const stride::core::CliArgs& args, std::vector<stride::sim::EngineKind>& out) {
-  for (const std::string& value : args.get_all("engine")) {
-    std::stringstream list(value);
-    std::string name;
-    while (std::getline(list, name, ',')) {
-      stride::sim::WorldSpec world;
-      if (Status s = world.set("engine", name, "--engine"); !s) return s;
-      const stride::sim::EngineKind kind = world.engine;
-      bool seen = false;
-      for (auto e : out) seen = seen || e == kind;
-      if (!seen) out.push_back(kind);
-    }
-  }
-  return {};
 }
 
 }  // namespace
@@ -79,7 +61,8 @@ int run_validate(int argc, char** argv) {
   opt::ValidationSubject subject;
   if (auto st = opt::load_validation_subject(dir, subject); !st) return bad_input(st.message());
   opt::ValidationOptions options;
-  if (auto st = engines_of(args, options.engines); !st) return bad_input(st.message());
+  if (auto st = stride::sim::read_engine_list(args, "engine", options.engines); !st)
+    return bad_input(st.message());
   options.seeds = subject.config.validate_seeds;
   std::int64_t v = 0;
   if (args.has("seeds")) {

@@ -244,6 +244,18 @@ TEST(ValidateCli, BadInputIsOneLineNamingItAndExitTwo) {
   EXPECT_NE(test::read_file(err).find("--engine: expected simbody or mujoco, got 'ode'"),
             std::string::npos);
   EXPECT_FALSE(fs::exists(tmp.path() / "bad"));
+  // --engine takes a list, as stride validate's: every trial on both engines.
+  json one = json::parse(test::read_file(tiny_walk_config(tmp.path())));
+  one["generations"] = 1;
+  std::ofstream(tmp.path() / "one.json") << one.dump();
+  stride("optimise --config " + (tmp.path() / "one.json").string() +
+             " --engine simbody,mujoco --engine mujoco --no-validate --out " +
+             (tmp.path() / "both").string(),
+         err, code);
+  ASSERT_EQ(code, 0) << test::read_file(err);
+  const json recorded = json::parse(test::read_file(tmp.path() / "both" / "run.json"));
+  EXPECT_EQ(recorded["task"]["engines"], json::array({"simbody", "mujoco"}))
+      << recorded.dump();
 }
 
 }  // namespace

@@ -19,6 +19,12 @@ Status read_world_spec(const core::CliArgs& args, WorldSpec& out);
 /// read_world_spec, then the world it describes (whose control period the caller sets).
 Status read_world_options(const core::CliArgs& args, WorldOptions& out);
 
+/// Every value of the repeatable option `name` as engines, each value one engine or a
+/// comma-separated list ("simbody,mujoco"), in order, each engine once; the error names
+/// --name.
+Status read_engine_list(const core::CliArgs& args, const std::string& name,
+                        std::vector<EngineKind>& out);
+
 /// One line naming the world's engine, servo law, IMU, contact and physics step, e.g.
 /// "simbody, identified servo law, cm730 IMU, turf, step 2000 us".
 std::string describe_world(const WorldOptions& options);
