@@ -3,7 +3,9 @@
 // writes RUN/validation.json (optimiser/run/validation.hpp); a table on stdout, or --json.
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <string>
 #include <thread>
@@ -33,6 +35,8 @@ int run_validate(int argc, char** argv) {
   args.option("engine",
               "engine of the other-engine worlds, repeatable: simbody|mujoco "
               "(default: every engine the run did not use)")
+      .option("member",
+              "also validate this front member (pareto.csv row, front/NNN.json), repeatable")
       .option("seeds", "fresh seeds per world (default: the config's validate.seeds, 10)")
       .option("physics-step-us", "physics step of the step world [us] (default: half the run's)")
       .option("jobs", "episodes in parallel (default: all cores)")
@@ -41,10 +45,11 @@ int run_validate(int argc, char** argv) {
   if (auto st = args.parse(argc, argv); !st) return bad_input(st.message());
   if (args.has("help")) {
     std::printf(
-        "usage: stride validate RUN [--engine E]... [--seeds N] [--physics-step-us US] "
-        "[--jobs N] [--json]\n"
+        "usage: stride validate RUN [--member ROW]... [--engine E]... [--seeds N]\n"
+        "       [--physics-step-us US] [--jobs N] [--json]\n"
         "Re-scores Ind_O and the picks of the robot run in RUN (fastest, most stable, knee;\n"
-        "kick: least sway, longest kick) on worlds the run never saw, each with N fresh seeds\n"
+        "kick: least sway, longest kick; --member: any other front member) on worlds the run never "
+        "saw, each with N fresh seeds\n"
         "and IMU noise on: the other engine(s), fresh seeds, wider randomisation (1.5x the\n"
         "run's friction, mass and strength ranges, at least 0.3 / 0.075 / 0.15, one tick of\n"
         "latency in half of the worlds) and half the physics step. Per individual and world:\n"
@@ -58,8 +63,17 @@ int run_validate(int argc, char** argv) {
   }
   if (args.positional().size() != 1) return bad_input("expected one run directory");
   const std::filesystem::path dir = args.positional()[0];
+  std::vector<std::size_t> members;
+  for (const std::string& text : args.get_all("member")) {
+    char* end = nullptr;
+    const long long row = std::strtoll(text.c_str(), &end, 10);
+    if (text.empty() || *end != '\0' || row < 0 || row > 100000)
+      return bad_input("--member: expected a pareto.csv row (0, 1, ...), got '" + text + "'");
+    members.push_back(static_cast<std::size_t>(row));
+  }
   opt::ValidationSubject subject;
-  if (auto st = opt::load_validation_subject(dir, subject); !st) return bad_input(st.message());
+  if (auto st = opt::load_validation_subject(dir, subject, members); !st)
+    return bad_input(st.message());
   opt::ValidationOptions options;
   if (auto st = stride::sim::read_engine_list(args, "engine", options.engines); !st)
     return bad_input(st.message());

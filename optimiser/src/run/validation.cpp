@@ -68,7 +68,8 @@ bool contains(const std::vector<sim::EngineKind>& list, sim::EngineKind kind) {
 
 }  // namespace
 
-Status load_validation_subject(const fs::path& dir, ValidationSubject& out) {
+Status load_validation_subject(const fs::path& dir, ValidationSubject& out,
+                               const std::vector<std::size_t>& members) {
   if (!fs::exists(dir / "run.json"))
     return Status::error(dir.string() + " is not a run directory (no run.json)");
   RunConfig run;
@@ -100,6 +101,27 @@ Status load_validation_subject(const fs::path& dir, ValidationSubject& out) {
     ind.run_objectives = p.objectives;
     if (ind.genome.reals.size() != subject.config.genes.size())
       return Status::error(p.file + ": has " + std::to_string(p.genes.size()) +
+                           " genes, the task " + std::to_string(subject.config.genes.size()));
+    subject.individuals.push_back(std::move(ind));
+  }
+  for (const std::size_t row : members) {
+    if (row >= data.front.size())
+      return Status::error("--member: " + std::to_string(row) +
+                           " is not a front row (pareto.csv has " +
+                           std::to_string(data.front.size()) + ", 0.." +
+                           std::to_string(data.front.size() - 1) + ")");
+    bool listed = false;
+    for (const report::RunPick& p : picks) listed = listed || p.front_index == row;
+    for (const ValidationIndividual& i : subject.individuals)
+      listed = listed || i.file == report::front_file_name(row);
+    if (listed) continue;
+    ValidationIndividual ind;
+    ind.file = report::front_file_name(row);
+    ind.name = ind.file;
+    ind.genome.reals = data.front[row].genes;
+    ind.run_objectives = data.front[row].objectives;
+    if (ind.genome.reals.size() != subject.config.genes.size())
+      return Status::error(ind.file + ": has " + std::to_string(ind.genome.reals.size()) +
                            " genes, the task " + std::to_string(subject.config.genes.size()));
     subject.individuals.push_back(std::move(ind));
   }

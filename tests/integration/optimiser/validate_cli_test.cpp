@@ -213,6 +213,22 @@ TEST(ValidateCli, BadInputIsOneLineNamingItAndExitTwo) {
       "--physics-step-us: 3000 us does not divide the firmware's control period of 10000 us");
   expect_bad(run.string() + " --physics-step-us 0",
              "--physics-step-us: must be in 1..20000 us, got 0");
+  expect_bad(run.string() + " --member x",
+             "--member: expected a pareto.csv row (0, 1, ...), got 'x'");
+  expect_bad(run.string() + " --member 999", "--member: 999 is not a front row (pareto.csv has ");
+  // Every front member once: Ind_O, then the picks, then the other rows by their files.
+  const std::string csv = test::read_file(run / "pareto.csv");
+  const int rows = lines(csv) - 1;
+  ASSERT_GE(rows, 1);
+  std::string all;
+  for (int r = 0; r < rows; ++r) all += " --member " + std::to_string(r);
+  const json v =
+      json::parse(stride("validate " + run.string() + all + " --seeds 1 --json", err, code));
+  ASSERT_EQ(code, 0) << test::read_file(err);
+  ASSERT_EQ(v["individuals"].size(), static_cast<std::size_t>(1 + rows)) << v["individuals"].dump();
+  for (std::size_t i = 1; i < v["individuals"].size(); ++i)
+    EXPECT_EQ(v["individuals"][i]["file"].get<std::string>().rfind("front/", 0), 0u);
+  fs::remove(run / "validation.json");
   expect_bad(run.string() + " --seeds 0", "--seeds: 0 is outside [1, 1000]");
   expect_bad("", "expected one run directory");
   EXPECT_FALSE(fs::exists(run / "validation.json"));
@@ -254,8 +270,7 @@ TEST(ValidateCli, BadInputIsOneLineNamingItAndExitTwo) {
          err, code);
   ASSERT_EQ(code, 0) << test::read_file(err);
   const json recorded = json::parse(test::read_file(tmp.path() / "both" / "run.json"));
-  EXPECT_EQ(recorded["task"]["engines"], json::array({"simbody", "mujoco"}))
-      << recorded.dump();
+  EXPECT_EQ(recorded["task"]["engines"], json::array({"simbody", "mujoco"})) << recorded.dump();
 }
 
 }  // namespace

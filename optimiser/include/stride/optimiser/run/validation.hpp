@@ -74,9 +74,12 @@ struct ValidationSubject {
   std::vector<ValidationIndividual> individuals;  ///< Ind_O first
 };
 
-/// Reads a run directory. Every error is bad input (one line naming what is wrong): not a
-/// robot run, no run.json, a damaged task config, no picks (no front members).
-Status load_validation_subject(const std::filesystem::path& dir, ValidationSubject& out);
+/// Reads a run directory: Ind_O, the picks and, after them, the front members of the pareto.csv
+/// rows `members` that are not picks (named "front/NNN.json"). Every error is bad input (one
+/// line naming what is wrong): not a robot run, no run.json, a damaged task config, no picks
+/// (no front members), a member row that the front does not have.
+Status load_validation_subject(const std::filesystem::path& dir, ValidationSubject& out,
+                               const std::vector<std::size_t>& members = {});
 
 /// One validation world: its name, its options (seed set per episode) and the seeds.
 struct ValidationWorld {
