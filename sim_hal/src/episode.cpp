@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 
 #include "stride/sim_hal/trajectory_recorder.hpp"
 
@@ -44,6 +45,10 @@ EpisodeResult run_episode(SimRobot& robot, const StepFunction& controller,
   const auto wall_start = std::chrono::steady_clock::now();
   hal::Tick tick = robot.current_tick();
   const hal::Tick first_tick = tick;
+  const auto yaw_of = [](const Eigen::Isometry3d& pose) {
+    return std::atan2(pose.linear()(1, 0), pose.linear()(0, 0));
+  };
+  double last_yaw = yaw_of(start.torso);
   for (;;) {
     robot.read(sensors);
     commands = controller(sensors, tick);
@@ -67,6 +72,9 @@ EpisodeResult run_episode(SimRobot& robot, const StepFunction& controller,
           std::max(result.max_accel, std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]));
       result.max_fps = std::max(result.max_fps, std::sqrt(a[0] * a[0] + a[1] * a[1]));
     }
+    const double yaw = yaw_of(torso);  // unwrapped into turned_rad, tick by tick
+    result.turned_rad += std::remainder(yaw - last_yaw, 2.0 * std::numbers::pi);
+    last_yaw = yaw;
     const double forward = torso.translation().x() - start.torso.translation().x();
     if (!result.time_to_goal_s && forward >= options.goal_distance_m) result.time_to_goal_s = t;
     const double up = torso.linear()(2, 2);  // world z of the torso's z axis
@@ -88,6 +96,7 @@ EpisodeResult run_episode(SimRobot& robot, const StepFunction& controller,
   result.wall_time_s = std::chrono::duration<double>(wall_end - wall_start).count();
   result.rtf = result.wall_time_s > 0 ? result.sim_time_s / result.wall_time_s : 0.0;
   result.distance_m = end.torso.translation().x() - start.torso.translation().x();
+  result.lateral_m = end.torso.translation().y() - start.torso.translation().y();
   result.ball_distance_m = (end.ball_position - start.ball_position).head<2>().norm();
   result.state_hash = world.state_hash();
   result.status = world.status();
@@ -98,6 +107,8 @@ EpisodeResult run_episode(SimRobot& robot, const StepFunction& controller,
 nlohmann::json to_json(const EpisodeResult& r) {
   nlohmann::json j = {{"fell", r.fell},
                       {"distance_m", r.distance_m},
+                      {"lateral_m", r.lateral_m},
+                      {"turned_rad", r.turned_rad},
                       {"time_to_goal_s", nullptr},
                       {"max_accel", r.max_accel},
                       {"max_fps", r.max_fps},

@@ -3,7 +3,8 @@
 // kick in the default world as their runs found, through `stride sim --params` as a user would
 // run them: walk-fast.json to 2.5 m in well under Ind_O's 19 s, walk-most-stable.json with a
 // lower peak acceleration than Ind_O on the same seed, walk-fast-steady.json both at once (the
-// seed's headline), kick-right-far.json at least twice
+// seed's headline), walk-omnidirectional.json faster than Ind_O forward, backward and turning,
+// kick-right-far.json at least twice
 // Ind_O's distance with less sway. Noise on, seeds 1-3; deterministic, so the margins below
 // are under the measured figures (in the comments).
 #include <gtest/gtest.h>
@@ -98,6 +99,39 @@ TEST(ShippedPicks, KickRightFarKicksTwiceAsFarAsIndOWithLessSway) {
               2.0 * ind_o.at("ball_distance_m").get<double>())
         << "seed " << seed;
     EXPECT_LT(r.at("max_fps").get<double>(), ind_o.at("max_fps").get<double>()) << "seed " << seed;
+  }
+}
+
+// The speed-ramp run's knee (walk-ramp.json at the seed's budget, front/007; it holds a speed in
+// every direction in every validation world): over 20 s from standing at full command it walks
+// forward 0.32 m/s (Ind_O 0.13), backward 0.11 (0.024), turns 0.22-0.25 rad/s (0.15) and
+// sideways 0.013 m/s as Ind_O (its sideways limit stayed at Ind_O's 0.01 m/step), without a
+// fall in any direction (seeds 1-2 here).
+TEST(ShippedPicks, WalkOmnidirectionalOutpacesIndOForwardBackwardAndTurning) {
+  struct Direction {
+    const char* args;
+    const char* measure;  // the JSON field of the direction's displacement
+    double sign;
+    double times_ind_o;  // at least this multiple of Ind_O's
+  };
+  const Direction directions[] = {
+      {"--vx 1", "distance_m", 1.0, 2.0},  {"--vx -1", "distance_m", -1.0, 3.0},
+      {"--vy 1", "lateral_m", 1.0, 0.8},   {"--vy -1", "lateral_m", -1.0, 0.8},
+      {"--vth 1", "turned_rad", 1.0, 1.3}, {"--vth -1", "turned_rad", -1.0, 1.3}};
+  for (const Direction& d : directions) {
+    const nlohmann::json ind_o = stride_sim(std::string("walk --duration 20 ") + d.args);
+    ASSERT_TRUE(ind_o.is_object());
+    const double ind_o_way = d.sign * ind_o.at(d.measure).get<double>();
+    EXPECT_GT(ind_o_way, 0.0) << d.args;
+    for (int seed = 1; seed <= 2; ++seed) {
+      const nlohmann::json r =
+          stride_sim(std::string("walk --duration 20 ") + d.args + " --seed " +
+                     std::to_string(seed) + " --params " + kConfig + "walk-omnidirectional.json");
+      ASSERT_TRUE(r.is_object());
+      EXPECT_FALSE(r.at("fell").get<bool>()) << d.args << ", seed " << seed;
+      EXPECT_GT(d.sign * r.at(d.measure).get<double>(), d.times_ind_o * ind_o_way)
+          << d.args << ", seed " << seed;
+    }
   }
 }
 

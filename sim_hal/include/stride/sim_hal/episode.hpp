@@ -6,6 +6,8 @@
 // evaluator, to skip the settling transient):
 //   fell             torso tilted more than 60 deg from upright or its origin below 0.25 m
 //   distance_m       forward (x) displacement of the torso from the start [m]
+//   lateral_m        sideways (y, left) displacement of the torso from the start [m]
+//   turned_rad       the torso's yaw change, unwrapped tick by tick (anticlockwise) [rad]
 //   time_to_goal_s   first time the torso was goal_distance_m ahead of its start (null if never)
 //   max_accel        max over samples of |a| of the IMU accelerometer [m/s^2] (seed walk Obj2)
 //   max_fps          max over samples of sqrt(ax^2 + ay^2), the field-plane sway (seed kick Obj1)
@@ -66,7 +68,9 @@ struct EpisodeOptions {
 struct EpisodeResult {
   bool fell = false;
   double fall_time_s = -1.0;
-  double distance_m = 0.0;
+  double distance_m = 0.0;  ///< the torso's displacement along the world's x axis [m]
+  double lateral_m = 0.0;   ///< and along its y axis (left) [m]
+  double turned_rad = 0.0;  ///< the torso's yaw change, unwrapped (anticlockwise) [rad]
   std::optional<double> time_to_goal_s;
   double max_accel = 0.0;
   double max_fps = 0.0;
