@@ -91,6 +91,9 @@ int main(int argc, char** argv) {
   if (args.has("params")) options.params_file = args.get("params");
   std::unique_ptr<fw::Firmware> firmware;
   if (Status s = fw::Firmware::create(options, firmware); !s) return fail(2, s.message());
+  if (backend->check_options != nullptr)
+    if (Status s = backend->check_options(args, firmware->period_ns()); !s)
+      return fail(2, s.message());
 
   // The recorder opens before the HAL, so that a bad --record path fails before a port opens.
   std::unique_ptr<fw::FlightRecorder> recorder;

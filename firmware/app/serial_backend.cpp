@@ -37,8 +37,8 @@ const char* health_name(stride::hal::DeviceHealth h) {
   return "?";
 }
 
-Status make(const stride::core::CliArgs& args, std::int64_t period_ns,
-            stride::fw::HalInstance& out) {
+/// The bus options' values (no device is opened).
+Status check(const stride::core::CliArgs& args, std::int64_t period_ns) {
   if (!args.has("port")) return Status::error("--hal serial needs --port DEV");
   std::int64_t baud = 0;
   if (Status s = args.get_int("baud", baud); !s) return s;
@@ -50,6 +50,15 @@ Status make(const stride::core::CliArgs& args, std::int64_t period_ns,
   if (margin_us < 0 || margin_us * 1000 > period_ns) {
     return Status::error("option --bus-margin-us: must be between 0 and the loop period");
   }
+  return {};
+}
+
+Status make(const stride::core::CliArgs& args, std::int64_t period_ns,
+            stride::fw::HalInstance& out) {
+  if (Status s = check(args, period_ns); !s) return s;
+  std::int64_t baud = 0, margin_us = 0;
+  (void)args.get_int("baud", baud);  // checked above
+  (void)args.get_int("bus-margin-us", margin_us);
   stride::fw::ServoTable table;
   if (Status s = stride::fw::ServoTable::load(args.get("servo-table"), table); !s) return s;
   auto options = stride::fw::dynamixel_options(table, period_ns);
@@ -101,4 +110,4 @@ Status make(const stride::core::CliArgs& args, std::int64_t period_ns,
 }  // namespace
 
 STRIDE_HAL_BACKEND(serial, "Dynamixel bus (CM730 + MX servos, protocol 1.0) on a serial port",
-                   declare, make);
+                   declare, check, make);

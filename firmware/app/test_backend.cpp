@@ -21,4 +21,5 @@ stride::Status make(const stride::core::CliArgs&, std::int64_t period_ns,
 
 }  // namespace
 
-STRIDE_HAL_BACKEND(test, "scripted test HAL (ideal servos, robot standing still)", declare, make);
+STRIDE_HAL_BACKEND(test, "scripted test HAL (ideal servos, robot standing still)", declare, nullptr,
+                   make);

@@ -15,15 +15,23 @@ void declare(stride::core::CliArgs& args) {
   args.option("realtime", "sim: pace the simulation at real time", false);
 }
 
+/// The world options as the user gave them, and the step against the firmware's period.
+stride::Status read_options(const stride::core::CliArgs& args, std::int64_t period_ns,
+                            stride::sim::WorldOptions& options) {
+  if (stride::Status s = stride::sim::read_world_options(args, options); !s) return s;
+  options.control_period_ns = period_ns;
+  return stride::sim::check_physics_step(options.physics_step_ns, period_ns, "--physics-step-us");
+}
+
+stride::Status check(const stride::core::CliArgs& args, std::int64_t period_ns) {
+  stride::sim::WorldOptions options;
+  return read_options(args, period_ns, options);
+}
+
 stride::Status make(const stride::core::CliArgs& args, std::int64_t period_ns,
                     stride::fw::HalInstance& out) {
   stride::sim::WorldOptions options;
-  if (stride::Status s = stride::sim::read_world_options(args, options); !s) return s;
-  options.control_period_ns = period_ns;
-  if (stride::Status s =
-          stride::sim::check_physics_step(options.physics_step_ns, period_ns, "--physics-step-us");
-      !s)
-    return s;
+  if (stride::Status s = read_options(args, period_ns, options); !s) return s;
   std::unique_ptr<stride::sim::SimWorld> world;
   if (stride::Status s = stride::sim::SimWorld::create(options, world); !s) return s;
   auto robot = std::make_unique<stride::sim::SimRobot>(std::move(world));
@@ -46,4 +54,4 @@ stride::Status make(const stride::core::CliArgs& args, std::int64_t period_ns,
 }  // namespace
 
 STRIDE_HAL_BACKEND(sim, "Simbody simulation in lockstep (--realtime: paced by the clock)", declare,
-                   make);
+                   check, make);

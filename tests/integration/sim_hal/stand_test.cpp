@@ -128,6 +128,27 @@ TEST(StrideSimCommand, BadInputExitsTwoWithOneLine) {
   EXPECT_EQ(code, 2);
 }
 
+// stride-fw checks its backend's options before it opens anything: a bad world option or a
+// bus option is bad input (exit 2, one line naming it); a device that is not there is a
+// failure of the run (exit 1).
+TEST(StrideFwSim, BadBackendOptionsExitTwoAndAMissingDeviceOne) {
+  const std::string fw = std::string(STRIDE_BIN_DIR) + "/stride-fw ";
+  int code = -1;
+  std::string err = popen_read(fw + "--hal sim --engine ode --ticks 1 2>&1 >/dev/null", code);
+  EXPECT_EQ(code, 2);
+  EXPECT_EQ(err, "stride-fw: --engine: expected simbody or mujoco, got 'ode'\n");
+  err = popen_read(fw + "--hal sim --physics-step-us 3000 --ticks 1 2>&1 >/dev/null", code);
+  EXPECT_EQ(code, 2);
+  EXPECT_EQ(err,
+            "stride-fw: --physics-step-us: 3000 us does not divide the firmware's control period "
+            "of 10000 us\n");
+  err = popen_read(fw + "--hal serial --ticks 1 2>&1 >/dev/null", code);
+  EXPECT_EQ(code, 2);
+  EXPECT_EQ(err, "stride-fw: --hal serial needs --port DEV\n");
+  popen_read(fw + "--hal serial --port /nonexistent/tty --ticks 1 2>/dev/null", code);
+  EXPECT_EQ(code, 1);
+}
+
 TEST(StrideSimCommand, WalkWithoutAWalkEngineIsAClearError) {
   int code = -1;
   const std::string err = run("sim walk --vx 0.1 2>&1 >/dev/null", code);

@@ -1,11 +1,13 @@
 // HAL backends of stride-fw: each implementation of the HAL registers itself from a source
 // file compiled into the stride-fw executable, so the firmware never depends on a backend:
 //
-//   STRIDE_HAL_BACKEND(serial, "Dynamixel bus on a serial port", declare_fn, make_fn);
+//   STRIDE_HAL_BACKEND(serial, "Dynamixel bus on a serial port", declare_fn, check_fn, make_fn);
 //
-// declare_fn(CliArgs&) declares the backend's own options; make_fn builds the robot for the
-// given loop period. `paced_by_clock` tells stride-fw to wrap the robot in RealtimeRobot
-// (true for hardware; a simulation sets it only with --realtime).
+// declare_fn(CliArgs&) declares the backend's own options; check_fn (may be null) checks their
+// values for the given loop period without touching a device, so that stride-fw names a bad
+// option as bad input (exit 2) before it opens anything; make_fn builds the robot (its errors
+// are the device's or the world's, exit 1). `paced_by_clock` tells stride-fw to wrap the robot in
+// RealtimeRobot (true for hardware; a simulation sets it only with --realtime).
 #pragma once
 
 #include <cstdint>
@@ -33,6 +35,7 @@ struct HalBackend {
   std::string_view name;
   std::string_view help;
   void (*declare_options)(core::CliArgs& args);
+  Status (*check_options)(const core::CliArgs& args, std::int64_t period_ns);
   Status (*make)(const core::CliArgs& args, std::int64_t period_ns, HalInstance& out);
 };
 
@@ -42,7 +45,7 @@ bool register_hal_backend(HalBackend backend);
 
 }  // namespace stride::fw
 
-#define STRIDE_HAL_BACKEND(name, help, declare_fn, make_fn)                 \
+#define STRIDE_HAL_BACKEND(name, help, declare_fn, check_fn, make_fn)       \
   [[maybe_unused]] static const bool stride_hal_backend_registered_##name = \
       ::stride::fw::register_hal_backend(                                   \
-          ::stride::fw::HalBackend{#name, help, declare_fn, make_fn})
+          ::stride::fw::HalBackend{#name, help, declare_fn, check_fn, make_fn})
