@@ -154,7 +154,10 @@ int run_optimise(int argc, char** argv) {
               "robot tasks: physics engines of every trial, simbody|mujoco or a list "
               "(simbody,mujoco; repeatable; overrides the config's)")
       .option("out", "run directory to write (or resume)")
-      .option("resume", "continue the run in --out from its checkpoint", false)
+      .option("resume",
+              "continue the run in --out from its checkpoint (with a larger --generations: extend "
+              "a run, as if started with that total)",
+              false)
       .option("seed", "random seed", true, "1")
       .option("pop", "population size (multiple of 4)", true, "100")
       .option("generations", "generations, the initial population included", true, "250")
@@ -180,7 +183,8 @@ int run_optimise(int argc, char** argv) {
         "usage: stride optimise --problem NAME --out DIR [options]\n"
         "       stride optimise --config FILE --out DIR [--jobs N] [--trials K] [--aggregate "
         "mean|worst]\n"
-        "       stride optimise --out DIR --resume\n"
+        "       stride optimise --out DIR --resume [--generations N]   (N above the run's: extend "
+        "it)\n"
         "Runs NSGA-II and writes run.json, evaluations.jsonl, generations.jsonl, checkpoint.json\n"
         "and pareto.csv to DIR; prints one progress line per generation on stderr.\n"
         "A robot run ends with `stride validate DIR` (validation.json; the config's\n"
@@ -211,18 +215,32 @@ int run_optimise(int argc, char** argv) {
       return bad_input("--problem " + args.get("problem") + " differs from the run's " +
                        s.config.problem);
     }
-    if (opt::find_task_type(s.config.problem) != nullptr) {
-      opt::TaskConfig task;
+    opt::TaskConfig task;
+    const bool robot = opt::find_task_type(s.config.problem) != nullptr;
+    if (robot) {
       if (auto st = opt::parse_task_config(s.config.task, task); !st)
         return bad_input("run.json task: " + st.message());
-      problem = std::make_unique<opt::RobotTask>(task);
     } else if (auto st = make_problem(s.config.problem, problem); !st) {
       return bad_input(st.message());
     }
     const opt::RunConfig recorded = s.config;
     if (auto st = read_settings(args, 0, s); !st) return bad_input(st.message());
-    if (!(s.config.settings == recorded.settings)) {
+    // --generations above the run's extends it; every other option must be the run's.
+    if (s.config.settings.generations < recorded.settings.generations) {
+      return bad_input("--generations: " + std::to_string(s.config.settings.generations) +
+                       " is below the run's " + std::to_string(recorded.settings.generations) +
+                       " (--resume can only extend a run)");
+    }
+    opt::Nsga2Settings same = s.config.settings;
+    same.generations = recorded.settings.generations;
+    if (!(same == recorded.settings)) {
       return bad_input("--resume: the NSGA-II options given differ from the run's run.json");
+    }
+    if (robot) {  // the task records its settings too: an extension changes both
+      task.settings.generations = s.config.settings.generations;
+      if (s.config.task.contains("generations"))
+        s.config.task["generations"] = s.config.settings.generations;
+      problem = std::make_unique<opt::RobotTask>(task);
     }
   } else if (args.has("config")) {
     if (args.has("problem")) return bad_input("--problem and --config exclude each other");

@@ -200,6 +200,16 @@ Status Nsga2::advance() {
   return {};
 }
 
+Status Nsga2::extend(int generations) {
+  if (generations < settings_.generations)
+    return Status::error("generations: " + std::to_string(generations) + " is below the run's " +
+                         std::to_string(settings_.generations) + " (a run can only be extended)");
+  const bool was_finished = finished();
+  settings_.generations = generations;
+  if (was_finished && !finished() && completed_ > 0) make_children();
+  return {};
+}
+
 void Nsga2::survive() {
   // merged_, population_ and spare_ keep their capacity from generation to generation, and the
   // members that do not survive lend their genome storage to the next children (spare_).

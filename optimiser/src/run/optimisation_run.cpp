@@ -237,6 +237,16 @@ Status run_optimisation(const Problem& problem, const RunConfig& config, Evaluat
   if (options.resume) {
     json existing;
     if (auto st = read_json(run_path, existing); !st) return st;
+    // A larger total of generations extends the run (written to run.json once restored).
+    const int recorded_generations =
+        existing.contains("settings") ? existing["settings"].value("generations", 0) : 0;
+    const bool extends = config.settings.generations > recorded_generations;
+    if (extends) {
+      existing["settings"]["generations"] = config.settings.generations;
+      if (existing.contains("task") && existing["task"].is_object() &&
+          existing["task"].contains("generations"))
+        existing["task"]["generations"] = config.settings.generations;  // a robot task's record
+    }
     if (existing != description) {
       return Status::error(run_path.string() +
                            " describes another run (problem, settings or "
@@ -269,6 +279,11 @@ Status run_optimisation(const Problem& problem, const RunConfig& config, Evaluat
     } else if (auto st = Nsga2::create(config.settings, problem.shape(), config.start, engine);
                !st) {
       return st;
+    }
+    if (extends) {
+      if (auto st = engine->extend(config.settings.generations); !st) return st;
+      if (auto st = core::write_file_atomically(run_path, description.dump(2) + "\n"); !st)
+        return st;
     }
     summary.resumed = true;
     summary.resumed_at_generation = engine->completed_generations();

@@ -188,6 +188,31 @@ TEST(ValidateCli, AnExplodingWorldIsAFallWithItsReasonAndNoValidateWritesNothing
   EXPECT_FALSE(v["all_passed"].get<bool>());
 }
 
+// A robot run extended with --resume --generations (its task records the settings too) equals
+// the longer run from the start, validation included.
+TEST(ValidateCli, AnExtendedRobotRunEqualsTheLongerRun) {
+  test::TempDir tmp;
+  const fs::path err = tmp.path() / "stderr";
+  int code = -1;
+  const std::string config = tiny_walk_config(tmp.path()).string();
+  stride("optimise --config " + config + " --generations 1 --jobs 2 --out " +
+             (tmp.path() / "extended").string(),
+         err, code);
+  ASSERT_EQ(code, 0) << test::read_file(err);
+  stride("optimise --out " + (tmp.path() / "extended").string() + " --resume --generations 2", err,
+         code);
+  ASSERT_EQ(code, 0) << test::read_file(err);
+  stride("optimise --config " + config + " --generations 2 --jobs 2 --out " +
+             (tmp.path() / "direct").string(),
+         err, code);
+  ASSERT_EQ(code, 0) << test::read_file(err);
+  for (const char* file :
+       {"evaluations.jsonl", "pareto.csv", "run.json", "checkpoint.json", "validation.json"})
+    EXPECT_EQ(test::read_file(tmp.path() / "extended" / file),
+              test::read_file(tmp.path() / "direct" / file))
+        << file;
+}
+
 TEST(ValidateCli, BadInputIsOneLineNamingItAndExitTwo) {
   test::TempDir tmp;
   const fs::path run = tmp.path() / "run", err = tmp.path() / "stderr";

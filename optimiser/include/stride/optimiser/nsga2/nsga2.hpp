@@ -78,6 +78,10 @@ class Nsga2 {
   bool batch_complete() const;
   /// Integrates the complete batch and builds the next one (see the file comment).
   Status advance();
+  /// Raises the run's total to `generations` (at least the current total): a finished run
+  /// builds its next batch, so that the run goes on exactly as one started with that total
+  /// would have (the batch draws from the generator where the longer run would).
+  Status extend(int generations);
 
   bool finished() const { return completed_ >= settings_.generations; }
   /// Generations completed (the initial population is generation 1).
