@@ -116,6 +116,10 @@ int run_sim(int argc, char** argv) {
   args.option("vth", "walk turning command, normalised [-1, 1]", true, "0");
   args.option("script", "kick: the script to play", true, "kick_right");
   args.option("duration", "episode length [s]", true, "10");
+  args.option("metrics-from",
+              "count the sensor metrics (max |a|, sway) from this time on [s] (the seed's 0.25; "
+              "kick: 1 measures the kick alone, not the settling after the reset)",
+              true, "0.25");
   args.option("record", "write the trajectory (JSON lines, see trajectory_recorder.hpp)", true);
   args.option("snapshot", "write an SVG picture of the robot's pose at --snapshot-times", true);
   args.option("snapshot-times", "comma-separated times [s] for --snapshot", true, "0,1,2,5,10");
@@ -134,12 +138,18 @@ int run_sim(int argc, char** argv) {
   const std::string motion = args.positional()[0];
   if (motion != "stand" && motion != "walk" && motion != "kick")
     return bad_input("unknown motion '" + motion + "' (expected stand, walk or kick)");
-  double duration = 10, vx = 0, vy = 0, vth = 0;
-  for (auto [name, out] :
-       {std::pair{"duration", &duration}, {"vx", &vx}, {"vy", &vy}, {"vth", &vth}})
+  double duration = 10, vx = 0, vy = 0, vth = 0, metrics_from = 0.25;
+  for (auto [name, out] : {std::pair{"duration", &duration},
+                           {"vx", &vx},
+                           {"vy", &vy},
+                           {"vth", &vth},
+                           {"metrics-from", &metrics_from}})
     if (Status s = args.get_double(name, *out); !s) return bad_input(s.message());
   if (!(duration > 0.0) || duration > 3600.0)
     return bad_input("--duration: must be in (0, 3600] s, got " + args.get("duration"));
+  if (!(metrics_from >= 0.0 && metrics_from < duration))
+    return bad_input("--metrics-from: must be in [0, " + args.get("duration") + ") s, got " +
+                     args.get("metrics-from"));
   std::vector<double> snapshot_times;
   if (Status s = parse_times(args.get("snapshot-times"), snapshot_times); !s)
     return bad_input(s.message());
@@ -169,6 +179,7 @@ int run_sim(int argc, char** argv) {
   sim::TrajectoryRecorder recorder;
   sim::EpisodeOptions episode;
   episode.duration_s = duration;
+  episode.metrics_start_s = metrics_from;
   episode.recorder = args.has("record") ? &recorder : nullptr;
   if (args.has("snapshot")) episode.snapshot_times_s = snapshot_times;
   sim::EpisodeCapturer capturer;
