@@ -147,7 +147,7 @@ int run_sim(int argc, char** argv) {
     if (Status s = args.get_double(name, *out); !s) return bad_input(s.message());
   if (!(duration > 0.0) || duration > 3600.0)
     return bad_input("--duration: must be in (0, 3600] s, got " + args.get("duration"));
-  if (!(metrics_from >= 0.0 && metrics_from < duration))
+  if (args.has("metrics-from") && !(metrics_from >= 0.0 && metrics_from < duration))
     return bad_input("--metrics-from: must be in [0, " + args.get("duration") + ") s, got " +
                      args.get("metrics-from"));
   std::vector<double> snapshot_times;
