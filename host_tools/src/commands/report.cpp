@@ -138,8 +138,12 @@ int run_report(int argc, char** argv) {
     std::printf("%s\n", summary.dump().c_str());
     return 0;
   }
-  std::printf("%s run, %zu evaluations, %zu front members (objectives: %s)\n",
-              config.problem.c_str(), summary["evaluations"].get<std::size_t>(),
+  const std::size_t done = summary["generations"], planned = summary["generations_planned"];
+  const std::string progress = planned > done ? "generation " + std::to_string(done) + " of " +
+                                                    std::to_string(planned) + " (unfinished)"
+                                              : std::to_string(done) + " generations";
+  std::printf("%s run, %s, %zu evaluations, %zu front members (objectives: %s)\n",
+              config.problem.c_str(), progress.c_str(), summary["evaluations"].get<std::size_t>(),
               summary["front_size"].get<std::size_t>(), type->objective_legend().c_str());
   const bool kick = type->uses_ball();
   const nlohmann::json& o = summary["ind_o"];

@@ -2,6 +2,7 @@
 #include "stride/optimiser/report/run_data.hpp"
 #include "stride/optimiser/tasks/task_type.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 
@@ -63,8 +64,28 @@ Status load_run_data(const fs::path& dir, RunData& out) {
     out.front.clear();
     out.warnings.push_back(s.message());
   }
+  for (const json& g : out.generations)
+    if (g.contains("generation") && g["generation"].is_number_unsigned())
+      out.generations_done = std::max(out.generations_done, g["generation"].get<std::size_t>());
+  const auto settings = out.run.find("settings");
+  if (settings != out.run.end() && settings->is_object() && settings->contains("generations") &&
+      (*settings)["generations"].is_number_unsigned())
+    out.generations_planned = (*settings)["generations"].get<std::size_t>();
+  if (out.unfinished())
+    out.warnings.push_back("unfinished: generation " + std::to_string(out.generations_done) +
+                           " of " + std::to_string(out.generations_planned) +
+                           " (stride optimise --out " + dir.string() + " --resume continues it)");
+  std::vector<std::size_t> missing;
   for (std::size_t i = 0; i < out.front.size(); ++i)
-    if (!fs::exists(dir / front_file_name(i)))
+    if (!fs::exists(dir / front_file_name(i))) missing.push_back(i);
+  const bool one_range = !missing.empty() && missing.back() - missing.front() + 1 == missing.size();
+  if (one_range && missing.size() > 1)  // an unfinished run has no front/ yet: one line
+    out.warnings.push_back(front_file_name(missing.front()) + " to " +
+                           front_file_name(missing.back()) + " are missing (pareto.csv rows " +
+                           std::to_string(missing.front()) + " to " +
+                           std::to_string(missing.back()) + ")");
+  else
+    for (const std::size_t i : missing)
       out.warnings.push_back(front_file_name(i) + " is missing (pareto.csv row " +
                              std::to_string(i) + ")");
   return {};

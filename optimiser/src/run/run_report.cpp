@@ -44,6 +44,8 @@ Status summarise_run(const fs::path& dir, json& out) {
   out["task"] = data.task;
   out["evaluations"] = data.evaluations.size();
   out["front_size"] = data.front.size();
+  out["generations"] = data.generations_done;
+  out["generations_planned"] = data.generations_planned;
   const json* ind_o = report::find_ind_o(data);
   if (ind_o != nullptr)
     out["ind_o"] = {{"objectives", (*ind_o)["objectives"]},

@@ -273,6 +273,8 @@ TEST(RobotTaskCli, SerialThreadsAndMpiGiveTheSameRunAndTheFrontLoads) {
       << test::read_file(tmp.path() / "stderr");
   const auto summary = nlohmann::json::parse(test::read_file(tmp.path() / "stdout"));
   EXPECT_EQ(summary["task"], "walk");
+  EXPECT_GE(summary["generations"].get<int>(), 1);
+  EXPECT_EQ(summary["generations"], summary["generations_planned"]);  // finished
   EXPECT_TRUE(summary["ind_o"].is_object());
   for (const char* key : {"fastest", "most_stable", "knee"})
     EXPECT_TRUE(summary.contains(key)) << key;
@@ -308,7 +310,22 @@ TEST(RobotTaskCli, CtrlCStopsAfterACheckpointAndResumeFinishesTheSameRun) {
   EXPECT_EQ(wait_exit(pid), 130);
   EXPECT_NE(test::read_file(tmp.path() / "stderr").find("--resume"), std::string::npos);
   const auto cp = nlohmann::json::parse(test::read_file(cut / "checkpoint.json"));
-  EXPECT_LT(cp["engine"]["completed_generations"].get<int>(), 4);
+  const int done = cp["engine"]["completed_generations"].get<int>();
+  EXPECT_LT(done, 4);
+  // stride report on the stopped run says how far it got and how to go on.
+  ASSERT_EQ(run(stride, {"report", cut.string()}, tmp.path()), 0)
+      << test::read_file(tmp.path() / "stderr");
+  EXPECT_NE(test::read_file(tmp.path() / "stdout")
+                .find("walk run, generation " + std::to_string(done) + " of 4 (unfinished)"),
+            std::string::npos)
+      << test::read_file(tmp.path() / "stdout");
+  EXPECT_NE(test::read_file(tmp.path() / "stderr")
+                .find("unfinished: generation " + std::to_string(done) +
+                      " of 4 (stride optimise "
+                      "--out " +
+                      cut.string() + " --resume continues it)"),
+            std::string::npos)
+      << test::read_file(tmp.path() / "stderr");
   ASSERT_EQ(run(stride, {"optimise", "--out", cut.string(), "--resume", "--jobs", "2"}, tmp.path()),
             0)
       << test::read_file(tmp.path() / "stderr");

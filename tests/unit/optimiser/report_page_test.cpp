@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <string>
 
 #include "stride/optimiser/report/html_page.hpp"
@@ -109,6 +110,36 @@ TEST(ReportRunData, DamagedAndMissingPiecesBecomeWarnings) {
   // Without run.json there is no report at all.
   test::TempDir empty;
   EXPECT_FALSE(load_run_data(empty.path(), data).is_ok());
+}
+
+TEST(ReportRunData, AnUnfinishedRunSaysHowFarItGotInOneLineAndItsFrontFilesInAnother) {
+  // A run stopped at generation 3 of 50: front/ is only written when it finishes.
+  test::TempDir tmp;
+  tmp.write("run.json", R"({"problem":"walk","settings":{"generations":50}})");
+  tmp.write("evaluations.jsonl",
+            R"({"id":0,"generation":1,"reals":[0.5],"objectives":[4.0,1.25],"violation":0})"
+            "\n");
+  tmp.write("generations.jsonl", "{\"generation\":1}\n{\"generation\":2}\n{\"generation\":3}\n");
+  tmp.write("pareto.csv", "f1,f2,g1\n3.0,2.0,0.4\n3.5,1.5,0.45\n4.0,1.25,0.5\n");
+  RunData data;
+  ASSERT_TRUE(load_run_data(tmp.path(), data).is_ok());
+  EXPECT_EQ(data.generations_done, 3u);
+  EXPECT_EQ(data.generations_planned, 50u);
+  EXPECT_TRUE(data.unfinished());
+  ASSERT_EQ(data.warnings.size(), 2u);
+  EXPECT_EQ(data.warnings[0], "unfinished: generation 3 of 50 (stride optimise --out " +
+                                  tmp.path().string() + " --resume continues it)");
+  EXPECT_EQ(data.warnings[1],
+            "front/000.json to front/002.json are missing (pareto.csv rows 0 to 2)");
+  // The last generation logged: finished, and only the file still missing is named.
+  tmp.write("run.json", R"({"problem":"walk","settings":{"generations":3}})");
+  std::filesystem::create_directory(tmp.path() / "front");
+  tmp.write("front/001.json", "{}");
+  ASSERT_TRUE(load_run_data(tmp.path(), data).is_ok());
+  EXPECT_FALSE(data.unfinished());
+  ASSERT_EQ(data.warnings.size(), 2u);
+  EXPECT_EQ(data.warnings[0], "front/000.json is missing (pareto.csv row 0)");
+  EXPECT_EQ(data.warnings[1], "front/002.json is missing (pareto.csv row 2)");
 }
 
 TEST(ReportTables, ValidationJsonOfAnyShapeBecomesRows) {

@@ -24,6 +24,10 @@ struct RunData {
   std::vector<nlohmann::json> generations;        ///< the readable lines of generations.jsonl
   std::vector<FrontMember> front;                 ///< pareto.csv rows (front/NNN.json = row NNN)
   std::vector<std::string> warnings;              ///< what is missing or damaged, one line each
+  std::size_t generations_done = 0;               ///< the last generation in generations.jsonl
+  std::size_t generations_planned = 0;  ///< run.json settings.generations (0: not recorded)
+  /// True while the run has logged fewer generations than it plans (stopped or still running).
+  bool unfinished() const { return generations_planned > generations_done; }
 };
 
 /// Reads a run directory. Fails only when run.json is missing or not a JSON object.
