@@ -54,8 +54,21 @@ class SlowProblem final : public opt::Problem {
 };
 
 std::atomic<bool> g_stop{false};
+/// First SIGINT/SIGTERM: finish the generation in flight, checkpoint, exit 130. A second one
+/// exits 130 at once: the last checkpoint stays, and --resume redoes the dropped generation
+/// (files are replaced atomically and the logs cut back to the checkpoint, so nothing tears).
+/// Only async-signal-safe calls here (write, _exit).
 extern "C" void on_interrupt(int) {
-  g_stop.store(true);
+  if (g_stop.exchange(true)) {
+    constexpr char now[] =
+        "\nstride optimise: stopped now; --resume redoes the unfinished generation\n";
+    (void)!::write(STDERR_FILENO, now, sizeof now - 1);
+    ::_exit(130);
+  }
+  constexpr char later[] =
+      "\nstride optimise: stopping after the generation in flight (interrupt again to stop "
+      "now)\n";
+  (void)!::write(STDERR_FILENO, later, sizeof later - 1);
 }
 
 int bad_input(const std::string& message) {

@@ -71,6 +71,55 @@ std::string without_wall_time(std::string text) {
   return text;
 }
 
+TEST(OptimiseCli, ASecondInterruptStopsAtOnceAndResumeRedoesTheDroppedGeneration) {
+  // The first SIGINT lets the generation in flight finish (it says so); a second one stops at
+  // once with the last checkpoint intact, so --resume still gives the uninterrupted run.
+  test::TempDir tmp;
+  const std::vector<std::string> common = {"optimise",      "--problem", "zdt1",   "--pop", "20",
+                                           "--generations", "6",         "--seed", "5"};
+  const fs::path ref = tmp.path() / "ref", cut = tmp.path() / "cut";
+  std::vector<std::string> args = common;
+  args.insert(args.end(), {"--out", ref.string()});
+  ASSERT_EQ(run_stride(args, tmp.path()), 0) << test::read_file(tmp.path() / "stderr");
+  args = common;
+  args.insert(args.end(), {"--out", cut.string(), "--slow-eval-ms", "50"});  // 1 s a generation
+  const pid_t pid = launch(args, tmp.path());
+  std::size_t logged = 0;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  for (;;) {  // the first interrupt early in generation 2: at least 10 evaluations (0.5 s) left
+    ASSERT_LT(std::chrono::steady_clock::now(), deadline) << "the run never got there";
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    nlohmann::json cp;
+    try {
+      cp = nlohmann::json::parse(test::read_file(cut / "checkpoint.json"));
+    } catch (const nlohmann::json::exception&) {
+      continue;
+    }
+    logged = cp["run"]["evaluation_lines"].get<std::size_t>();
+    const std::size_t lines = count_lines(cut / "evaluations.jsonl");
+    if (cp["engine"]["completed_generations"].get<int>() >= 1 && lines >= logged + 2 &&
+        lines <= logged + 10) {
+      ASSERT_EQ(::kill(pid, SIGINT), 0);
+      break;
+    }
+  }
+  while (test::read_file(tmp.path() / "stderr").find("stopping after the generation in flight") ==
+         std::string::npos) {
+    ASSERT_LT(std::chrono::steady_clock::now(), deadline) << test::read_file(tmp.path() / "stderr");
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  ASSERT_EQ(::kill(pid, SIGINT), 0);
+  EXPECT_EQ(wait_exit(pid), 130);
+  EXPECT_NE(test::read_file(tmp.path() / "stderr").find("stopped now"), std::string::npos);
+  const auto cp = nlohmann::json::parse(test::read_file(cut / "checkpoint.json"));
+  EXPECT_EQ(cp["run"]["evaluation_lines"].get<std::size_t>(), logged);  // generation 2 dropped
+  EXPECT_GT(count_lines(cut / "evaluations.jsonl"), logged);            // stopped inside it
+  ASSERT_EQ(run_stride({"optimise", "--out", cut.string(), "--resume"}, tmp.path()), 0)
+      << test::read_file(tmp.path() / "stderr");
+  for (const char* f : {"run.json", "evaluations.jsonl", "checkpoint.json", "pareto.csv"})
+    EXPECT_EQ(test::read_file(cut / f), test::read_file(ref / f)) << f;
+}
+
 TEST(OptimiseCli, SigkillMidGenerationThenResumeReproducesTheUninterruptedRun) {
   test::TempDir tmp;
   const std::vector<std::string> common = {"optimise",      "--problem", "zdt1",   "--pop", "20",
