@@ -138,10 +138,8 @@ int run_report(int argc, char** argv) {
     std::printf("%s\n", summary.dump().c_str());
     return 0;
   }
-  const std::size_t done = summary["generations"], planned = summary["generations_planned"];
-  const std::string progress = planned > done ? "generation " + std::to_string(done) + " of " +
-                                                    std::to_string(planned) + " (unfinished)"
-                                              : std::to_string(done) + " generations";
+  const std::string progress = stride::opt::report::run_progress_text(
+      summary["generations"].get<std::size_t>(), summary["generations_planned"].get<std::size_t>());
   std::printf("%s run, %s, %zu evaluations, %zu front members (objectives: %s)\n",
               config.problem.c_str(), progress.c_str(), summary["evaluations"].get<std::size_t>(),
               summary["front_size"].get<std::size_t>(), type->objective_legend().c_str());

@@ -102,14 +102,11 @@ Status write_report_html(const fs::path& dir, const RobotTask& task, ReportOutco
                          0.25, 9, end)
            : strip_times(std::min(4.0, end / 3), 0.25, 9, end);
 
-  HtmlPage page(
-      "Stride run report: " + (data.task.empty() ? std::string("run") : data.task),
-      dir.string() + " - " +
-          (data.unfinished() ? "generation " + std::to_string(data.generations_done) + " of " +
-                                   std::to_string(data.generations_planned) + " (unfinished), "
-                             : std::to_string(data.generations_done) + " generations, ") +
-          std::to_string(data.evaluations.size()) + " evaluations, " +
-          std::to_string(data.front.size()) + " front members");
+  HtmlPage page("Stride run report: " + (data.task.empty() ? std::string("run") : data.task),
+                dir.string() + " - " +
+                    run_progress_text(data.generations_done, data.generations_planned) + ", " +
+                    std::to_string(data.evaluations.size()) + " evaluations, " +
+                    std::to_string(data.front.size()) + " front members");
   page.add_warnings(out.warnings);
   page.add_section("settings", "Settings", settings_table_html(data));
   page.add_section("picks", "Ind_O and the picks", picks_table_html(data, rows));

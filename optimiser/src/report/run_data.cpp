@@ -46,6 +46,13 @@ std::string front_file_name(std::size_t index) {
   return name;
 }
 
+std::string run_progress_text(std::size_t done, std::size_t planned) {
+  if (planned > done)
+    return "generation " + std::to_string(done) + " of " + std::to_string(planned) +
+           " (unfinished)";
+  return std::to_string(done) + " generations";
+}
+
 Status load_run_data(const fs::path& dir, RunData& out) {
   out = RunData{};
   out.dir = dir;

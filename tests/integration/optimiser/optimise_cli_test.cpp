@@ -11,6 +11,7 @@
 #include <chrono>
 #include <cstdio>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <thread>
 
@@ -32,6 +33,15 @@ const std::string kStride = std::string(STRIDE_BIN_DIR) + "/stride";
 std::size_t count_lines(const fs::path& p) {
   const std::string text = test::read_file(p);
   return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
+}
+
+/// checkpoint.json of a running optimisation, or nothing while it is not written yet.
+std::optional<nlohmann::json> read_checkpoint(const fs::path& dir) {
+  try {
+    return nlohmann::json::parse(test::read_file(dir / "checkpoint.json"));
+  } catch (const nlohmann::json::exception&) {
+    return std::nullopt;
+  }
 }
 
 /// Starts `stride args...` with stdout/stderr sent to files in `log_dir`.
@@ -89,12 +99,9 @@ TEST(OptimiseCli, ASecondInterruptStopsAtOnceAndResumeRedoesTheDroppedGeneration
   for (;;) {  // the first interrupt early in generation 2: at least 10 evaluations (0.5 s) left
     ASSERT_LT(std::chrono::steady_clock::now(), deadline) << "the run never got there";
     std::this_thread::sleep_for(std::chrono::milliseconds(1));
-    nlohmann::json cp;
-    try {
-      cp = nlohmann::json::parse(test::read_file(cut / "checkpoint.json"));
-    } catch (const nlohmann::json::exception&) {
-      continue;
-    }
+    const std::optional<nlohmann::json> checkpoint = read_checkpoint(cut);
+    if (!checkpoint) continue;
+    const nlohmann::json& cp = *checkpoint;
     logged = cp["run"]["evaluation_lines"].get<std::size_t>();
     const std::size_t lines = count_lines(cut / "evaluations.jsonl");
     if (cp["engine"]["completed_generations"].get<int>() >= 1 && lines >= logged + 2 &&
@@ -147,12 +154,9 @@ TEST(OptimiseCli, SigkillMidGenerationThenResumeReproducesTheUninterruptedRun) {
     for (;;) {
       ASSERT_LT(std::chrono::steady_clock::now(), deadline) << "the run never got there";
       std::this_thread::sleep_for(std::chrono::milliseconds(1));
-      nlohmann::json cp;
-      try {
-        cp = nlohmann::json::parse(test::read_file(cut / "checkpoint.json"));
-      } catch (const nlohmann::json::exception&) {
-        continue;  // not written yet
-      }
+      const std::optional<nlohmann::json> checkpoint = read_checkpoint(cut);
+      if (!checkpoint) continue;  // not written yet
+      const nlohmann::json& cp = *checkpoint;
       const auto done = cp["engine"]["completed_generations"].get<std::size_t>();
       const auto logged = cp["run"]["evaluation_lines"].get<std::size_t>();
       const std::size_t lines = count_lines(cut / "evaluations.jsonl");

@@ -30,6 +30,9 @@ struct RunData {
   bool unfinished() const { return generations_planned > generations_done; }
 };
 
+/// "generation 8 of 50 (unfinished)" while done < planned, else "50 generations".
+std::string run_progress_text(std::size_t done, std::size_t planned);
+
 /// Reads a run directory. Fails only when run.json is missing or not a JSON object.
 Status load_run_data(const std::filesystem::path& dir, RunData& out);
 
