@@ -153,7 +153,9 @@ int run_sim(int argc, char** argv) {
   args.option("vy", "walk sideways command, normalised [-1, 1]", true, "0");
   args.option("vth", "walk turning command, normalised [-1, 1]", true, "0");
   args.option("script", "kick: the script to play", true, "kick_right");
-  args.option("duration", "episode length [s] (default 10; getup 20, the rules' time to get up)",
+  args.option("duration",
+              "episode length [s] (default 10; getup 20, the rules' time to get up; with "
+              "--after-fall getup 30)",
               true);
   args.option("lying",
               "getup: the side the robot lies still on at the start, front (face down) or back",
@@ -188,7 +190,8 @@ int run_sim(int argc, char** argv) {
         "above 0.45 m, all held for 1 s; stood_up_s is the start of that second.\n"
         "With --after-fall getup a stand or walk episode does not end at a fall (fell,\n"
         "fall_time_s: trunk tilted past 60 deg or its origin below 0.25 m) but goes on\n"
-        "through the get-up (the walk is not resumed), and stood_up_s counts from the fall.\n"
+        "through the get-up (the walk is not resumed; 30 s by default), and stood_up_s counts\n"
+        "from the fall.\n"
         "Both also report get_up_attempts and get_up_script (the first get-up played).\n\n"
         "%s",
         args.help().c_str());
@@ -214,10 +217,11 @@ int run_sim(int argc, char** argv) {
     return bad_input("--after-fall: only with stand or walk, not " + motion +
                      (getup ? " (it starts lying and always gets up)" : ""));
   const bool watch_get_up = getup || args.has("after-fall");
-  const std::string duration_text = args.has("duration") ? args.get("duration")
-                                    : getup              ? "20"
-                                                         : "10";
-  double duration = getup ? 20 : 10, vx = 0, vy = 0, vth = 0, metrics_from = 0.25;
+  // Default lengths: 10 s; lying, the 20 s the rules give a fallen robot; after a fall, 10 s
+  // and those 20 s.
+  const char* default_duration = getup ? "20" : watch_get_up ? "30" : "10";
+  const std::string duration_text = args.has("duration") ? args.get("duration") : default_duration;
+  double duration = std::stod(default_duration), vx = 0, vy = 0, vth = 0, metrics_from = 0.25;
   for (auto [name, out] : {std::pair{"duration", &duration},
                            {"vx", &vx},
                            {"vy", &vy},
