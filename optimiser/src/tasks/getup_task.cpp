@@ -17,7 +17,7 @@
 #include <cstdio>
 
 #include "stride/optimiser/tasks/task_type.hpp"
-#include "stride/sim_hal/script_episodes.hpp"
+#include "stride/sim_hal/get_up_watch.hpp"
 
 namespace stride::opt {
 
