@@ -156,6 +156,15 @@ Status parse_robot(const nlohmann::json& doc, TaskConfig& c) {
   for (const char* key : {"servo_law", "imu", "contact", "physics_step_us"})
     if (doc.contains(key))
       if (Status s = spec.set(key, option_text(doc.at(key)), key); !s) return s;
+  // The trials' physics step: unless the config gives one, the faithful world's trials step at
+  // the task's trial_physics_step_us(), the largest step at which its results hold. The
+  // seed's world and a world file keep the table's default.
+  const bool step_given =
+      doc.contains("physics_step_us") || (doc.contains("world") && doc.at("world").is_object() &&
+                                          doc.at("world").contains("physics_step_us"));
+  const TaskType* type = find_task_type(c.task);
+  if (!step_given && spec.base == sim::WorldPreset::kFaithful && !spec.file && type != nullptr)
+    spec.physics_step_us = type->trial_physics_step_us();
   c.world = std::move(spec);
   if (doc.contains("params")) {
     nlohmann::json values = doc.at("params");

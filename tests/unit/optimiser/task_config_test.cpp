@@ -243,7 +243,24 @@ TEST(TaskConfig, RobotFieldsReachTheWorldsAndNameTheFieldOnError) {
   EXPECT_EQ(RobotTask(c).world_options(0).servo.law, sim::ServoLaw::kIdentified);
   EXPECT_FALSE(RobotTask(c).world_options(0).imu.chain.is_ideal());
   EXPECT_FALSE(RobotTask(c).world_options(0).imu.chain.noise);  // one trial: no noise
+  // The trials' step in the faithful world: the task's (2.5 ms for a walk; the get-up 2 ms),
+  // unless the config gives one.
+  EXPECT_EQ(c.task, "walk");
+  EXPECT_EQ(RobotTask(c).world_options(0).physics_step_ns, 2'500'000);
+  EXPECT_EQ(sim::to_json(c.world).at("physics_step_us"), 2500);  // run.json holds it
+  auto stepped = minimal();
+  stepped["physics_step_us"] = 2000;
+  ASSERT_TRUE(parse_task_config(stepped, c));
   EXPECT_EQ(RobotTask(c).world_options(0).physics_step_ns, 2'000'000);
+  stepped = minimal();
+  stepped["world"] = {{"physics_step_us", 1000}};
+  ASSERT_TRUE(parse_task_config(stepped, c));
+  EXPECT_EQ(RobotTask(c).world_options(0).physics_step_ns, 1'000'000);
+  stepped = minimal();
+  stepped["task"] = "getup";
+  ASSERT_TRUE(parse_task_config(stepped, c));
+  EXPECT_EQ(RobotTask(c).world_options(0).physics_step_ns, 2'000'000);
+  ASSERT_TRUE(parse_task_config(minimal(), c));
   EXPECT_DOUBLE_EQ(RobotTask(c).world_options(0).contact.grass_thickness_m, 0.005);
   // The thesis's world by name; a part named beside it overrides it.
   auto seed = minimal();
@@ -252,6 +269,7 @@ TEST(TaskConfig, RobotFieldsReachTheWorldsAndNameTheFieldOnError) {
   EXPECT_EQ(RobotTask(c).world_options(0).servo.law, sim::ServoLaw::kSeed);
   EXPECT_TRUE(RobotTask(c).world_options(0).imu.chain.is_ideal());
   EXPECT_DOUBLE_EQ(RobotTask(c).world_options(0).contact.grass_thickness_m, 0.02);
+  EXPECT_EQ(RobotTask(c).world_options(0).physics_step_ns, 2'000'000);  // the table's
   seed["imu"] = "cm730";
   ASSERT_TRUE(parse_task_config(seed, c));
   EXPECT_FALSE(RobotTask(c).world_options(0).imu.chain.is_ideal());
