@@ -6,6 +6,7 @@
 
 #include "robot_placement.hpp"
 #include "stride/sim_hal/collision_points.hpp"
+#include "stride/sim_hal/grounds.hpp"
 #include "stride/sim_hal/physics_engine.hpp"
 #include "stride/sim_hal/sim_servo.hpp"
 #include "stride/sim_hal/world_rng.hpp"
@@ -87,6 +88,8 @@ Status SimWorld::Impl::configure() {
       !(o.contact.tangential_stiffness_n_m > 0.0) || !(o.contact.grass_damping_n_s_m >= 0.0) ||
       !(o.contact.ground_damping_n_s_m >= 0.0) || !(o.contact.tangential_damping_n_s_m >= 0.0))
     return Status::error("contact: thickness, damping and friction must be >= 0, stiffness > 0");
+  if (!(o.randomise.contact_range >= 0.0 && o.randomise.contact_range <= kMaxContactRange))
+    return Status::error("contact_range: must be in 0..1");
   for (const TorsoPush& p : o.pushes)
     if (!(p.time_s >= 0.0) || !std::isfinite(p.time_s) || !std::isfinite(p.direction_rad) ||
         !(p.impulse_n_s >= 0.0) || !std::isfinite(p.impulse_n_s))
@@ -238,6 +241,8 @@ Status SimWorld::reset(const ResetSpec& spec) {
     w.accel_bias[k] = w.options.imu.accel_bias[k] + w.options.imu.accel_bias_std * w.rng.normal();
   for (int k = 0; k < 3; ++k)
     w.gyro_bias[k] = w.options.imu.gyro_bias[k] + w.options.imu.gyro_bias_std * w.rng.normal();
+  // The ground: drawn (one more draw) only when its range is set (grounds.hpp).
+  if (r.contact_range > 0.0) em.contact = draw_ground(w.options.contact, r.contact_range, w.rng);
   if (Status s = w.engine->build(em); !s) return Status::error("reset: " + s.message());
   // Servo parameters.
   for (std::size_t i = 0; i < hal::kServoCount; ++i) {
@@ -273,14 +278,13 @@ Status SimWorld::reset(const ResetSpec& spec) {
     for (std::size_t i = 0; i < hal::kServoCount; ++i)
       start.joint_speeds[static_cast<std::size_t>(w.servo_joint[i])] = spec.joint_speeds[i];
   }
-  const double grass_top = w.options.contact.grass_thickness_m;
+  const double grass_top = em.contact.grass_thickness_m;
   start.ball_position = spec.ball_position;
   if (!std::isfinite(start.ball_position.z()))
     start.ball_position.z() = grass_top + w.options.ball.radius_m;
   start.ball_velocity = spec.ball_velocity;
-  if (Status s =
-          place_robot(*w.engine, w.collision, spec, w.left_foot, w.right_foot, w.options.contact,
-                      w.model.total_mass() * w.options.gravity_mps2, start);
+  if (Status s = place_robot(*w.engine, w.collision, spec, w.left_foot, w.right_foot, em.contact,
+                             w.model.total_mass() * w.options.gravity_mps2, start);
       !s)
     return Status::error("reset: " + s.message());
   if (spec.still_lower_foot && !start.joint_speeds.empty())
@@ -372,6 +376,9 @@ std::int64_t SimWorld::period_count() const {
 }
 const WorldOptions& SimWorld::options() const {
   return impl_->options;
+}
+const ContactOptions& SimWorld::ground() const {
+  return impl_->engine_model.contact;
 }
 const RobotModel& SimWorld::model() const {
   return impl_->model;
