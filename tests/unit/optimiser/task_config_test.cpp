@@ -301,7 +301,7 @@ TEST(TaskConfig, RobotFieldsReachTheWorldsAndNameTheFieldOnError) {
   EXPECT_EQ(error_of(d), "imu: expected ideal or cm730, got '3'");
   d = minimal();
   d["contact"] = "lawn";
-  EXPECT_EQ(error_of(d), "contact: expected seed or turf, got 'lawn'");
+  EXPECT_EQ(error_of(d), "contact: expected seed, turf, soft or hard, got 'lawn'");
   d = minimal();
   d["physics_step_us"] = 0;
   EXPECT_EQ(error_of(d), "physics_step_us: must be in 1..20000 us, got 0");
@@ -362,7 +362,7 @@ TEST(TaskConfig, AWorldObjectTakesTheTablesOptions) {
   EXPECT_EQ(error_of(d),
             "world.gravity: unknown world option (known: base, engine, physics_step_us, "
             "servo_law, imu, contact, friction, urdf, noise, seed, friction_range, mass_range, "
-            "strength_range, latency_probability, latency_ticks, push)");
+            "strength_range, latency_probability, contact_range, latency_ticks, push)");
   d["world"] = {{"friction", 9}};
   EXPECT_EQ(error_of(d), "world.friction: must be in 0.05..3, got 9");
   d["world"] = {{"push", {"3,up,1"}}};
