@@ -61,7 +61,7 @@ const std::vector<WorldOptionInfo>& world_option_table() {
        "",
        "the world's",
        "field contact: seed (the seed's 2 cm grass; a standing robot's studs sink 5.3 mm), turf "
-       "(a 5 mm layer over solid ground, 5.0 mm), soft (a deep turf: 15 mm layer, more damping, "
+       "(a 5 mm layer over solid ground, 4.7 mm), soft (a deep turf: 15 mm layer, more damping, "
        "4.0 mm) or hard (a carpet or stiff floor, 0.4 mm); sim_hal/models/README.md \"Grounds\"",
        V::kName,
        {"seed", "turf", "soft", "hard"}},

@@ -64,7 +64,8 @@ struct ContactOptions {
   /// pile as stiff as the solid ground under it (the seed's solid ground, 2e4 N/m and
   /// 100 N s/m per point: the stiffest contact this explicit 2 ms step is known to run; teams'
   /// MuJoCo models use a rigid plane), the stick spring 0.7 of the normal one (Mindlin, as on
-  /// turf). A standing robot's studs sink 0.4 mm (7.9 N per stud), under 1 mm in single support.
+  /// turf). A standing robot's studs sink 0.4 mm (7.9 N per stud) on both engines; a walking
+  /// stance foot's 0.4 mm at the median tick, 1.2-1.4 mm at a landing (models/README.md).
   static ContactOptions hard() {
     ContactOptions c = turf();
     c.grass_thickness_m = 0.003;
@@ -74,10 +75,11 @@ struct ContactOptions {
     return c;
   }
   /// A deep artificial turf (issue 41 point 1): a 15 mm layer (long pile, infill and shock
-  /// pad) at 2000 N/m per point, so that a standing robot's studs sink 4 mm and a foot in single
-  /// support (8 mm) never reaches the base, critically damped for one stud's share of the
-  /// standing robot (2 sqrt(k m / 8) = 80 N s/m, twice turf's 40: FIFA's 55-70 % shock
-  /// absorption is a layer that dissipates most of an impact); stick spring 0.7 of the normal.
+  /// pad) at 2000 N/m per point, so that a standing robot's studs sink 4.0 mm (measured on both
+  /// engines) and a walking stance foot (up to 8 mm) never reaches the base, critically damped for
+  /// one stud's share of the standing robot (2 sqrt(k m / 8) = 80 N s/m, twice turf's 40: FIFA's
+  /// 55-70 % shock absorption is a layer that dissipates most of an impact); stick spring 0.7 of
+  /// the normal.
   static ContactOptions soft() {
     ContactOptions c = turf();
     c.grass_thickness_m = 0.015;
