@@ -6,6 +6,7 @@
 
 #include "robot_placement.hpp"
 #include "stride/sim_hal/collision_points.hpp"
+#include "stride/sim_hal/grounds.hpp"
 #include "stride/sim_hal/physics_engine.hpp"
 #include "stride/sim_hal/sim_servo.hpp"
 #include "stride/sim_hal/world_rng.hpp"
@@ -60,7 +61,8 @@ struct SimWorld::Impl {
 
   Status configure();
   /// The randomisation of one reset, drawn from rng (a fixed number of draws whatever the
-  /// ranges), into engine_model and the per-reset fields.
+  /// ranges, and one more for the ground when its range is set), into engine_model and the
+  /// per-reset fields.
   void draw_randomisation();
   /// The random draws of a reset followed by its first IMU sample, made and discarded: what
   /// create()'s start-up reset takes from the stream when a restart skips it.
@@ -95,6 +97,8 @@ Status SimWorld::Impl::configure() {
       !(o.contact.tangential_stiffness_n_m > 0.0) || !(o.contact.grass_damping_n_s_m >= 0.0) ||
       !(o.contact.ground_damping_n_s_m >= 0.0) || !(o.contact.tangential_damping_n_s_m >= 0.0))
     return Status::error("contact: thickness, damping and friction must be >= 0, stiffness > 0");
+  if (!(o.randomise.contact_range >= 0.0 && o.randomise.contact_range <= kMaxContactRange))
+    return Status::error("contact_range: must be in 0..1");
   for (const TorsoPush& p : o.pushes)
     if (!(p.time_s >= 0.0) || !std::isfinite(p.time_s) || !std::isfinite(p.direction_rad) ||
         !(p.impulse_n_s >= 0.0) || !std::isfinite(p.impulse_n_s))
@@ -169,6 +173,8 @@ void SimWorld::Impl::draw_randomisation() {
     accel_bias[k] = options.imu.accel_bias[k] + options.imu.accel_bias_std * rng.normal();
   for (int k = 0; k < 3; ++k)
     gyro_bias[k] = options.imu.gyro_bias[k] + options.imu.gyro_bias_std * rng.normal();
+  // The ground: drawn (one more draw) only when its range is set (grounds.hpp).
+  if (r.contact_range > 0.0) em.contact = draw_ground(options.contact, r.contact_range, rng);
 }
 
 void SimWorld::Impl::skip_reset_draws() {
@@ -312,14 +318,13 @@ Status SimWorld::reset(const ResetSpec& spec) {
     for (std::size_t i = 0; i < hal::kServoCount; ++i)
       start.joint_speeds[static_cast<std::size_t>(w.servo_joint[i])] = spec.joint_speeds[i];
   }
-  const double grass_top = w.options.contact.grass_thickness_m;
+  const double grass_top = em.contact.grass_thickness_m;
   start.ball_position = spec.ball_position;
   if (!std::isfinite(start.ball_position.z()))
     start.ball_position.z() = grass_top + w.options.ball.radius_m;
   start.ball_velocity = spec.ball_velocity;
-  if (Status s =
-          place_robot(*w.engine, w.collision, spec, w.left_foot, w.right_foot, w.options.contact,
-                      w.model.total_mass() * w.options.gravity_mps2, start);
+  if (Status s = place_robot(*w.engine, w.collision, spec, w.left_foot, w.right_foot, em.contact,
+                             w.model.total_mass() * w.options.gravity_mps2, start);
       !s)
     return Status::error("reset: " + s.message());
   if (spec.still_lower_foot && !start.joint_speeds.empty())
@@ -411,6 +416,9 @@ std::int64_t SimWorld::period_count() const {
 }
 const WorldOptions& SimWorld::options() const {
   return impl_->options;
+}
+const ContactOptions& SimWorld::ground() const {
+  return impl_->engine_model.contact;
 }
 const RobotModel& SimWorld::model() const {
   return impl_->model;

@@ -105,7 +105,7 @@ Status write_html(const stride::core::CliArgs& args, const std::string& motion,
                 result.fell ? "fell" : "standing", end, result.distance_m);
   episode.note = get_up.watched ? motion + ": " + outcome_text(result, get_up) : note;
   report::ReplayScene scene;
-  scene.grass_m = world.contact.grass_thickness_m;
+  scene.grass_m = robot.world().ground().grass_thickness_m;  // the episode's (drawn) ground
   scene.ball_radius_m = world.ball.present ? world.ball.radius_m : 0.0;
   if (motion == "walk") scene.goal_m = sim::EpisodeOptions{}.goal_distance_m;  // time_to_goal_s
   const std::vector<double> times =
@@ -345,7 +345,7 @@ int run_sim(int argc, char** argv) {
   }
   if (args.has("snapshot")) {
     const std::string svg = sim::render_pose_svg(
-        robot.world().model(), result.snapshots, world_options.contact.grass_thickness_m,
+        robot.world().model(), result.snapshots, robot.world().ground().grass_thickness_m,
         world_options.ball.present ? world_options.ball.radius_m : 0.0);
     if (Status s = stride::core::write_file_atomically(args.get("snapshot"), svg); !s) {
       std::fprintf(stderr, "stride sim: %s\n", s.message().c_str());

@@ -130,14 +130,14 @@ std::string picks_table_html(const RunData& data, const std::vector<PickRow>& ro
 static std::string stride_validation_html(const json& doc) {
   std::string html =
       "<table id=\"validation-worlds\"><tr><th class=\"name\">world</th>"
-      "<th>engine</th><th>step [us]</th><th>friction +-</th><th>mass +-</th>"
-      "<th>strength +-</th><th>latency p</th><th>seeds</th>"
+      "<th>engine</th><th>step [us]</th><th>ground</th><th>friction +-</th><th>mass +-</th>"
+      "<th>strength +-</th><th>latency p</th><th>ground +-</th><th>seeds</th>"
       "<th class=\"name\">note</th></tr>\n";
   for (const json& w : doc["worlds"]) {
     if (!w.is_object()) continue;
     html += "<tr>" + cell(w.value("name", ""), "name") + cell(w.value("engine", ""));
-    for (const char* k : {"physics_step_us", "friction_range", "mass_range", "strength_range",
-                          "latency_probability"})
+    for (const char* k : {"physics_step_us", "contact", "friction_range", "mass_range",
+                          "strength_range", "latency_probability", "contact_range"})
       html += cell(w.contains(k) ? scalar_text(w[k]) : "-");
     html += cell(std::to_string(w.value("seeds", json::array()).size())) +
             cell(w.contains("unavailable") ? "unavailable: " + scalar_text(w["unavailable"]) : "",

@@ -30,6 +30,8 @@ json world_json(const ValidationWorld& w, const std::string& unavailable) {
             {"mass_range", o.randomise.mass_range},
             {"strength_range", o.randomise.strength_range},
             {"latency_probability", o.randomise.latency_probability},
+            {"contact", sim::contact_kind_name(o.contact)},
+            {"contact_range", o.randomise.contact_range},
             {"seeds", w.seeds}};
   if (!unavailable.empty()) j["unavailable"] = unavailable;
   return j;
@@ -101,6 +103,7 @@ std::string world_phrase(const std::string& name) {
     return engine == "mujoco" ? "on MuJoCo" : engine == "simbody" ? "on Simbody" : "on " + engine;
   }
   if (name.rfind("step ", 0) == 0) return "at a " + name.substr(5) + " physics step";
+  if (name.rfind("ground ", 0) == 0) return "on the " + name.substr(7) + " ground";
   return "in " + name;
 }
 
@@ -264,16 +267,16 @@ std::string validation_text(const json& result) {
       << (type != nullptr ? type->objective_legend() : std::string("f1, f2"))
       << ")\nworlds (IMU noise on in all):\n";
   for (const json& w : result.value("worlds", json::array())) {
-    std::snprintf(line, sizeof line,
-                  "  %-20s %-7s step %4lld us, friction +-%.3g, mass +-%.3g, strength +-%.3g, "
-                  "latency p %.2g, %zu seeds%s%s\n",
-                  w.value("name", "").c_str(), w.value("engine", "").c_str(),
-                  static_cast<long long>(w.value("physics_step_us", 0)),
-                  w.value("friction_range", 0.0), w.value("mass_range", 0.0),
-                  w.value("strength_range", 0.0), w.value("latency_probability", 0.0),
-                  w.value("seeds", json::array()).size(),
-                  w.contains("unavailable") ? ": UNAVAILABLE, " : "",
-                  w.contains("unavailable") ? w["unavailable"].get<std::string>().c_str() : "");
+    std::snprintf(
+        line, sizeof line,
+        "  %-20s %-7s step %4lld us, %s, friction +-%.3g, mass +-%.3g, strength "
+        "+-%.3g, latency p %.2g, ground +-%.2g, %zu seeds%s%s\n",
+        w.value("name", "").c_str(), w.value("engine", "").c_str(),
+        static_cast<long long>(w.value("physics_step_us", 0)), w.value("contact", "turf").c_str(),
+        w.value("friction_range", 0.0), w.value("mass_range", 0.0), w.value("strength_range", 0.0),
+        w.value("latency_probability", 0.0), w.value("contact_range", 0.0),
+        w.value("seeds", json::array()).size(), w.contains("unavailable") ? ": UNAVAILABLE, " : "",
+        w.contains("unavailable") ? w["unavailable"].get<std::string>().c_str() : "");
     out << line;
   }
   std::snprintf(line, sizeof line, "%-26s %-20s %7s %5s %10s %10s %5s %8s %8s\n", "individual",

@@ -20,6 +20,7 @@ WorldOptions randomised(EngineKind engine, std::uint64_t seed, bool chain_imu) {
   o.imu.set_noise(true);
   if (!chain_imu) o.imu.chain = ImuChain::ideal();  // the plain sampler draws its own noise
   o.randomise = {0.2, 0.05, 0.1, 0.5};
+  o.randomise.contact_range = 0.5;  // the ground drawn too (one more draw)
   return o;
 }
 

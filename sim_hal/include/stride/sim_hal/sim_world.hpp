@@ -140,6 +140,9 @@ class SimWorld {
   double time_s() const;
   std::int64_t period_count() const;
   const WorldOptions& options() const;
+  /// The ground of this episode: options().contact, or the one drawn at the last reset when
+  /// options().randomise.contact_range > 0 (grounds.hpp).
+  const ContactOptions& ground() const;
   const RobotModel& model() const;
   double battery_voltage() const;
   /// Pose of every link of model() in the world frame (for drawings and recordings).

@@ -10,10 +10,14 @@
 //   fresh seeds         the run's (first) engine and randomisation
 //   wider randomisation friction, masses and servo strength at 1.5x the run's ranges, at least
 //                       1.5x the robust defaults (0.3, 0.075, 0.15), at most 0.9; one control
-//                       tick of command latency in half of the worlds (latency probability 0.5).
+//                       tick of command latency in half of the worlds (latency probability 0.5);
+//                       the ground range at 1.5x the run's (none if the run had none).
 //                       sim_hal has no centre-of-mass randomisation: the mass scale per link
 //                       moves the whole robot's centre of mass only through the link masses.
 //   half step           the physics step halved (or --physics-step-us), the run's randomisation
+//   ground soft         the soft ground (deep turf, studs sink 4 mm; sim::ContactOptions::soft),
+//   ground hard         the hard one (carpet, 0.4 mm): the run's engine, friction and
+//                       randomisation, no ground range
 // A world that fails mid-episode (NaN, explosion) is a fall with its reason; a world that cannot
 // be built (an engine not in this build) is reported as unavailable with the reason.
 //

@@ -41,6 +41,9 @@ struct TrialRandomisation {
   double friction_range = 0.2;
   double mass_range = 0.05;
   double strength_range = 0.1;
+  /// The ground drawn per trial between hard and soft (sim::Randomisation::contact_range);
+  /// 0 (the default): every trial on the world's ground, drawing nothing.
+  double contact_range = 0.0;
 };
 
 /// The segments of the omnidirectional walk task (walk-omni): after start_s of walking in
