@@ -73,7 +73,8 @@ TEST(ValidateCli, TinyWalkRunValidatesTheSameForAnyThreadCountAndReportShowsIt) 
   EXPECT_EQ(v["format"], "stride-validation-1");
   EXPECT_EQ(v["task"], "walk");
   EXPECT_EQ(v["run_engines"], json({"simbody"}));
-  // The worlds: the other engine, fresh seeds, wider randomisation, half the run's 2 ms step,
+  // The worlds: the other engine, fresh seeds, wider randomisation, half the run's 2.5 ms step
+  // (the walk's trial step),
   // the soft and the hard ground.
   const json& worlds = v["worlds"];
   ASSERT_EQ(worlds.size(), 6u);
@@ -86,7 +87,7 @@ TEST(ValidateCli, TinyWalkRunValidatesTheSameForAnyThreadCountAndReportShowsIt) 
   EXPECT_DOUBLE_EQ(worlds[2]["strength_range"].get<double>(), 0.15);
   EXPECT_DOUBLE_EQ(worlds[2]["latency_probability"].get<double>(), 0.5);
   EXPECT_EQ(worlds[3]["name"], "half step");
-  EXPECT_EQ(worlds[3]["physics_step_us"], 1000);
+  EXPECT_EQ(worlds[3]["physics_step_us"], 1250);
   for (std::size_t w = 0; w < 4; ++w) EXPECT_EQ(worlds[w]["contact"], "turf");
   EXPECT_EQ(worlds[4]["name"], "ground soft");
   EXPECT_EQ(worlds[4]["contact"], "soft");
