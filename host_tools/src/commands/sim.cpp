@@ -1,5 +1,5 @@
 // `stride sim stand|walk|kick|getup`: one simulated episode of the firmware against the simulated
-// world, with the DESIGN.md metrics (--json), a trajectory recording, pose pictures and a replay
+// world, with the metrics of docs/command-line.md (--json), a trajectory recording, pose pictures and a replay
 // page (--html, the replay of report.html for one episode). getup starts lying still and times
 // the firmware's get-up; stand and walk can go on through a get-up after a fall (--after-fall).
 #include <algorithm>

@@ -35,7 +35,7 @@ double stood_up_s(const nlohmann::json& result) {
 // noise on): the stock scripts stay down from the back on Simbody's turf (three attempts in
 // 20 s), as issue 43 says; on MuJoCo they stand up. get-up-turf.json (the get-up run's knee)
 // stands up from both sides; its mean, (7.20 + 12.35) / 2 = 9.78 s, is the figure of
-// optimiser/README.md.
+// optimiser/RESULTS.md ("Get-up run").
 TEST(StrideSimGetUp, TheDefaultFirmwareStaysDownOnSimbodysTurfFromTheBack) {
   const nlohmann::json back = sim_json("getup --lying back");
   EXPECT_TRUE(back.at("stood_up_s").is_null()) << back.dump();

@@ -111,6 +111,17 @@ std::function<void(std::size_t, std::size_t)> validation_progress_printer(bool t
 /// The human table of a validation result, followed by validation_words.
 std::string validation_text(const nlohmann::json& result);
 
+/// A number to two significant digits: 7.5556 -> "7.6", -0.66667 -> "-0.67", 0.96 -> "0.96",
+/// 123 -> "120"; "-" for a non-number.
+std::string two_significant_digits(const nlohmann::json& value);
+
+/// The gain kept of objective m (0 or 1) of one row of validation.json's flat table, as the
+/// tables show it: two significant digits, and "-" unless the run's gain in that objective
+/// (run_gain_fM) exceeds the seeds' spread (seed_spread_fM: the larger of Ind_O's and the
+/// pick's interquartile range over the world's seeds). A row without the two fields (a file
+/// from before they were written) shows the number.
+std::string gain_kept_text(const nlohmann::json& row, int m);
+
 /// The same result in plain words: per individual one line saying in which worlds it holds
 /// (passes the gate) and where and why it fails (falls, misses the goal, slower than in the
 /// run); the pick that holds in most worlds and its front file; what pass and fail mean.

@@ -61,7 +61,7 @@ struct OmniTiming {
 /// The physics step of a walk or kick optimisation's trials in the faithful world when the
 /// config gives none [us] (TaskType::trial_physics_step_us): the largest step at which the
 /// faithful robot's results held within the validation gate on both engines
-/// (tests/bench/README.md, "The step the model allows": per-direction speeds within the seeds'
+/// (tests/bench/RESULTS.md, "The step the model allows": per-direction speeds within the seeds'
 /// spread, time to 2.5 m and the kick within 2 %; 5 ms shifted the sideways and turning speeds
 /// by 10-35 % on MuJoCo). The get-up keeps 2000 (at 2500 its front side stood up 3.5 % sooner
 /// on Simbody); `stride sim` keeps 2000.
