@@ -95,7 +95,7 @@ TEST(ValidateCli, TinyWalkRunValidatesTheSameForAnyThreadCountAndReportShowsIt) 
   EXPECT_EQ(worlds[5]["contact"], "hard");
   for (std::size_t w = 4; w < 6; ++w) {
     EXPECT_EQ(worlds[w]["engine"], "simbody");  // the run's engine, step and randomisation
-    EXPECT_EQ(worlds[w]["physics_step_us"], 2000);
+    EXPECT_EQ(worlds[w]["physics_step_us"], 2500);
     EXPECT_EQ(worlds[w]["friction_range"], worlds[1]["friction_range"]);
     EXPECT_EQ(worlds[w]["contact_range"], 0.0);
   }
