@@ -47,7 +47,9 @@ hal::CommandFrame Controller::step(const hal::SensorFrame& sensors, hal::Tick ti
   take_inbox();
   safety_.observe(sensors);
   commands_.tick = tick;
-  motion_.step(sensors, tick, FallSignal{safety_.fallen(), safety_.falling(), safety_.report().fall_direction},
+  motion_.step(sensors, tick,
+               FallSignal{safety_.fallen(), safety_.falling(), safety_.report().fall_direction,
+                          safety_.report().fall_tilt_rad},
                commands_);
   if (!torque_on_) {
     for (auto& c : commands_.servos) c.torque_enable = false;

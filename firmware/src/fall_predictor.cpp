@@ -1,6 +1,7 @@
 // FallPredictor implementation (see the header for the rule and FALLING.md for the figures).
 #include "stride/firmware/fall_predictor.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -46,12 +47,16 @@ double fall_score(double angle, double rate, double tilt_limit, double rate_limi
 }
 }  // namespace
 
+double FallPredictor::tilt_rad() const noexcept {
+  return std::max(std::abs(roll_), std::abs(pitch_));
+}
+
 void FallPredictor::observe(const hal::Cm730State& imu) noexcept {
   const auto& a = imu.accel_mps2;
   const auto& g = imu.gyro_rad_s;
   if (!std::isfinite(a[0]) || !std::isfinite(a[1]) || !std::isfinite(a[2]) ||
       !std::isfinite(g[0]) || !std::isfinite(g[1]))
-    return;  // no usable reading this tick
+    return;                                            // no usable reading this tick
   const double accel_roll = std::atan2(a[1], a[2]);    // leaning right: +y reads gravity
   const double accel_pitch = std::atan2(-a[0], a[2]);  // leaning forward: -x reads gravity
   if (!initialised_) {

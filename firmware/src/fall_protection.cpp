@@ -14,9 +14,9 @@ constexpr std::size_t kRShoulderPitch = 0, kLShoulderPitch = 1, kRShoulderRoll =
 }  // namespace
 
 FallProtection::FallProtection(ParameterStore& params) : params_(params) {
-  protect_ = params.add({"fall.protect", ParamType::kBool, 1, 0, 1, "",
-                         "take the protective pose and go soft when a fall is predicted", false,
-                         false});
+  protect_ =
+      params.add({"fall.protect", ParamType::kBool, 1, 0, 1, "",
+                  "take the protective pose and go soft when a fall is predicted", false, false});
   hold_time_ = params.add_real("fall.hold_time_s", 0.5, 0.0, 5.0, "s",
                                "pose held after a prediction that cleared without a fall");
   gain_ = params.add_real("fall.gain", 15.0, 0.0, 100.0, "1",
@@ -37,9 +37,14 @@ FallProtection::FallProtection(ParameterStore& params) : params_(params) {
                                    "outward shoulder roll of the arm on the side of the fall");
   elbow_ = params.add_real("fall.elbow_rad", -0.5, -2.6, 0.0, "rad",
                            "elbow while falling (slightly bent, so the arm gives on contact)");
+  relax_tilt_ = params.add_real("fall.relax_tilt_rad", 1.6, 0.3, 1.6, "rad",
+                                "tilt beyond which a falling robot switches its torque off");
+  relax_time_ = params.add_real("fall.relax_time_s", 0.0, 0.0, 5.0, "s",
+                                "torque off for this long after the fall is detected (impact)");
 }
 
-void FallProtection::command(FallDirection direction, hal::CommandFrame& out) const noexcept {
+void FallProtection::command(FallDirection direction, bool relaxed,
+                             hal::CommandFrame& out) const noexcept {
   std::array<double, hal::kServoCount> pose = kStandPoseRad;
   pose[kRHipPitch] = pose[kLHipPitch] = params_.value(hip_pitch_);
   pose[kRKnee] = pose[kLKnee] = params_.value(knee_);
@@ -70,7 +75,7 @@ void FallProtection::command(FallDirection direction, hal::CommandFrame& out) co
     c.moving_speed_rad_s = 0.0;
     c.p_gain = p_gain;
     c.torque_limit = torque_limit;
-    c.torque_enable = true;
+    c.torque_enable = !relaxed;
   }
 }
 

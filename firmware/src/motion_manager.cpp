@@ -142,6 +142,7 @@ void MotionManager::step(const hal::SensorFrame& sensors, hal::Tick tick, const 
 
   // 2. Falls pre-empt everything but a get-up in progress.
   if (fallen && state_ != MotionState::kFallen && state_ != MotionState::kGetUp) {
+    relaxed_ = state_ == MotionState::kFalling;  // a protected fall relaxes through the impact
     state_ = MotionState::kFallen;
     fallen_since_ = tick;
     want_walk_ = false;
@@ -156,11 +157,14 @@ void MotionManager::step(const hal::SensorFrame& sensors, hal::Tick tick, const 
        state_ == MotionState::kScript)) {
     state_ = MotionState::kFalling;
     falling_direction_ = fall.direction;
+    relaxed_ = false;
     want_walk_ = false;
     want_script_ = -1;
     active_script_name_.fill(0);
   }
   if (state_ == MotionState::kFalling && fall.falling) falling_clear_since_ = tick;
+  if (state_ == MotionState::kFalling && fall.tilt_rad > protection_.relax_tilt_rad())
+    relaxed_ = true;
 
   // 3. Transitions and the active engine.
   switch (state_) {
@@ -220,10 +224,16 @@ void MotionManager::step(const hal::SensorFrame& sensors, hal::Tick tick, const 
         const int index = on_front ? get_up_front_ : get_up_back_;
         if (clear && index >= 0 &&
             start_script(index, on_front ? "get_up_front" : "get_up_back", sensors, last, tick)) {
+          relaxed_ = false;
           script_->step(sensors, tick, out);
           return;
         }
       }
+      if (relaxed_ && lying < protection_.relax_time_s()) {  // through the impact: torque off
+        for (auto& c : out.servos) c.torque_enable = false;
+        return;
+      }
+      relaxed_ = false;
       hold_soft(sensors, out);
       return;
     }
@@ -235,7 +245,7 @@ void MotionManager::step(const hal::SensorFrame& sensors, hal::Tick tick, const 
         stand_.step(sensors, tick, out);
         return;
       }
-      protection_.command(falling_direction_, out);
+      protection_.command(falling_direction_, relaxed_, out);
       return;
 
     case MotionState::kGetUp:

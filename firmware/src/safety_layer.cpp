@@ -34,6 +34,7 @@ void SafetyLayer::observe(const hal::SensorFrame& sensors) noexcept {
   if (predictor_.falling() && !report_.falling) ++report_.predictions;
   report_.falling = predictor_.falling();
   report_.fall_direction = predictor_.direction();
+  report_.fall_tilt_rad = predictor_.tilt_rad();
   const auto& a = sensors.cm730.accel_mps2;
   const double norm = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
   if (!(norm > 1e-3) || !std::isfinite(norm)) return;  // no usable reading this tick

@@ -226,7 +226,8 @@ bool SimWorld::Impl::step_once() {
   for (std::size_t j = 0; j < joint_tau.size(); ++j) {
     if (joint_servo[j] < 0) continue;
     peaks.joint_torque_nm = std::max(peaks.joint_torque_nm, std::abs(joint_tau[j]));
-    const double motor = std::abs(servos[static_cast<std::size_t>(joint_servo[j])]->motor_torque_nm());
+    const double motor =
+        std::abs(servos[static_cast<std::size_t>(joint_servo[j])]->motor_torque_nm());
     if (!(motor > peaks.servo_torque_nm)) continue;
     peaks.servo_torque_nm = motor;
     peaks.servo_index = joint_servo[j];

@@ -56,8 +56,9 @@ TEST(FallPredictor, PredictsEachDirectionWellBeforeTheTorsoIsDown) {
     bool about_pitch;
     FallDirection expected;
   };
-  for (const Case c : {Case{1, true, FallDirection::kForward}, Case{-1, true, FallDirection::kBackward},
-                       Case{1, false, FallDirection::kRight}, Case{-1, false, FallDirection::kLeft}}) {
+  for (const Case c :
+       {Case{1, true, FallDirection::kForward}, Case{-1, true, FallDirection::kBackward},
+        Case{1, false, FallDirection::kRight}, Case{-1, false, FallDirection::kLeft}}) {
     ParameterStore params;
     FallPredictor predictor(params, kPeriodS);
     const double angle = predicted_at(predictor, c.sign, c.about_pitch);

@@ -42,6 +42,8 @@ class FallPredictor {
   FallDirection direction() const noexcept { return falling_ ? direction_ : FallDirection::kNone; }
   double roll_rad() const noexcept { return roll_; }
   double pitch_rad() const noexcept { return pitch_; }
+  /// The larger of |roll| and |pitch| [rad].
+  double tilt_rad() const noexcept;
 
  private:
   ParameterStore& params_;

@@ -19,7 +19,9 @@
 //   kGetUp   -> kStand    when the get-up script has finished and the robot is upright,
 //                         otherwise back to kFallen and try again
 // Without a walk or script engine the corresponding requests are refused (counted).
-// While fallen the servos are held soft (motion.fallen_gain) at their measured positions.
+// While fallen the servos are held soft (motion.fallen_gain) at their measured positions; after
+// a protected fall that went past fall.relax_tilt_rad they are first off (relaxed) for
+// fall.relax_time_s, through the impact.
 #pragma once
 
 #include <array>
@@ -41,6 +43,7 @@ struct FallSignal {
   bool fallen = false;   ///< the fall has happened (SafetyLayer::fallen)
   bool falling = false;  ///< a fall is predicted (SafetyLayer::falling)
   FallDirection direction = FallDirection::kNone;
+  double tilt_rad = 0.0;  ///< the predictor's attitude (FallPredictor::tilt_rad)
 };
 
 std::string_view to_string(MotionState state);
@@ -96,6 +99,7 @@ class MotionManager {
   hal::Tick fallen_since_ = 0;
   hal::Tick falling_clear_since_ = 0;  // last tick the fall was still predicted (kFalling)
   FallDirection falling_direction_ = FallDirection::kNone;
+  bool relaxed_ = false;  // torque off: past fall.relax_tilt_rad, until fall.relax_time_s lying
   std::uint32_t refused_ = 0;
   // Script names the manager itself plays; resolved once at construction.
   int get_up_front_ = -1;

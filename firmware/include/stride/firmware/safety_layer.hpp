@@ -38,6 +38,7 @@ struct SafetyReport {
   std::uint32_t predictions = 0;    ///< not falling -> falling predicted transitions
   bool falling = false;             ///< a fall is predicted now (FallPredictor)
   FallDirection fall_direction = FallDirection::kNone;
+  double fall_tilt_rad = 0.0;  ///< the predictor's attitude: larger of |roll|, |pitch|
 };
 
 class SafetyLayer {
