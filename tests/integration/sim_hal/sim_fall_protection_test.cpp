@@ -67,7 +67,9 @@ TEST(FallProtection, LowersThePeakServoTorqueAtImpactForwardAndBackward) {
         pushed(m.direction, false).at("impact").at("peak_servo_torque_nm").get<double>();
     EXPECT_NEAR(on, m.torque_on, 0.005) << m.direction;
     EXPECT_NEAR(off, m.torque_off, 0.005) << m.direction;
-    if (std::string(m.direction) != "left") EXPECT_LT(on, off) << m.direction;
+    if (std::string(m.direction) != "left") {
+      EXPECT_LT(on, off) << m.direction;
+    }
   }
 }
 
