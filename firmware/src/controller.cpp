@@ -8,7 +8,7 @@ namespace stride::fw {
 Controller::Controller(ParameterStore& params, const ServoTable& servos, std::int64_t period_ns,
                        Engines engines)
     : period_ns_(period_ns),
-      safety_(params, servos),
+      safety_(params, servos, static_cast<double>(period_ns) * 1e-9),
       motion_(params, static_cast<double>(period_ns) * 1e-9, engines.walk, engines.script) {}
 
 void Controller::request(const MotionRequest& request) {
@@ -47,7 +47,10 @@ hal::CommandFrame Controller::step(const hal::SensorFrame& sensors, hal::Tick ti
   take_inbox();
   safety_.observe(sensors);
   commands_.tick = tick;
-  motion_.step(sensors, tick, safety_.fallen(), commands_);
+  motion_.step(sensors, tick,
+               FallSignal{safety_.fallen(), safety_.falling(), safety_.report().fall_direction,
+                          safety_.report().fall_tilt_rad},
+               commands_);
   if (!torque_on_) {
     for (auto& c : commands_.servos) c.torque_enable = false;
   }

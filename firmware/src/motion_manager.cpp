@@ -21,6 +21,8 @@ std::string_view to_string(MotionState state) {
       return "fallen";
     case MotionState::kGetUp:
       return "get_up";
+    case MotionState::kFalling:
+      return "falling";
   }
   return "?";
 }
@@ -37,7 +39,12 @@ void copy_name(std::array<char, 32>& to, std::string_view name) {
 
 MotionManager::MotionManager(ParameterStore& params, double period_s, WalkControl* walk,
                              ScriptControl* script)
-    : params_(params), period_s_(period_s), stand_(params, period_s), walk_(walk), script_(script) {
+    : params_(params),
+      period_s_(period_s),
+      stand_(params, period_s),
+      protection_(params),
+      walk_(walk),
+      script_(script) {
   fallen_settle_time_ = params.add_real("motion.fallen_settle_time", 1.0, 0.0, 10.0, "s",
                                         "time lying still before a get-up starts");
   fallen_gain_ = params.add_real("motion.fallen_gain", 5.0, 0.0, 100.0, "1",
@@ -87,8 +94,9 @@ void MotionManager::hold_soft(const hal::SensorFrame& sensors, hal::CommandFrame
   }
 }
 
-void MotionManager::step(const hal::SensorFrame& sensors, hal::Tick tick, bool fallen,
+void MotionManager::step(const hal::SensorFrame& sensors, hal::Tick tick, const FallSignal& fall,
                          hal::CommandFrame& out) noexcept {
+  const bool fallen = fall.fallen;
   const hal::CommandFrame& last = out;  // holds the previous tick's commands
   if (!started_) {
     started_ = true;
@@ -134,12 +142,29 @@ void MotionManager::step(const hal::SensorFrame& sensors, hal::Tick tick, bool f
 
   // 2. Falls pre-empt everything but a get-up in progress.
   if (fallen && state_ != MotionState::kFallen && state_ != MotionState::kGetUp) {
+    relaxed_ = state_ == MotionState::kFalling;  // a protected fall relaxes through the impact
     state_ = MotionState::kFallen;
     fallen_since_ = tick;
     want_walk_ = false;
     want_script_ = -1;
     active_script_name_.fill(0);
   }
+
+  // 2b. A predicted fall: the protective pose, soft, until the fall is detected (kFallen) or
+  // the prediction has cleared for fall.hold_time_s.
+  if (fall.falling && protection_.enabled() &&
+      (state_ == MotionState::kStand || state_ == MotionState::kWalk ||
+       state_ == MotionState::kScript)) {
+    state_ = MotionState::kFalling;
+    falling_direction_ = fall.direction;
+    relaxed_ = false;
+    want_walk_ = false;
+    want_script_ = -1;
+    active_script_name_.fill(0);
+  }
+  if (state_ == MotionState::kFalling && fall.falling) falling_clear_since_ = tick;
+  if (state_ == MotionState::kFalling && fall.tilt_rad > protection_.relax_tilt_rad())
+    relaxed_ = true;
 
   // 3. Transitions and the active engine.
   switch (state_) {
@@ -199,13 +224,29 @@ void MotionManager::step(const hal::SensorFrame& sensors, hal::Tick tick, bool f
         const int index = on_front ? get_up_front_ : get_up_back_;
         if (clear && index >= 0 &&
             start_script(index, on_front ? "get_up_front" : "get_up_back", sensors, last, tick)) {
+          relaxed_ = false;
           script_->step(sensors, tick, out);
           return;
         }
       }
+      if (relaxed_ && lying < protection_.relax_time_s()) {  // through the impact: torque off
+        for (auto& c : out.servos) c.torque_enable = false;
+        return;
+      }
+      relaxed_ = false;
       hold_soft(sensors, out);
       return;
     }
+
+    case MotionState::kFalling:
+      if (static_cast<double>(tick - falling_clear_since_) * period_s_ >=
+          protection_.hold_time_s()) {  // it did not fall: stand up from the pose reached
+        enter(MotionState::kStand, stand_, sensors, last, tick);
+        stand_.step(sensors, tick, out);
+        return;
+      }
+      protection_.command(falling_direction_, relaxed_, out);
+      return;
 
     case MotionState::kGetUp:
       if (script_->done()) {

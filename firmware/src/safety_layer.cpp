@@ -6,8 +6,8 @@
 
 namespace stride::fw {
 
-SafetyLayer::SafetyLayer(ParameterStore& params, const ServoTable& servos)
-    : params_(params), servos_(servos) {
+SafetyLayer::SafetyLayer(ParameterStore& params, const ServoTable& servos, double period_s)
+    : params_(params), servos_(servos), predictor_(params, period_s) {
   max_torque_limit_ = params.add_real("safety.max_torque_limit", 1.0, 0.0, 1.0, "1",
                                       "upper bound of every servo's torque limit (fraction)");
   max_p_gain_ = params.add_real("safety.max_p_gain", 254.0, 0.0, 254.0, "1",
@@ -30,6 +30,11 @@ SafetyLayer::SafetyLayer(ParameterStore& params, const ServoTable& servos)
 }
 
 void SafetyLayer::observe(const hal::SensorFrame& sensors) noexcept {
+  predictor_.observe(sensors.cm730);
+  if (predictor_.falling() && !report_.falling) ++report_.predictions;
+  report_.falling = predictor_.falling();
+  report_.fall_direction = predictor_.direction();
+  report_.fall_tilt_rad = predictor_.tilt_rad();
   const auto& a = sensors.cm730.accel_mps2;
   const double norm = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
   if (!(norm > 1e-3) || !std::isfinite(norm)) return;  // no usable reading this tick

@@ -66,6 +66,19 @@ EpisodeResult run_episode(SimRobot& robot, const StepFunction& controller,
       ++next_snapshot;
     }
     if (world.status() != WorldStatus::kRunning) break;
+    if (options.impact_metrics) {
+      ImpactMeasure& m = result.impact;
+      if (!m.body_contact_s && world.ground_truth().other_contacts > 0) m.body_contact_s = t;
+      if (m.body_contact_s && t <= *m.body_contact_s + options.impact_window_s) {
+        const SimWorld::PeriodPeaks& p = world.last_period_peaks();
+        m.peak_accel_mps2 = std::max(m.peak_accel_mps2, p.torso_accel_mps2);
+        m.peak_joint_torque_nm = std::max(m.peak_joint_torque_nm, p.joint_torque_nm);
+        if (p.servo_torque_nm > m.peak_servo_torque_nm) {
+          m.peak_servo_torque_nm = p.servo_torque_nm;
+          m.peak_servo_index = p.servo_index;
+        }
+      }
+    }
     if (t >= options.metrics_start_s) {
       const auto& a = sensors.cm730.accel_mps2;
       result.max_accel =
@@ -122,6 +135,13 @@ nlohmann::json to_json(const EpisodeResult& r) {
   if (r.time_to_goal_s) j["time_to_goal_s"] = *r.time_to_goal_s;
   if (r.fell) j["fall_time_s"] = r.fall_time_s;
   if (!r.failure_reason.empty()) j["failure_reason"] = r.failure_reason;
+  if (r.impact.body_contact_s) {
+    j["impact"] = {{"body_contact_s", *r.impact.body_contact_s},
+                   {"peak_accel_mps2", r.impact.peak_accel_mps2},
+                   {"peak_servo_torque_nm", r.impact.peak_servo_torque_nm},
+                   {"peak_servo_id", r.impact.peak_servo_index + 1},
+                   {"peak_joint_torque_nm", r.impact.peak_joint_torque_nm}};
+  }
   return j;
 }
 

@@ -35,8 +35,12 @@ class SeedServo final : public SimServo {
   void set_command(const hal::ServoCommand& c, bool enabled) override {
     servo_.set_input({c.position_rad, c.moving_speed_rad_s, c.p_gain, c.torque_limit, enabled});
   }
-  double step(double q, double w, double h) override { return servo_.step(q, w, h); }
+  double step(double q, double w, double h) override {
+    last_torque_ = servo_.step(q, w, h);
+    return last_torque_;
+  }
   double load() const override { return servo_.load(); }
+  double motor_torque_nm() const override { return last_torque_; }
   double temperature_c() const override { return servo_.temperature_c(); }
   std::uint64_t hash(std::uint64_t seed) const override {
     const double sp = servo_.setpoint();
@@ -45,6 +49,7 @@ class SeedServo final : public SimServo {
 
  private:
   ServoModel servo_;
+  double last_torque_ = 0.0;  ///< the last step's torque [N m]
 };
 
 /// The identified MX law (mx_servo.hpp).
@@ -79,6 +84,7 @@ class IdentifiedServo final : public SimServo {
     return last_torque_;
   }
   double load() const override { return servo_.load(); }
+  double motor_torque_nm() const override { return servo_.output().motor_torque; }
   double temperature_c() const override { return servo_.temperature_c(); }
   std::uint64_t hash(std::uint64_t seed) const override {
     const double sp = servo_.setpoint();

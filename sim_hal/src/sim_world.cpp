@@ -58,6 +58,7 @@ struct SimWorld::Impl {
   std::int64_t push_steps = 1;
 
   EngineKind engine_kind = EngineKind::kSimbody;
+  SimWorld::PeriodPeaks peaks;  ///< of the last advance_period()
 
   Status configure();
   /// The randomisation of one reset, drawn from rng (a fixed number of draws whatever the
@@ -227,6 +228,16 @@ bool SimWorld::Impl::step_once() {
   status = engine->step(joint_tau, reason);
   ++steps;
   if (status != WorldStatus::kRunning) return false;
+  peaks.torso_accel_mps2 = std::max(peaks.torso_accel_mps2, engine->torso_acceleration().norm());
+  for (std::size_t j = 0; j < joint_tau.size(); ++j) {
+    if (joint_servo[j] < 0) continue;
+    peaks.joint_torque_nm = std::max(peaks.joint_torque_nm, std::abs(joint_tau[j]));
+    const double motor =
+        std::abs(servos[static_cast<std::size_t>(joint_servo[j])]->motor_torque_nm());
+    if (!(motor > peaks.servo_torque_nm)) continue;
+    peaks.servo_torque_nm = motor;
+    peaks.servo_index = joint_servo[j];
+  }
   if (imu.needs_steps()) {
     start.linear_acceleration = engine->torso_acceleration();
     imu.feed(start, h, rng);
@@ -391,6 +402,7 @@ bool SimWorld::advance_period() {
     for (std::size_t k = w.delayed.size() - 1; k > 0; --k) w.delayed[k][i] = w.delayed[k - 1][i];
     w.delayed[0][i] = w.written[i];
   }
+  w.peaks = {};
   for (int k = 0; k < w.steps_per_period; ++k)
     if (!w.step_once()) break;
   ++w.periods;
@@ -400,6 +412,10 @@ bool SimWorld::advance_period() {
     w.imu.skip(w.rng);
   }
   return w.status == WorldStatus::kRunning;
+}
+
+const SimWorld::PeriodPeaks& SimWorld::last_period_peaks() const {
+  return impl_->peaks;
 }
 
 WorldStatus SimWorld::status() const {

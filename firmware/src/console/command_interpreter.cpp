@@ -112,7 +112,9 @@ MotionSituation CommandInterpreter::situation() const {
 Reply CommandInterpreter::execute(std::string_view line) {
   // A fall cancels the walk inside the motion manager; forget the console's request too.
   const MotionState state = controller_.status().state;
-  if (state == MotionState::kFallen || state == MotionState::kGetUp) walk_requested_ = false;
+  if (state == MotionState::kFallen || state == MotionState::kGetUp ||
+      state == MotionState::kFalling)
+    walk_requested_ = false;
 
   const Args args = split_words(line);
   if (args.empty()) return Reply::success();
@@ -413,7 +415,8 @@ Reply CommandInterpreter::script(const Args& args) {
   const MotionSituation now = situation();
   if (!now.torque_on)
     return Reply::error(ErrorCode::kRefused, "script with the torque off; send 'torque on' first");
-  if (now.state == MotionState::kFallen || now.state == MotionState::kGetUp) {
+  if (now.state == MotionState::kFallen || now.state == MotionState::kGetUp ||
+      now.state == MotionState::kFalling) {
     return Reply::error(ErrorCode::kRefused, "script while " + now.describe());
   }
   controller_.request(MotionRequest::play(name));

@@ -5,7 +5,7 @@ namespace stride::fw::console {
 
 bool MotionSituation::moving() const {
   return walk_requested || state == MotionState::kWalk || state == MotionState::kScript ||
-         state == MotionState::kGetUp;
+         state == MotionState::kGetUp || state == MotionState::kFalling;
 }
 
 std::string MotionSituation::describe() const {
@@ -18,6 +18,8 @@ std::string MotionSituation::describe() const {
       return "getting up";
     case MotionState::kFallen:
       return "fallen";
+    case MotionState::kFalling:
+      return "falling";
     case MotionState::kStand:
       break;
   }
@@ -45,7 +47,8 @@ Status check_torque_off(const MotionSituation& now, bool force) {
 
 Status check_walk(const MotionSituation& now) {
   if (!now.torque_on) return Status::error("walk with the torque off; send 'torque on' first");
-  if (now.state == MotionState::kFallen || now.state == MotionState::kGetUp) {
+  if (now.state == MotionState::kFallen || now.state == MotionState::kGetUp ||
+      now.state == MotionState::kFalling) {
     return Status::error("walk while " + now.describe() + "; wait until the robot stands");
   }
   return {};

@@ -67,7 +67,7 @@ nlohmann::json make_header(const HeaderInputs& in) {
   }
   nlohmann::json motion_states = nlohmann::json::array();
   for (MotionState s : {MotionState::kStand, MotionState::kWalk, MotionState::kScript,
-                        MotionState::kFallen, MotionState::kGetUp}) {
+                        MotionState::kFallen, MotionState::kGetUp, MotionState::kFalling}) {
     motion_states.push_back(std::string(to_string(s)));
   }
   char started[32] = "";

@@ -270,6 +270,7 @@ int run_sim(int argc, char** argv) {
   std::unique_ptr<sim::SimRobot> robot_ptr;
   sim::EpisodeResult result;
   GetUpOutcome get_up;
+  std::optional<double> predicted_s;  // stand and walk: when the firmware predicted a fall
   if (motion == "kick") {
     // The seed's kick episode (script_episodes.hpp): ball in front of the kicking foot, the
     // kick requested at 1 s, played by the firmware's script engine once the stand is reached.
@@ -316,11 +317,18 @@ int run_sim(int argc, char** argv) {
     // A get-up is followed tick by tick (it only reads the world: the episode is the same).
     sim::StoodUpWatch stood_up(static_cast<double>(robot.period_ns()) * 1e-9);
     if (watch_get_up) episode.stop_on_fall = false;
-    const sim::StepFunction step = [&controller, &stood_up, &robot, watch_get_up](
-                                       const stride::hal::SensorFrame& sensors,
-                                       stride::hal::Tick tick) {
+    // A robot that may fall and go on lying: its landing is measured (impact in --json).
+    episode.impact_metrics = watch_get_up && !getup;
+    // The first tick the firmware predicted a fall (FallPredictor), whether or not it protects.
+    const double period_s = static_cast<double>(robot.period_ns()) * 1e-9;
+    const stride::hal::Tick first_tick = robot.current_tick();
+    const sim::StepFunction step = [&controller, &stood_up, &robot, watch_get_up, &predicted_s,
+                                    period_s, first_tick](const stride::hal::SensorFrame& sensors,
+                                                          stride::hal::Tick tick) {
       stride::hal::CommandFrame commands = controller.step(sensors, tick);
       if (watch_get_up) stood_up.after_step(controller, robot.world(), tick);
+      if (!predicted_s && controller.safety().report().predictions > 0)
+        predicted_s = static_cast<double>(tick - first_tick) * period_s;
       return commands;
     };
     result = sim::run_episode(robot, step, episode);
@@ -362,6 +370,7 @@ int run_sim(int argc, char** argv) {
   }
   if (args.has("json")) {
     nlohmann::json json = sim::to_json(result);
+    if (predicted_s) json["fall_predicted_s"] = *predicted_s;
     if (get_up.watched) {
       if (getup) json["lying"] = lying;
       json["stood_up_s"] = get_up.stood_up_s ? nlohmann::json(*get_up.stood_up_s) : nullptr;

@@ -8,6 +8,9 @@
 //                         while walking first stops the walk (kWalk -> kStand -> kScript)
 //   kScript  -> kStand    when the script has finished, or at once on a stand request (the
 //                         console's `stop`: the stand engine ramps from the pose reached)
+//   kStand, kWalk, kScript -> kFalling  when the safety layer predicts a fall (FallPredictor)
+//                         and fall.protect is on: FallProtection's pose, soft and torque-limited
+//   kFalling -> kStand    when the prediction has cleared for fall.hold_time_s without a fall
 //   any      -> kFallen   when the safety layer reports a fall (not during a get-up)
 //   kFallen  -> kGetUp    after motion.fallen_settle_time, with get_up_front (lying on the
 //                         front: torso x axis down, accel x < 0) or get_up_back (accel x > 0);
@@ -16,13 +19,16 @@
 //   kGetUp   -> kStand    when the get-up script has finished and the robot is upright,
 //                         otherwise back to kFallen and try again
 // Without a walk or script engine the corresponding requests are refused (counted).
-// While fallen the servos are held soft (motion.fallen_gain) at their measured positions.
+// While fallen the servos are held soft (motion.fallen_gain) at their measured positions; after
+// a protected fall that went past fall.relax_tilt_rad they are first off (relaxed) for
+// fall.relax_time_s, through the impact.
 #pragma once
 
 #include <array>
 #include <cstdint>
 #include <string_view>
 
+#include "stride/firmware/fall_protection.hpp"
 #include "stride/firmware/motion_engine.hpp"
 #include "stride/firmware/motion_request.hpp"
 #include "stride/firmware/parameter_store.hpp"
@@ -30,7 +36,15 @@
 
 namespace stride::fw {
 
-enum class MotionState : std::uint8_t { kStand, kWalk, kScript, kFallen, kGetUp };
+enum class MotionState : std::uint8_t { kStand, kWalk, kScript, kFallen, kGetUp, kFalling };
+
+/// What the safety layer says about falls this tick.
+struct FallSignal {
+  bool fallen = false;   ///< the fall has happened (SafetyLayer::fallen)
+  bool falling = false;  ///< a fall is predicted (SafetyLayer::falling)
+  FallDirection direction = FallDirection::kNone;
+  double tilt_rad = 0.0;  ///< the predictor's attitude (FallPredictor::tilt_rad)
+};
 
 std::string_view to_string(MotionState state);
 
@@ -45,8 +59,13 @@ class MotionManager {
 
   /// Runs the active engine for this tick, writing targets into `out` (which holds the
   /// previous tick's commands). `fallen` comes from the safety layer. Real-time: yes.
-  void step(const hal::SensorFrame& sensors, hal::Tick tick, bool fallen,
+  void step(const hal::SensorFrame& sensors, hal::Tick tick, const FallSignal& fall,
             hal::CommandFrame& out) noexcept;
+  /// The same without a fall prediction (`fallen` alone).
+  void step(const hal::SensorFrame& sensors, hal::Tick tick, bool fallen,
+            hal::CommandFrame& out) noexcept {
+    step(sensors, tick, FallSignal{fallen, false, FallDirection::kNone}, out);
+  }
 
   MotionState state() const noexcept { return state_; }
   /// Requests refused because the engine or script was not available.
@@ -65,6 +84,7 @@ class MotionManager {
   ParameterStore& params_;
   double period_s_;
   StandEngine stand_;
+  FallProtection protection_;
   WalkControl* walk_;
   ScriptControl* script_;
   ParamHandle fallen_settle_time_, fallen_gain_, get_up_enabled_;
@@ -77,6 +97,9 @@ class MotionManager {
   double walk_vx_ = 0.0, walk_vy_ = 0.0, walk_vtheta_ = 0.0;
   int want_script_ = -1;  // script index to play once standing, -1 for none, -2 stop the script
   hal::Tick fallen_since_ = 0;
+  hal::Tick falling_clear_since_ = 0;  // last tick the fall was still predicted (kFalling)
+  FallDirection falling_direction_ = FallDirection::kNone;
+  bool relaxed_ = false;  // torque off: past fall.relax_tilt_rad, until fall.relax_time_s lying
   std::uint32_t refused_ = 0;
   // Script names the manager itself plays; resolved once at construction.
   int get_up_front_ = -1;

@@ -6,7 +6,8 @@
 // Fall detection: tilt = angle between the torso z axis and the measured specific force
 // (upright and still: accel = (0, 0, +9.81), tilt 0). The robot is "fallen" when the low-pass
 // filtered tilt stays above safety.fall_tilt for safety.fall_ticks ticks, and "upright" again
-// when it drops below safety.upright_tilt.
+// when it drops below safety.upright_tilt. Before that, FallPredictor (fall_predictor.hpp) sees
+// a fall coming from the attitude and its rate; the motion manager then protects the robot.
 //
 // Parameters: safety.max_torque_limit [0..1], safety.max_p_gain [register], safety.fall_tilt
 // [rad], safety.upright_tilt [rad], safety.fall_ticks, safety.error_ticks (consecutive ticks
@@ -17,6 +18,7 @@
 #include <array>
 #include <cstdint>
 
+#include "stride/firmware/fall_predictor.hpp"
 #include "stride/firmware/parameter_store.hpp"
 #include "stride/firmware/servo_table.hpp"
 #include "stride/hal/command_frame.hpp"
@@ -33,11 +35,16 @@ struct SafetyReport {
   std::uint32_t falls = 0;          ///< upright -> fallen transitions
   bool fallen = false;              ///< current fall state
   double tilt_rad = 0.0;            ///< filtered torso tilt
+  std::uint32_t predictions = 0;    ///< not falling -> falling predicted transitions
+  bool falling = false;             ///< a fall is predicted now (FallPredictor)
+  FallDirection fall_direction = FallDirection::kNone;
+  double fall_tilt_rad = 0.0;  ///< the predictor's attitude: larger of |roll|, |pitch|
 };
 
 class SafetyLayer {
  public:
-  SafetyLayer(ParameterStore& params, const ServoTable& servos);
+  /// `period_s` is the control period (the fall predictor integrates the gyro over it).
+  SafetyLayer(ParameterStore& params, const ServoTable& servos, double period_s = 0.01);
 
   /// Updates the fall state from this tick's IMU. Real-time: yes.
   void observe(const hal::SensorFrame& sensors) noexcept;
@@ -50,6 +57,8 @@ class SafetyLayer {
   void reset_latches() noexcept;
 
   bool fallen() const noexcept { return report_.fallen; }
+  /// A fall is predicted (it has not happened yet, or is happening).
+  bool falling() const noexcept { return report_.falling; }
   const SafetyReport& report() const noexcept { return report_; }
 
  private:
@@ -57,6 +66,7 @@ class SafetyLayer {
   const ServoTable& servos_;
   ParamHandle max_torque_limit_, max_p_gain_, fall_tilt_, upright_tilt_, fall_ticks_, error_ticks_,
       error_mask_;
+  FallPredictor predictor_;
   SafetyReport report_{};
   std::array<double, hal::kServoCount> last_safe_{};
   std::array<bool, hal::kServoCount> have_last_safe_{};

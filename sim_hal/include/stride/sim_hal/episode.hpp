@@ -63,6 +63,21 @@ struct EpisodeOptions {
   /// Optional: asked after every tick; true ends the episode there (a task that has measured
   /// what it needs). Unset: the episode runs to its other ends.
   std::function<bool()> stop_when;
+  /// Measure the landing of a fall (EpisodeResult::impact): the first moment a link other than
+  /// the feet touches the ground, and the peaks of the torso's acceleration and of the servo
+  /// torques over impact_window_s from then (per physics step, SimWorld::last_period_peaks).
+  /// It reads the ground truth every tick until that contact; the episode is the same.
+  bool impact_metrics = false;
+  double impact_window_s = 0.8;
+};
+
+/// The landing of a fall (EpisodeOptions::impact_metrics).
+struct ImpactMeasure {
+  std::optional<double> body_contact_s;  ///< first contact of a link other than the feet [s]
+  double peak_accel_mps2 = 0.0;          ///< torso acceleration magnitude, peak [m/s^2]
+  double peak_servo_torque_nm = 0.0;     ///< largest |motor torque| of a servo [N m]
+  int peak_servo_index = -1;             ///< the servo of that torque (Dynamixel ID - 1)
+  double peak_joint_torque_nm = 0.0;     ///< largest |torque| on a servo's joint [N m]
 };
 
 struct EpisodeResult {
@@ -83,6 +98,7 @@ struct EpisodeResult {
   WorldStatus status = WorldStatus::kRunning;
   std::string failure_reason;  ///< empty unless the world failed
   std::vector<PoseSnapshot> snapshots;
+  ImpactMeasure impact;  ///< filled with EpisodeOptions::impact_metrics
 };
 
 /// Runs `controller` against `robot` from its current state (reset it first) for

@@ -43,6 +43,9 @@ class SimServo {
   virtual double step(double q, double w, double h) = 0;
   /// Present load register, signed fraction [-1, 1].
   virtual double load() const = 0;
+  /// The motor's torque at the output over the last step [N m], unclipped: what the gear train
+  /// carries from the motor (a back-driven motor brakes with more than its stall torque).
+  virtual double motor_torque_nm() const = 0;
   virtual double temperature_c() const = 0;
   /// Folds the servo's own state (set-point, backlash) into a state hash (fnv1a).
   virtual std::uint64_t hash(std::uint64_t seed) const = 0;

@@ -127,6 +127,18 @@ class SimWorld {
   /// Advances one physics step (tests and benchmarks).
   bool step();
 
+  /// Peaks over the physics steps of the last advance_period() (impact measurements): the
+  /// torso's acceleration magnitude [m/s^2], the largest |motor torque| of any servo
+  /// (SimServo::motor_torque_nm) with that servo's index, and the largest |torque| on a servo's
+  /// joint (motor, gearbox friction and end stop) [N m]. They read the state, change nothing.
+  struct PeriodPeaks {
+    double torso_accel_mps2 = 0.0;
+    double servo_torque_nm = 0.0;
+    int servo_index = -1;
+    double joint_torque_nm = 0.0;
+  };
+  const PeriodPeaks& last_period_peaks() const;
+
   WorldStatus status() const;
   /// One line describing why the episode ended (empty while running).
   const std::string& failure_reason() const;
