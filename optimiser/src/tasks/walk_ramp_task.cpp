@@ -219,7 +219,8 @@ nlohmann::json to_json(const RampTiming& r) {
           {"increment", r.increment},
           {"hold_s", r.hold_s},
           {"measure_s", r.measure_s},
-          {"max_levels", r.max_levels}};
+          {"max_levels", r.max_levels},
+          {"patience", r.patience}};
 }
 
 }  // namespace stride::opt
