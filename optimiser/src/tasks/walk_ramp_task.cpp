@@ -175,12 +175,8 @@ Status parse_ramp(const nlohmann::json& doc, RampTiming& out) {
 }
 
 nlohmann::json to_json(const RampTiming& r) {
-  return {{"start_s", r.start_s},
-          {"increment", r.increment},
-          {"hold_s", r.hold_s},
-          {"measure_s", r.measure_s},
-          {"max_levels", r.max_levels},
-          {"patience", r.patience}};
+  return {{"start_s", r.start_s},     {"increment", r.increment},   {"hold_s", r.hold_s},
+          {"measure_s", r.measure_s}, {"max_levels", r.max_levels}, {"patience", r.patience}};
 }
 
 }  // namespace stride::opt
