@@ -4,7 +4,7 @@
 #
 # Why: Debian's binary libsimbody is built without NDEBUG, so Simbody's index checks and
 # state-cache dynamic_casts run on every small-matrix access. This build of the same source
-# gives bit-identical trajectories about 2.2x faster (tests/bench/README.md). Stride's own
+# gives bit-identical trajectories about 2.2x faster (tests/bench/RESULTS.md). Stride's own
 # patches in toolchain/simbody-patches/ are applied after Debian's; each keeps every result
 # bit for bit and says why it exists in its header.
 # CMake picks this prefix up when it exists and otherwise falls back to Debian's library.

@@ -31,10 +31,31 @@ bool parse_contact_kind(std::string_view text, ContactOptions& out) {
     out = ContactOptions::seed();
   } else if (text == "turf") {
     out = ContactOptions::turf();
+  } else if (text == "soft") {
+    out = ContactOptions::soft();
+  } else if (text == "hard") {
+    out = ContactOptions::hard();
   } else {
     return false;
   }
   return true;
+}
+
+const char* contact_kind_name(const ContactOptions& c) {
+  for (const char* name : {"turf", "seed", "soft", "hard"}) {
+    ContactOptions g;
+    parse_contact_kind(name, g);
+    if (c.grass_thickness_m == g.grass_thickness_m &&
+        c.grass_stiffness_n_m == g.grass_stiffness_n_m &&
+        c.grass_damping_n_s_m == g.grass_damping_n_s_m &&
+        c.ground_stiffness_n_m == g.ground_stiffness_n_m &&
+        c.ground_damping_n_s_m == g.ground_damping_n_s_m &&
+        c.tangential_stiffness_n_m == g.tangential_stiffness_n_m &&
+        c.tangential_damping_n_s_m == g.tangential_damping_n_s_m &&
+        c.mujoco_solid_ground == g.mujoco_solid_ground)
+      return name;
+  }
+  return "custom";
 }
 
 const char* to_string(WorldPreset preset) {

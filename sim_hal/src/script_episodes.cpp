@@ -2,7 +2,6 @@
 #include "stride/sim_hal/script_episodes.hpp"
 
 #include <memory>
-#include <numbers>
 
 #include "stride/firmware/motion_request.hpp"
 #include "stride/sim_hal/sim_robot.hpp"
@@ -56,34 +55,6 @@ void KickRequest::before_step(hal::Tick tick, fw::Controller& controller) {
     controller.request(fw::MotionRequest::play(script_));
     requested_ = true;
   }
-}
-
-ResetSpec lying_reset_spec(bool on_front) {
-  ResetSpec spec = ResetSpec::standing();
-  spec.level_feet = false;
-  // Face down: the torso's x axis (forward) points down, its z axis forward; face up the reverse.
-  const double pitch = on_front ? std::numbers::pi / 2.0 : -std::numbers::pi / 2.0;
-  spec.torso_orientation = Eigen::Quaterniond(Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()));
-  spec.ball_position = {5.0, 5.0, std::nan("")};  // out of the way
-  return spec;
-}
-
-void GetUpWatch::after_step(const fw::Controller& controller, hal::Tick tick) {
-  const fw::MotionState state = controller.motion().state();
-  if (state == fw::MotionState::kGetUp && previous_ != fw::MotionState::kGetUp) {
-    ++attempts_;
-    if (first_script_.empty()) first_script_ = std::string(controller.motion().active_script());
-  }
-  if (state == fw::MotionState::kStand && previous_ == fw::MotionState::kGetUp)
-    stand_again_s_ = static_cast<double>(tick) * period_s_;
-  previous_ = state;
-}
-
-bool stands_at_end(const SimWorld& world, WorldStatus status, const fw::Controller& controller) {
-  const GroundTruth g = world.ground_truth();
-  return status == WorldStatus::kRunning &&
-         g.torso.linear()(2, 2) > std::cos(25.0 * std::numbers::pi / 180.0) &&
-         g.torso.translation().z() > 0.45 && controller.motion().state() == fw::MotionState::kStand;
 }
 
 Status run_kick_episode(const WorldOptions& world_options, const KickEpisodeOptions& options,

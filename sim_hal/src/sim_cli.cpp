@@ -86,14 +86,17 @@ std::string describe_calibration(const WorldOptions& o) {
 }  // namespace
 
 std::string describe_world(const WorldOptions& o) {
-  const ContactOptions turf = ContactOptions::turf();
-  const bool is_turf = o.contact.grass_thickness_m == turf.grass_thickness_m &&
-                       o.contact.mujoco_solid_ground == turf.mujoco_solid_ground;
+  const std::string kind = contact_kind_name(o.contact);
+  std::string ground = kind == "seed" ? "seed grass" : kind == "turf" ? "turf" : kind + " ground";
+  if (o.randomise.contact_range > 0.0) {
+    char range[48];
+    std::snprintf(range, sizeof range, " (range +-%.3g)", o.randomise.contact_range);
+    ground += range;
+  }
   return std::string(to_string(o.engine)) + ", " +
          (o.servo.law == ServoLaw::kIdentified ? "identified" : "seed") + " servo law, " +
-         (o.imu.chain.is_ideal() ? "ideal" : "cm730") + " IMU, " +
-         (is_turf ? "turf" : "seed grass") + ", step " + std::to_string(o.physics_step_ns / 1000) +
-         " us" + describe_calibration(o);
+         (o.imu.chain.is_ideal() ? "ideal" : "cm730") + " IMU, " + ground + ", step " +
+         std::to_string(o.physics_step_ns / 1000) + " us" + describe_calibration(o);
 }
 
 }  // namespace stride::sim

@@ -6,6 +6,7 @@
 
 #include "robot_placement.hpp"
 #include "stride/sim_hal/collision_points.hpp"
+#include "stride/sim_hal/grounds.hpp"
 #include "stride/sim_hal/physics_engine.hpp"
 #include "stride/sim_hal/sim_servo.hpp"
 #include "stride/sim_hal/world_rng.hpp"
@@ -56,7 +57,16 @@ struct SimWorld::Impl {
   std::vector<double> push_heading;
   std::int64_t push_steps = 1;
 
+  EngineKind engine_kind = EngineKind::kSimbody;
+
   Status configure();
+  /// The randomisation of one reset, drawn from rng (a fixed number of draws whatever the
+  /// ranges, and one more for the ground when its range is set), into engine_model and the
+  /// per-reset fields.
+  void draw_randomisation();
+  /// The random draws of a reset followed by its first IMU sample, made and discarded: what
+  /// create()'s start-up reset takes from the stream when a restart skips it.
+  void skip_reset_draws();
   void apply_pushes();
   void servo_torques();
   bool step_once();
@@ -87,11 +97,16 @@ Status SimWorld::Impl::configure() {
       !(o.contact.tangential_stiffness_n_m > 0.0) || !(o.contact.grass_damping_n_s_m >= 0.0) ||
       !(o.contact.ground_damping_n_s_m >= 0.0) || !(o.contact.tangential_damping_n_s_m >= 0.0))
     return Status::error("contact: thickness, damping and friction must be >= 0, stiffness > 0");
+  if (!(o.randomise.contact_range >= 0.0 && o.randomise.contact_range <= kMaxContactRange))
+    return Status::error("contact_range: must be in 0..1");
   for (const TorsoPush& p : o.pushes)
     if (!(p.time_s >= 0.0) || !std::isfinite(p.time_s) || !std::isfinite(p.direction_rad) ||
         !(p.impulse_n_s >= 0.0) || !std::isfinite(p.impulse_n_s))
       return Status::error("push: time and impulse must be finite and >= 0, direction finite");
-  engine = make_physics_engine(o.engine);
+  // The engine object stays across restarts on the same engine: it keeps what it built (the
+  // compiled MuJoCo model, the Simbody system) and rebuilds only what an episode changes.
+  if (!engine || engine_kind != o.engine) engine = make_physics_engine(o.engine);
+  engine_kind = o.engine;
   if (!engine)
     return Status::error(std::string("engine '") + to_string(o.engine) +
                          "' is not available in this build");
@@ -145,6 +160,29 @@ Status SimWorld::Impl::configure() {
   em.max_speed = o.max_speed;
   strength.fill(1.0);
   return Status::ok();
+}
+
+void SimWorld::Impl::draw_randomisation() {
+  const Randomisation& r = options.randomise;
+  EngineModel& em = engine_model;
+  em.friction = options.contact.friction * (1.0 + r.friction_range * rng.uniform(-1.0, 1.0));
+  for (double& s : em.link_mass_scale) s = 1.0 + r.mass_range * rng.uniform(-1.0, 1.0);
+  for (double& s : strength) s = 1.0 + r.strength_range * rng.uniform(-1.0, 1.0);
+  latency_ticks = options.robot.latency_ticks + (rng.uniform() < r.latency_probability ? 1 : 0);
+  for (int k = 0; k < 3; ++k)
+    accel_bias[k] = options.imu.accel_bias[k] + options.imu.accel_bias_std * rng.normal();
+  for (int k = 0; k < 3; ++k)
+    gyro_bias[k] = options.imu.gyro_bias[k] + options.imu.gyro_bias_std * rng.normal();
+  // The ground: drawn (one more draw) only when its range is set (grounds.hpp).
+  if (r.contact_range > 0.0) em.contact = draw_ground(options.contact, r.contact_range, rng);
+}
+
+void SimWorld::Impl::skip_reset_draws() {
+  draw_randomisation();
+  // reset()'s first IMU sample: the chain model draws nothing there, the plain sampler its six
+  // noise values (ImuSampler::skip makes exactly those draws).
+  imu.reset(options.imu, options.gravity_mps2, accel_bias, gyro_bias, Eigen::Matrix3d::Identity());
+  imu.skip(rng);
 }
 
 void SimWorld::Impl::servo_torques() {
@@ -212,6 +250,23 @@ Status SimWorld::create(const WorldOptions& options, std::unique_ptr<SimWorld>& 
   return Status::ok();
 }
 
+Status SimWorld::create(const WorldOptions& options, const ResetSpec& spec,
+                        std::unique_ptr<SimWorld>& out) {
+  std::unique_ptr<SimWorld> world(new SimWorld(std::make_unique<Impl>()));
+  if (Status s = world->restart(options, spec); !s) return s;
+  out = std::move(world);
+  return Status::ok();
+}
+
+Status SimWorld::restart(const WorldOptions& options, const ResetSpec& spec) {
+  Impl& w = *impl_;
+  w.options = options;
+  w.rng.reseed(options.seed);
+  if (Status s = w.configure(); !s) return s;
+  w.skip_reset_draws();
+  return reset(spec);
+}
+
 void SimWorld::reseed(std::uint64_t seed) {
   impl_->rng.reseed(seed);
 }
@@ -226,18 +281,8 @@ Status SimWorld::reset(const ResetSpec& spec) {
       !spec.torso_orientation.coeffs().allFinite() || !std::isfinite(spec.ball_position.x()) ||
       !std::isfinite(spec.ball_position.y()) || !spec.ball_velocity.allFinite())
     return Status::error("reset: non-finite torso or ball pose");
-  // Randomisation: a fixed number of draws whatever the ranges.
-  const Randomisation& r = w.options.randomise;
+  w.draw_randomisation();
   EngineModel& em = w.engine_model;
-  em.friction = w.options.contact.friction * (1.0 + r.friction_range * w.rng.uniform(-1.0, 1.0));
-  for (double& s : em.link_mass_scale) s = 1.0 + r.mass_range * w.rng.uniform(-1.0, 1.0);
-  for (double& s : w.strength) s = 1.0 + r.strength_range * w.rng.uniform(-1.0, 1.0);
-  w.latency_ticks =
-      w.options.robot.latency_ticks + (w.rng.uniform() < r.latency_probability ? 1 : 0);
-  for (int k = 0; k < 3; ++k)
-    w.accel_bias[k] = w.options.imu.accel_bias[k] + w.options.imu.accel_bias_std * w.rng.normal();
-  for (int k = 0; k < 3; ++k)
-    w.gyro_bias[k] = w.options.imu.gyro_bias[k] + w.options.imu.gyro_bias_std * w.rng.normal();
   if (Status s = w.engine->build(em); !s) return Status::error("reset: " + s.message());
   // Servo parameters.
   for (std::size_t i = 0; i < hal::kServoCount; ++i) {
@@ -273,14 +318,13 @@ Status SimWorld::reset(const ResetSpec& spec) {
     for (std::size_t i = 0; i < hal::kServoCount; ++i)
       start.joint_speeds[static_cast<std::size_t>(w.servo_joint[i])] = spec.joint_speeds[i];
   }
-  const double grass_top = w.options.contact.grass_thickness_m;
+  const double grass_top = em.contact.grass_thickness_m;
   start.ball_position = spec.ball_position;
   if (!std::isfinite(start.ball_position.z()))
     start.ball_position.z() = grass_top + w.options.ball.radius_m;
   start.ball_velocity = spec.ball_velocity;
-  if (Status s =
-          place_robot(*w.engine, w.collision, spec, w.left_foot, w.right_foot, w.options.contact,
-                      w.model.total_mass() * w.options.gravity_mps2, start);
+  if (Status s = place_robot(*w.engine, w.collision, spec, w.left_foot, w.right_foot, em.contact,
+                             w.model.total_mass() * w.options.gravity_mps2, start);
       !s)
     return Status::error("reset: " + s.message());
   if (spec.still_lower_foot && !start.joint_speeds.empty())
@@ -372,6 +416,9 @@ std::int64_t SimWorld::period_count() const {
 }
 const WorldOptions& SimWorld::options() const {
   return impl_->options;
+}
+const ContactOptions& SimWorld::ground() const {
+  return impl_->engine_model.contact;
 }
 const RobotModel& SimWorld::model() const {
   return impl_->model;

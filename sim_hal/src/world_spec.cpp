@@ -7,6 +7,7 @@
 #include <system_error>
 
 #include "stride/firmware/parameter_store.hpp"
+#include "stride/sim_hal/grounds.hpp"
 
 namespace stride::sim {
 
@@ -59,10 +60,11 @@ const std::vector<WorldOptionInfo>& world_option_table() {
       {"contact",
        "",
        "the world's",
-       "field contact: seed (the seed's 2 cm grass) or turf (a 5 mm layer over solid ground, "
-       "sim_hal/models/README.md)",
+       "field contact: seed (the seed's 2 cm grass; a standing robot's studs sink 5.3 mm), turf "
+       "(a 5 mm layer over solid ground, 4.7 mm), soft (a deep turf: 15 mm layer, more damping, "
+       "4.0 mm) or hard (a carpet or stiff floor, 0.4 mm); sim_hal/models/README.md \"Grounds\"",
        V::kName,
-       {"seed", "turf"}},
+       {"seed", "turf", "soft", "hard"}},
       {"friction",
        "",
        "the contact's, 1",
@@ -123,6 +125,16 @@ const std::vector<WorldOptionInfo>& world_option_table() {
        {},
        0.0,
        1.0},
+      {"contact_range",
+       "",
+       "0",
+       "ground drawn at each reset: u uniform in +-range, the contact's stiffness, damping and "
+       "layer thickness moved |u| of the way (log scale) towards hard (u < 0) or soft (u > 0); "
+       "1 spans hard..soft",
+       V::kNumber,
+       {},
+       0.0,
+       kMaxContactRange},
       {"latency_ticks",
        "",
        "the world file's, 0",
@@ -214,6 +226,7 @@ void set_number(WorldSpec& s, std::string_view key, double v) {
   if (key == "mass_range") s.randomise.mass_range = v;
   if (key == "strength_range") s.randomise.strength_range = v;
   if (key == "latency_probability") s.randomise.latency_probability = v;
+  if (key == "contact_range") s.randomise.contact_range = v;
   if (key == "latency_ticks") s.latency_ticks = static_cast<int>(v);
 }
 
@@ -317,6 +330,7 @@ bool WorldSpec::is_set(std::string_view key) const {
   if (key == "mass_range") return randomise.mass_range != 0.0;
   if (key == "strength_range") return randomise.strength_range != 0.0;
   if (key == "latency_probability") return randomise.latency_probability != 0.0;
+  if (key == "contact_range") return randomise.contact_range != 0.0;
   if (key == "latency_ticks") return latency_ticks.has_value();
   if (key == "push") return !pushes.empty();
   return false;

@@ -1,6 +1,6 @@
 // Optimiser speed: NSGA-II overhead per generation (pop 100, 30 genes, evaluation excluded as far
 // as possible: ZDT1 costs ~0.1 us per genome), non-dominated sorting of 10,000 points in two and
-// three objectives, and hypervolume of a population. Figures in tests/bench/README.md.
+// three objectives, and hypervolume of a population. Figures in tests/bench/RESULTS.md.
 #include <benchmark/benchmark.h>
 
 #include "stride/optimiser/nsga2/indicators.hpp"

@@ -15,7 +15,7 @@ centre of mass, sim_hal/include/stride/sim_hal/world_options.hpp TorsoPush).
       [--stride build/release/bin/stride] [--json OUT] [-- extra sim options]
 
 Default: the default (faithful) world with the firmware's defaults (the closed-loop walk of
-issue 29); --params FILE overlays a parameter file (the "before" figures of tests/bench/README.md
+issue 29); --params FILE overlays a parameter file (the "before" figures of tests/bench/RESULTS.md
 are firmware/config/seed-walk.json then balance-identified.json: merge them into one file).
 Two simulations at a time, under `nice`.
 Prints, per direction, the largest impulse survived in every seed and per seed.

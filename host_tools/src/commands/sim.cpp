@@ -1,8 +1,10 @@
-// `stride sim stand|walk|kick`: one simulated episode of the firmware against the Simbody world,
-// with the DESIGN.md metrics (--json), a trajectory recording, pose pictures and a replay page
-// (--html, the replay of report.html for one episode).
+// `stride sim stand|walk|kick|getup`: one simulated episode of the firmware against the simulated
+// world, with the metrics of docs/command-line.md (--json), a trajectory recording, pose pictures and a replay
+// page (--html, the replay of report.html for one episode). getup starts lying still and times
+// the firmware's get-up; stand and walk can go on through a get-up after a fall (--after-fall).
 #include <algorithm>
 #include <cstdio>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -16,6 +18,7 @@
 #include "stride/optimiser/report/run_plots.hpp"
 #include "stride/sim_hal/episode.hpp"
 #include "stride/sim_hal/episode_capture.hpp"
+#include "stride/sim_hal/get_up_watch.hpp"
 #include "stride/sim_hal/pose_svg.hpp"
 #include "stride/sim_hal/script_episodes.hpp"
 #include "stride/sim_hal/sim_cli.hpp"
@@ -55,10 +58,42 @@ std::string fixed(double v, const char* unit) {
   return text;
 }
 
+// A get-up followed through the episode (getup, or stand/walk with --after-fall getup).
+struct GetUpOutcome {
+  bool watched = false;
+  std::string lying;                 ///< getup: "front" or "back"; "" after a fall
+  std::optional<double> stood_up_s;  ///< from lying still (getup) or from the fall [s]
+  int attempts = 0;
+  std::string first_script;
+};
+
+// "stood up after 9.78 s (2 get-up attempts)" or "stayed down (3 get-up attempts)".
+std::string get_up_text(const GetUpOutcome& g) {
+  char text[96];
+  if (g.stood_up_s)
+    std::snprintf(text, sizeof text, "stood up after %.2f s (%d get-up attempt%s)", *g.stood_up_s,
+                  g.attempts, g.attempts == 1 ? "" : "s");
+  else
+    std::snprintf(text, sizeof text, "stayed down (%d get-up attempt%s)", g.attempts,
+                  g.attempts == 1 ? "" : "s");
+  return text;
+}
+
+// The episode's outcome in a few words: "standing", "fell at 3.21 s", "stood up after ...",
+// "fell at 3.21 s, stood up after ...".
+std::string outcome_text(const sim::EpisodeResult& result, const GetUpOutcome& get_up) {
+  if (get_up.watched && !get_up.lying.empty()) return get_up_text(get_up);
+  if (!result.fell) return "standing";
+  std::string text = "fell at " + fixed(result.fall_time_s, "s");
+  if (get_up.watched) text += ", " + get_up_text(get_up);
+  return text;
+}
+
 // The --html page: the episode's settings and results, accelerometer, poses and replay.
 Status write_html(const stride::core::CliArgs& args, const std::string& motion,
-                  const sim::WorldOptions& world, sim::SimRobot& robot,
-                  const sim::EpisodeResult& result, const sim::EpisodeCapture& capture) {
+                  const std::string& duration_text, const sim::WorldOptions& world,
+                  sim::SimRobot& robot, const sim::EpisodeResult& result,
+                  const GetUpOutcome& get_up, const sim::EpisodeCapture& capture) {
   namespace report = stride::opt::report;
   report::ReplayIndividual episode;
   episode.name = args.has("params") ? args.get("params") : "default parameters";
@@ -68,9 +103,9 @@ Status write_html(const stride::core::CliArgs& args, const std::string& motion,
   char note[128];
   std::snprintf(note, sizeof note, "%s: %s after %.2f s, %.2f m forward", motion.c_str(),
                 result.fell ? "fell" : "standing", end, result.distance_m);
-  episode.note = note;
+  episode.note = get_up.watched ? motion + ": " + outcome_text(result, get_up) : note;
   report::ReplayScene scene;
-  scene.grass_m = world.contact.grass_thickness_m;
+  scene.grass_m = robot.world().ground().grass_thickness_m;  // the episode's (drawn) ground
   scene.ball_radius_m = world.ball.present ? world.ball.radius_m : 0.0;
   if (motion == "walk") scene.goal_m = sim::EpisodeOptions{}.goal_distance_m;  // time_to_goal_s
   const std::vector<double> times =
@@ -80,14 +115,17 @@ Status write_html(const stride::core::CliArgs& args, const std::string& motion,
       : motion == "walk" ? report::strip_times(std::min(4.0, end / 3), 0.25, 9, end)
                          : report::strip_times(0.0, end / 8, 9, end);
   const std::vector<std::pair<std::string, std::string>> facts = {
-      {"motion", motion + (motion == "kick" ? " (" + args.get("script") + ")" : "")},
+      {"motion", motion + (motion == "kick"    ? " (" + args.get("script") + ")"
+                           : motion == "getup" ? " (lying on the " + get_up.lying + ")"
+                           : get_up.watched    ? " (after a fall: get up)"
+                                               : "")},
       {"parameters", episode.name},
       {"walk command", motion == "walk" ? "vx " + args.get("vx") + ", vy " + args.get("vy") +
                                               ", vth " + args.get("vth")
                                         : "-"},
       {"seed, noise", args.get("seed") + ", " + args.get("noise")},
-      {"duration", args.get("duration") + " s"},
-      {"result", result.fell ? "fell at " + fixed(result.fall_time_s, "s") : "standing"},
+      {"duration", duration_text + " s"},
+      {"result", outcome_text(result, get_up)},
       {"distance (torso, x)", fixed(result.distance_m, "m")},
       {"max |a|", fixed(result.max_accel, "m/s^2")},
       {"max field-plane sway", fixed(result.max_fps, "m/s^2")},
@@ -115,7 +153,17 @@ int run_sim(int argc, char** argv) {
   args.option("vy", "walk sideways command, normalised [-1, 1]", true, "0");
   args.option("vth", "walk turning command, normalised [-1, 1]", true, "0");
   args.option("script", "kick: the script to play", true, "kick_right");
-  args.option("duration", "episode length [s]", true, "10");
+  args.option("duration",
+              "episode length [s] (default 10; getup 20, the rules' time to get up; with "
+              "--after-fall getup 30)",
+              true);
+  args.option("lying",
+              "getup: the side the robot lies still on at the start, front (face down) or back",
+              true);
+  args.option("after-fall",
+              "stand/walk: 'getup' goes on after a fall through the firmware's get-up (without it "
+              "the episode ends at the fall)",
+              true);
   args.option("metrics-from",
               "count the sensor metrics (max |a|, sway) from this time on [s] (the seed's 0.25; "
               "kick: 1 measures the kick alone, not the settling after the reset)",
@@ -129,16 +177,51 @@ int run_sim(int argc, char** argv) {
   if (Status s = args.parse(argc, argv); !s) return bad_input(s.message());
   if (args.has("help")) {
     std::printf(
-        "usage: stride sim stand|walk|kick [options]\n"
-        "       stride sim servo --help   (one servo on a bench)\n\n%s",
+        "usage: stride sim stand|walk|kick [options] [--after-fall getup (stand, walk)]\n"
+        "       stride sim getup --lying front|back [options]\n"
+        "       stride sim servo --help   (one servo on a bench)\n\n"
+        "getup places the robot lying still on its front or back (joints in the Stand pose)\n"
+        "and runs the firmware: its motion manager sees the fall, waits\n"
+        "motion.fallen_settle_time and plays get_up_front or get_up_back, retrying while the\n"
+        "robot stays down. --json then reports stood_up_s: seconds from lying still to\n"
+        "standing, or null if it did not stand within --duration (20 s by default, the time\n"
+        "the rules give a fallen robot). Standing: the motion manager is back in Stand after\n"
+        "a get-up script, the trunk's z axis within 25 deg of vertical and the torso origin\n"
+        "above 0.45 m, all held for 1 s; stood_up_s is the start of that second.\n"
+        "With --after-fall getup a stand or walk episode does not end at a fall (fell,\n"
+        "fall_time_s: trunk tilted past 60 deg or its origin below 0.25 m) but goes on\n"
+        "through the get-up (the walk is not resumed; 30 s by default), and stood_up_s counts\n"
+        "from the fall.\n"
+        "Both also report get_up_attempts and get_up_script (the first get-up played).\n\n"
+        "%s",
         args.help().c_str());
     return 0;
   }
-  if (args.positional().size() != 1) return bad_input("expected one motion: stand, walk or kick");
+  if (args.positional().size() != 1)
+    return bad_input("expected one motion: stand, walk, kick or getup");
   const std::string motion = args.positional()[0];
-  if (motion != "stand" && motion != "walk" && motion != "kick")
-    return bad_input("unknown motion '" + motion + "' (expected stand, walk or kick)");
-  double duration = 10, vx = 0, vy = 0, vth = 0, metrics_from = 0.25;
+  if (motion != "stand" && motion != "walk" && motion != "kick" && motion != "getup")
+    return bad_input("unknown motion '" + motion + "' (expected stand, walk, kick or getup)");
+  const bool getup = motion == "getup";
+  const std::string lying = args.get("lying");
+  if (args.has("lying") && !getup)
+    return bad_input("--lying: only with getup (stride sim getup --lying front|back), not " +
+                     motion);
+  if (getup && !args.has("lying")) return bad_input("--lying: getup needs a side, front or back");
+  if (getup && lying != "front" && lying != "back")
+    return bad_input("--lying: unknown side '" + lying + "' (expected front or back)");
+  if (args.has("after-fall") && args.get("after-fall") != "getup")
+    return bad_input("--after-fall: unknown value '" + args.get("after-fall") +
+                     "' (expected getup)");
+  if (args.has("after-fall") && motion != "stand" && motion != "walk")
+    return bad_input("--after-fall: only with stand or walk, not " + motion +
+                     (getup ? " (it starts lying and always gets up)" : ""));
+  const bool watch_get_up = getup || args.has("after-fall");
+  // Default lengths: 10 s; lying, the 20 s the rules give a fallen robot; after a fall, 10 s
+  // and those 20 s.
+  const char* default_duration = getup ? "20" : watch_get_up ? "30" : "10";
+  const std::string duration_text = args.has("duration") ? args.get("duration") : default_duration;
+  double duration = std::stod(default_duration), vx = 0, vy = 0, vth = 0, metrics_from = 0.25;
   for (auto [name, out] : {std::pair{"duration", &duration},
                            {"vx", &vx},
                            {"vy", &vy},
@@ -148,7 +231,7 @@ int run_sim(int argc, char** argv) {
   if (!(duration > 0.0) || duration > 3600.0)
     return bad_input("--duration: must be in (0, 3600] s, got " + args.get("duration"));
   if (args.has("metrics-from") && !(metrics_from >= 0.0 && metrics_from < duration))
-    return bad_input("--metrics-from: must be in [0, " + args.get("duration") + ") s, got " +
+    return bad_input("--metrics-from: must be in [0, " + duration_text + ") s, got " +
                      args.get("metrics-from"));
   std::vector<double> snapshot_times;
   if (Status s = parse_times(args.get("snapshot-times"), snapshot_times); !s)
@@ -186,6 +269,7 @@ int run_sim(int argc, char** argv) {
   if (args.has("html")) episode.on_tick = capturer.observer();
   std::unique_ptr<sim::SimRobot> robot_ptr;
   sim::EpisodeResult result;
+  GetUpOutcome get_up;
   if (motion == "kick") {
     // The seed's kick episode (script_episodes.hpp): ball in front of the kicking foot, the
     // kick requested at 1 s, played by the firmware's script engine once the stand is reached.
@@ -207,30 +291,49 @@ int run_sim(int argc, char** argv) {
       std::fprintf(stderr, "stride sim: %s\n", s.message().c_str());
       return 1;
     }
+    // getup: lying still on the side asked for (the optimiser's get-up task starts there too).
+    if (getup) {
+      if (Status s = world->reset(sim::lying_reset_spec(lying == "front")); !s) {
+        std::fprintf(stderr, "stride sim: %s\n", s.message().c_str());
+        return 1;
+      }
+    }
     robot_ptr = std::make_unique<sim::SimRobot>(std::move(world));
     sim::SimRobot& robot = *robot_ptr;
 
     stride::fw::Controller& controller = firmware->controller();
     if (motion == "walk") controller.request(stride::fw::MotionRequest::walk(vx, vy, vth));
-    if (motion != "stand") {
-      // The request is taken at the next step: a refusal means the engine or script is missing.
+    if (motion == "walk") {
+      // The request is taken at the next step: a refusal means the walk engine is missing.
       stride::hal::SensorFrame probe;
       robot.read(probe);
       (void)controller.step(probe, 0);
       if (controller.motion().refused_requests() > 0) {
-        std::fprintf(stderr, "stride sim: %s\n",
-                     motion == "walk" ? "walk engine not available"
-                                      : ("kick script '" + args.get("script") +
-                                         "' not available (script engine or file missing)")
-                                            .c_str());
+        std::fprintf(stderr, "stride sim: walk engine not available\n");
         return 1;
       }
     }
-    const sim::StepFunction step = [&controller](const stride::hal::SensorFrame& sensors,
-                                                 stride::hal::Tick tick) {
-      return controller.step(sensors, tick);
+    // A get-up is followed tick by tick (it only reads the world: the episode is the same).
+    sim::StoodUpWatch stood_up(static_cast<double>(robot.period_ns()) * 1e-9);
+    if (watch_get_up) episode.stop_on_fall = false;
+    const sim::StepFunction step = [&controller, &stood_up, &robot, watch_get_up](
+                                       const stride::hal::SensorFrame& sensors,
+                                       stride::hal::Tick tick) {
+      stride::hal::CommandFrame commands = controller.step(sensors, tick);
+      if (watch_get_up) stood_up.after_step(controller, robot.world(), tick);
+      return commands;
     };
     result = sim::run_episode(robot, step, episode);
+    if (watch_get_up) {
+      get_up.watched = true;
+      get_up.lying = getup ? lying : "";
+      get_up.attempts = stood_up.get_up().attempts();
+      get_up.first_script = stood_up.get_up().first_script();
+      // From lying still (t = 0) or from the episode's fall; without a fall there is nothing to
+      // stand up from.
+      if (stood_up.stood_up_at_s() && (getup || result.fell))
+        get_up.stood_up_s = *stood_up.stood_up_at_s() - (getup ? 0.0 : result.fall_time_s);
+    }
   }
   sim::SimRobot& robot = *robot_ptr;
 
@@ -242,7 +345,7 @@ int run_sim(int argc, char** argv) {
   }
   if (args.has("snapshot")) {
     const std::string svg = sim::render_pose_svg(
-        robot.world().model(), result.snapshots, world_options.contact.grass_thickness_m,
+        robot.world().model(), result.snapshots, robot.world().ground().grass_thickness_m,
         world_options.ball.present ? world_options.ball.radius_m : 0.0);
     if (Status s = stride::core::write_file_atomically(args.get("snapshot"), svg); !s) {
       std::fprintf(stderr, "stride sim: %s\n", s.message().c_str());
@@ -250,13 +353,29 @@ int run_sim(int argc, char** argv) {
     }
   }
   if (args.has("html")) {
-    if (Status s = write_html(args, motion, world_options, robot, result, capturer.finish()); !s) {
+    if (Status s = write_html(args, motion, duration_text, world_options, robot, result, get_up,
+                              capturer.finish());
+        !s) {
       std::fprintf(stderr, "stride sim: %s\n", s.message().c_str());
       return 1;
     }
   }
   if (args.has("json")) {
-    std::printf("%s\n", sim::to_json(result).dump().c_str());
+    nlohmann::json json = sim::to_json(result);
+    if (get_up.watched) {
+      if (getup) json["lying"] = lying;
+      json["stood_up_s"] = get_up.stood_up_s ? nlohmann::json(*get_up.stood_up_s) : nullptr;
+      json["get_up_attempts"] = get_up.attempts;
+      json["get_up_script"] = get_up.first_script;
+    }
+    std::printf("%s\n", json.dump().c_str());
+  } else if (get_up.watched) {
+    std::printf("%s%s: %s; %.2f s sim (%.2f s wall, %.1fx real time)\n", motion.c_str(),
+                getup ? (" (lying on the " + lying + ")").c_str() : "",
+                outcome_text(result, get_up).c_str(), result.sim_time_s, result.wall_time_s,
+                result.rtf);
+    std::printf("max |a| %.2f m/s^2, state %s\n", result.max_accel,
+                sim::hash_hex(result.state_hash).c_str());
   } else {
     std::printf("%s: %s after %.2f s sim (%.2f s wall, %.1fx real time)\n", motion.c_str(),
                 result.fell ? "FELL" : "standing", result.sim_time_s, result.wall_time_s,
@@ -272,4 +391,5 @@ int run_sim(int argc, char** argv) {
   return 0;
 }
 
-STRIDE_COMMAND(sim, "simulate the robot: stand, walk or kick; one servo on a bench", run_sim);
+STRIDE_COMMAND(sim, "simulate the robot: stand, walk, kick or get up; one servo on a bench",
+               run_sim);

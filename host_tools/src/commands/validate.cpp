@@ -1,5 +1,6 @@
 // `stride validate RUN`: re-scores Ind_O and the picks of a robot run on worlds the run never
-// saw (the other engine, fresh noisy seeds, wider randomisation, half the physics step) and
+// saw (the other engine, fresh noisy seeds, wider randomisation, half the physics step, the soft
+// and the hard ground) and
 // writes RUN/validation.json (optimiser/run/validation.hpp); a table on stdout, or --json.
 #include <unistd.h>
 
@@ -52,7 +53,8 @@ int run_validate(int argc, char** argv) {
         "saw, each with N fresh seeds\n"
         "and IMU noise on: the other engine(s), fresh seeds, wider randomisation (1.5x the\n"
         "run's friction, mass and strength ranges, at least 0.3 / 0.075 / 0.15, one tick of\n"
-        "latency in half of the worlds) and half the physics step. Per individual and world:\n"
+        "latency in half of the worlds), half the physics step, and the soft and the hard\n"
+        "ground (deep turf, studs sinking 4 mm; carpet, 0.4 mm). Per individual and world:\n"
         "reached fraction, falls, median objectives, the gate (>= 80 %% of the seeds reached\n"
         "without a fall, median within 25 %% of its own value in the run) and the gain kept\n"
         "against Ind_O; then the same in words: where each holds (passes the gate), why it\n"

@@ -8,6 +8,7 @@
 #include <fstream>
 
 #include "stride/optimiser/report/html_page.hpp"
+#include "stride/optimiser/run/validation.hpp"
 
 namespace stride::opt::report {
 
@@ -130,14 +131,14 @@ std::string picks_table_html(const RunData& data, const std::vector<PickRow>& ro
 static std::string stride_validation_html(const json& doc) {
   std::string html =
       "<table id=\"validation-worlds\"><tr><th class=\"name\">world</th>"
-      "<th>engine</th><th>step [us]</th><th>friction +-</th><th>mass +-</th>"
-      "<th>strength +-</th><th>latency p</th><th>seeds</th>"
+      "<th>engine</th><th>step [us]</th><th>ground</th><th>friction +-</th><th>mass +-</th>"
+      "<th>strength +-</th><th>latency p</th><th>ground +-</th><th>seeds</th>"
       "<th class=\"name\">note</th></tr>\n";
   for (const json& w : doc["worlds"]) {
     if (!w.is_object()) continue;
     html += "<tr>" + cell(w.value("name", ""), "name") + cell(w.value("engine", ""));
-    for (const char* k : {"physics_step_us", "friction_range", "mass_range", "strength_range",
-                          "latency_probability"})
+    for (const char* k : {"physics_step_us", "contact", "friction_range", "mass_range",
+                          "strength_range", "latency_probability", "contact_range"})
       html += cell(w.contains(k) ? scalar_text(w[k]) : "-");
     html += cell(std::to_string(w.value("seeds", json::array()).size())) +
             cell(w.contains("unavailable") ? "unavailable: " + scalar_text(w["unavailable"]) : "",
@@ -149,10 +150,15 @@ static std::string stride_validation_html(const json& doc) {
   std::vector<std::string> columns = {"individual", "world",        "reached_fraction",
                                       "falls",      "median_f1",    "median_f2",
                                       "gate",       "gain_kept_f1", "gain_kept_f2"};
+  // The run's gain and the seeds' spread decide whether a gain kept is shown (gain_kept_text);
+  // they stay in validation.json, not as columns.
+  const std::vector<std::string> hidden = {"run_gain_f1", "run_gain_f2", "seed_spread_f1",
+                                           "seed_spread_f2"};
   for (const json& r : doc["table"])
     if (r.is_object())
       for (const auto& [k, v] : r.items())
-        if (is_scalar(v) && std::find(columns.begin(), columns.end(), k) == columns.end())
+        if (is_scalar(v) && std::find(columns.begin(), columns.end(), k) == columns.end() &&
+            std::find(hidden.begin(), hidden.end(), k) == hidden.end())
           columns.push_back(k);
   html += "<table id=\"validation-table\"><tr>";
   for (const auto& c : columns) html += "<th>" + html_escape(c) + "</th>";
@@ -161,7 +167,10 @@ static std::string stride_validation_html(const json& doc) {
     if (!r.is_object()) continue;
     html += "<tr>";
     for (const auto& c : columns) {
-      const std::string text = r.contains(c) ? scalar_text(r[c]) : "";
+      const std::string text = c == "gain_kept_f1"   ? gain_kept_text(r, 0)
+                               : c == "gain_kept_f2" ? gain_kept_text(r, 1)
+                               : r.contains(c)       ? scalar_text(r[c])
+                                                     : "";
       const char* cls = c == "individual" || c == "world" ? "name"
                         : c != "gate"                     ? nullptr
                         : text == "pass"                  ? "better"
@@ -174,7 +183,9 @@ static std::string stride_validation_html(const json& doc) {
          "</table>\n<p class=\"note\">Gate: at least 80 % of the seeds reach the goal "
          "without a fall and the median of the task's measure is within 25 % of the "
          "individual's own value in the run. Gain kept = (Ind_O's median - the pick's) "
-         "in the world / the same in the run, shown only where Ind_O passes the gate.</p>\n";
+         "in the world / the same in the run, shown to two significant digits only where Ind_O "
+         "passes the gate and the run's gain exceeds the seeds' spread (the larger interquartile "
+         "range of Ind_O's and the pick's values over the world's seeds); otherwise \"-\".</p>\n";
 }
 
 std::string validation_table_html(const std::filesystem::path& file) {

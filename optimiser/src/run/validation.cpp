@@ -161,6 +161,7 @@ Status validation_worlds(const RobotTask& task, const ValidationOptions& options
   r.friction_range = widen(r.friction_range, 1.5 * TrialRandomisation{}.friction_range);
   r.mass_range = widen(r.mass_range, 1.5 * TrialRandomisation{}.mass_range);
   r.strength_range = widen(r.strength_range, 1.5 * TrialRandomisation{}.strength_range);
+  r.contact_range = widen(r.contact_range, 0.0);  // the run's ground range, if it had one
   r.latency_probability = std::max(0.5, r.latency_probability);
   out.push_back(std::move(wider));
   ValidationWorld half{options.physics_step_ns > 0
@@ -169,6 +170,14 @@ Status validation_worlds(const RobotTask& task, const ValidationOptions& options
                        base, seeds};
   half.options.physics_step_ns = step_ns;
   out.push_back(std::move(half));
+  for (const char* ground : {"soft", "hard"}) {  // the grounds on either side of turf
+    ValidationWorld w{std::string("ground ") + ground, base, seeds};
+    const double friction = w.options.contact.friction;
+    sim::parse_contact_kind(ground, w.options.contact);
+    w.options.contact.friction = friction;
+    w.options.randomise.contact_range = 0.0;
+    out.push_back(std::move(w));
+  }
   return {};
 }
 

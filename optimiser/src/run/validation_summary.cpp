@@ -30,15 +30,32 @@ json world_json(const ValidationWorld& w, const std::string& unavailable) {
             {"mass_range", o.randomise.mass_range},
             {"strength_range", o.randomise.strength_range},
             {"latency_probability", o.randomise.latency_probability},
+            {"contact", sim::contact_kind_name(o.contact)},
+            {"contact_range", o.randomise.contact_range},
             {"seeds", w.seeds}};
   if (!unavailable.empty()) j["unavailable"] = unavailable;
   return j;
+}
+
+/// The interquartile range of `values` (quartiles by linear interpolation between the sorted
+/// values; NaN if empty): the seeds' spread that a gain kept must exceed to be shown.
+double interquartile_range(std::vector<double> values) {
+  if (values.empty()) return std::numeric_limits<double>::quiet_NaN();
+  std::sort(values.begin(), values.end());
+  auto quantile = [&](double q) {
+    const double pos = q * static_cast<double>(values.size() - 1);
+    const std::size_t lo = static_cast<std::size_t>(std::floor(pos));
+    const std::size_t hi = std::min(lo + 1, values.size() - 1);
+    return values[lo] + (pos - static_cast<double>(lo)) * (values[hi] - values[lo]);
+  };
+  return quantile(0.75) - quantile(0.25);
 }
 
 /// The gate and medians of one individual in one world.
 struct Cell {
   int seeds = 0, reached = 0, falls = 0;
   std::vector<double> medians;
+  std::vector<double> spreads;  ///< per objective, the interquartile range over the seeds
   bool gate = false;
   double gate_median = 0.0, gate_limit = 0.0;
   std::string unavailable;
@@ -66,7 +83,10 @@ Cell summarise_cell(const TaskConfig& config, const ValidationIndividual& ind,
     for (int d = 0; d < kOmniSegments; ++d)
       c.speeds[d] += e.score.omni[d].speed / static_cast<double>(seeds.size());
   }
-  for (auto& v : values) c.medians.push_back(median(v));
+  for (auto& v : values) {
+    c.medians.push_back(median(v));
+    c.spreads.push_back(interquartile_range(v));
+  }
   const int m = gate_objective(config);
   const double own = ind.run_objectives.size() > static_cast<std::size_t>(m)
                          ? ind.run_objectives[m]
@@ -101,6 +121,7 @@ std::string world_phrase(const std::string& name) {
     return engine == "mujoco" ? "on MuJoCo" : engine == "simbody" ? "on Simbody" : "on " + engine;
   }
   if (name.rfind("step ", 0) == 0) return "at a " + name.substr(5) + " physics step";
+  if (name.rfind("ground ", 0) == 0) return "on the " + name.substr(7) + " ground";
   return "in " + name;
 }
 
@@ -192,15 +213,19 @@ json summarise_validation(const std::filesystem::path& dir, const TaskConfig& co
         all_passed = false;
         continue;
       }
-      json gain = nullptr;
+      json gain = nullptr, run_gains = nullptr, spreads = nullptr;
       const Cell& o = cells[0][w];
       if (i > 0 && o.gate) {
         gain = json::array();
+        run_gains = json::array();
+        spreads = json::array();
         for (std::size_t m = 0; m < 2; ++m) {
           const double run_gain = individuals[0].run_objectives[m] - ind.run_objectives[m];
           const double world_gain = o.medians[m] - c.medians[m];
           gain.push_back(std::abs(run_gain) > 1e-12 ? number_or_null(world_gain / run_gain)
                                                     : json(nullptr));
+          run_gains.push_back(number_or_null(run_gain));
+          spreads.push_back(number_or_null(std::max(o.spreads[m], c.spreads[m])));
         }
       }
       json medians = json::array();
@@ -215,6 +240,9 @@ json summarise_validation(const std::filesystem::path& dir, const TaskConfig& co
                      {"median", number_or_null(c.gate_median)},
                      {"limit", number_or_null(c.gate_limit)}};
       row["gain_kept"] = gain;
+      json own_spreads = json::array();
+      for (double v : c.spreads) own_spreads.push_back(number_or_null(v));
+      row["seed_spread"] = own_spreads;
       row["failures"] = c.failures;
       flat["reached_fraction"] = row["reached_fraction"];
       flat["falls"] = c.falls;
@@ -223,6 +251,12 @@ json summarise_validation(const std::filesystem::path& dir, const TaskConfig& co
       flat["gate"] = c.gate ? "pass" : "fail";
       flat["gain_kept_f1"] = gain.is_array() ? gain[0] : json(nullptr);
       flat["gain_kept_f2"] = gain.is_array() ? gain[1] : json(nullptr);
+      if (gain.is_array()) {
+        flat["run_gain_f1"] = run_gains[0];
+        flat["run_gain_f2"] = run_gains[1];
+        flat["seed_spread_f1"] = spreads[0];
+        flat["seed_spread_f2"] = spreads[1];
+      }
       if (omni) {
         json speeds = json::object();
         for (int d = 0; d < kOmniSegments; ++d)
@@ -264,16 +298,16 @@ std::string validation_text(const json& result) {
       << (type != nullptr ? type->objective_legend() : std::string("f1, f2"))
       << ")\nworlds (IMU noise on in all):\n";
   for (const json& w : result.value("worlds", json::array())) {
-    std::snprintf(line, sizeof line,
-                  "  %-20s %-7s step %4lld us, friction +-%.3g, mass +-%.3g, strength +-%.3g, "
-                  "latency p %.2g, %zu seeds%s%s\n",
-                  w.value("name", "").c_str(), w.value("engine", "").c_str(),
-                  static_cast<long long>(w.value("physics_step_us", 0)),
-                  w.value("friction_range", 0.0), w.value("mass_range", 0.0),
-                  w.value("strength_range", 0.0), w.value("latency_probability", 0.0),
-                  w.value("seeds", json::array()).size(),
-                  w.contains("unavailable") ? ": UNAVAILABLE, " : "",
-                  w.contains("unavailable") ? w["unavailable"].get<std::string>().c_str() : "");
+    std::snprintf(
+        line, sizeof line,
+        "  %-20s %-7s step %4lld us, %s, friction +-%.3g, mass +-%.3g, strength "
+        "+-%.3g, latency p %.2g, ground +-%.2g, %zu seeds%s%s\n",
+        w.value("name", "").c_str(), w.value("engine", "").c_str(),
+        static_cast<long long>(w.value("physics_step_us", 0)), w.value("contact", "turf").c_str(),
+        w.value("friction_range", 0.0), w.value("mass_range", 0.0), w.value("strength_range", 0.0),
+        w.value("latency_probability", 0.0), w.value("contact_range", 0.0),
+        w.value("seeds", json::array()).size(), w.contains("unavailable") ? ": UNAVAILABLE, " : "",
+        w.contains("unavailable") ? w["unavailable"].get<std::string>().c_str() : "");
     out << line;
   }
   std::snprintf(line, sizeof line, "%-26s %-20s %7s %5s %10s %10s %5s %8s %8s\n", "individual",
@@ -290,8 +324,7 @@ std::string validation_text(const json& result) {
                   r.contains("falls") ? std::to_string(r["falls"].get<int>()).c_str() : "-",
                   fixed(r.value("median_f1", json()), 3).c_str(),
                   fixed(r.value("median_f2", json()), 3).c_str(), gate.c_str(),
-                  fixed(r.value("gain_kept_f1", json()), 2).c_str(),
-                  fixed(r.value("gain_kept_f2", json()), 2).c_str());
+                  gain_kept_text(r, 0).c_str(), gain_kept_text(r, 1).c_str());
     out << line;
   }
   if (type != nullptr && type->measures_directions()) {
@@ -319,6 +352,35 @@ std::string validation_text(const json& result) {
               : "not every individual passes the gate in every world\n")
       << validation_words(result);
   return out.str();
+}
+
+std::string two_significant_digits(const json& value) {
+  if (!value.is_number()) return "-";
+  const double v = value.get<double>();
+  if (!std::isfinite(v)) return "-";
+  if (v == 0.0) return "0";
+  char text[64];
+  // Round to two significant digits first, then print with the decimals the rounded value
+  // needs (9.96 rounds to 10 and prints "10", not "10.0").
+  int exponent = static_cast<int>(std::floor(std::log10(std::abs(v))));
+  const double unit = std::pow(10.0, exponent - 1);
+  const double rounded = std::round(v / unit) * unit;
+  exponent = static_cast<int>(std::floor(std::log10(std::abs(rounded))));
+  std::snprintf(text, sizeof text, "%.*f", std::max(0, 1 - exponent), rounded);
+  return text;
+}
+
+std::string gain_kept_text(const json& row, int m) {
+  const std::string suffix = "_f" + std::to_string(m + 1);
+  const json gain = row.value("gain_kept" + suffix, json());
+  if (!gain.is_number()) return "-";
+  const json run_gain = row.value("run_gain" + suffix, json());
+  const json spread = row.value("seed_spread" + suffix, json());
+  if (row.contains("run_gain" + suffix) &&
+      !(run_gain.is_number() && spread.is_number() &&
+        std::abs(run_gain.get<double>()) > spread.get<double>()))
+    return "-";  // the run's gain is within the seeds' spread: the ratio is of two noises
+  return two_significant_digits(gain);
 }
 
 std::string validation_words(const json& result) {

@@ -2,6 +2,7 @@
 #include "stride/optimiser/tasks/robot_task.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <memory>
@@ -31,11 +32,33 @@ sim::WorldOptions world_for_trial(const TaskConfig& config, int world) {
     spec.randomise.friction_range = config.randomisation.friction_range;
     spec.randomise.mass_range = config.randomisation.mass_range;
     spec.randomise.strength_range = config.randomisation.strength_range;
+    spec.randomise.contact_range = config.randomisation.contact_range;
   }
   sim::WorldOptions w = spec.to_options();
   const TaskType* type = find_task_type(config.task);
   if (type == nullptr || !type->uses_ball()) w.ball.present = false;
   return w;
+}
+
+/// The simulated world of this thread on `kind`'s engine: made by the first episode the thread
+/// runs there, then restarted for every later one (SimWorld::restart gives the bits of a new
+/// world), so that the engine builds what it can once per worker and not once per episode.
+std::unique_ptr<sim::SimWorld>& thread_world(sim::EngineKind kind) {
+  thread_local std::array<std::unique_ptr<sim::SimWorld>, 2> worlds;
+  return worlds[static_cast<std::size_t>(kind) % worlds.size()];
+}
+
+/// This thread's world restarted as `options` and `spec` (made if the thread has none).
+Status restart_thread_world(const sim::WorldOptions& options, const sim::ResetSpec& spec,
+                            std::unique_ptr<sim::SimWorld>& out) {
+  std::unique_ptr<sim::SimWorld>& world = thread_world(options.engine);
+  Status s = world ? world->restart(options, spec) : sim::SimWorld::create(options, spec, world);
+  if (!s) {
+    world.reset();  // a failed restart leaves nothing to reuse
+    return s;
+  }
+  out = std::move(world);
+  return s;
 }
 
 }  // namespace
@@ -109,16 +132,11 @@ Status RobotTask::run_trial(const Genome& genome, int world, EpisodeScore& out,
 
 Status RobotTask::run_world(const Genome& genome, sim::WorldOptions options, EpisodeScore& out,
                             sim::EpisodeCapturer* capture) const {
-  if (type_ == nullptr) return Status::error("task: '" + config_.task + "' is not a robot task");
-  if (genome.reals.size() != config_.genes.size())
-    return Status::error("genome has " + std::to_string(genome.reals.size()) + " genes, the task " +
-                         std::to_string(config_.genes.size()));
-  if (options.urdf == (config_.world.urdf.empty() ? sim::WorldOptions{}.urdf : config_.world.urdf))
-    options.model = robot_model_;
-  const int episodes = type_->episodes_per_world();
+  const int episodes = type_ != nullptr ? type_->episodes_per_world() : 1;
   for (int e = 0; e < episodes; ++e) {
     EpisodeScore score;
-    if (Status s = run_episode(genome, options, e, score, e == 0 ? capture : nullptr); !s) return s;
+    if (Status s = run_world_episode(genome, options, e, score, e == 0 ? capture : nullptr); !s)
+      return s;
     if (e == 0) {
       out = std::move(score);
       continue;
@@ -126,6 +144,17 @@ Status RobotTask::run_world(const Genome& genome, sim::WorldOptions options, Epi
     merge_episode(score, e + 1, out);
   }
   return {};
+}
+
+Status RobotTask::run_world_episode(const Genome& genome, sim::WorldOptions options, int episode,
+                                    EpisodeScore& out, sim::EpisodeCapturer* capture) const {
+  if (type_ == nullptr) return Status::error("task: '" + config_.task + "' is not a robot task");
+  if (genome.reals.size() != config_.genes.size())
+    return Status::error("genome has " + std::to_string(genome.reals.size()) + " genes, the task " +
+                         std::to_string(config_.genes.size()));
+  if (options.urdf == (config_.world.urdf.empty() ? sim::WorldOptions{}.urdf : config_.world.urdf))
+    options.model = robot_model_;
+  return run_episode(genome, options, episode, out, capture);
 }
 
 Status RobotTask::run_episode(const Genome& genome, const sim::WorldOptions& options, int index,
@@ -140,9 +169,15 @@ Status RobotTask::run_episode(const Genome& genome, const sim::WorldOptions& opt
   sim::WorldOptions world_options = options;
   world_options.control_period_ns = firmware->period_ns();
   std::unique_ptr<sim::SimWorld> world;
-  if (Status s = sim::SimWorld::create(world_options, world); !s) return s;
-  if (Status s = world->reset(type_->reset_spec(config_, index)); !s) return s;
+  if (Status s = restart_thread_world(world_options, type_->reset_spec(config_, index), world); !s)
+    return s;
   sim::SimRobot robot(std::move(world));
+  // The world goes back to the thread when the episode ends, whichever way it ends.
+  struct GiveBack {
+    sim::SimRobot& robot;
+    sim::EngineKind engine;
+    ~GiveBack() { thread_world(engine) = robot.release_world(); }
+  } give_back{robot, world_options.engine};
 
   // The config's base parameters first (set now: the firmware's start-up values), then the
   // genome: one validated batch, staged, applied atomically at tick 0.
@@ -225,13 +260,62 @@ void RobotTask::merge_episode(const EpisodeScore& next, int count, EpisodeScore&
   if (total.world_failure.empty()) total.world_failure = next.world_failure;
 }
 
-EvaluationOutcome RobotTask::evaluate(const Genome& genome) const {
-  EvaluationOutcome outcome;
+namespace {
+
+/// One episode of an evaluation (a part): its score, or why it could not run.
+struct EpisodePart final : PartResult {
+  Status status;
+  EpisodeScore score;
+};
+
+}  // namespace
+
+std::size_t RobotTask::part_count(const Genome&) const {
+  const int episodes = type_ != nullptr ? type_->episodes_per_world() : 1;
+  return static_cast<std::size_t>(config_.world_count()) * static_cast<std::size_t>(episodes);
+}
+
+std::unique_ptr<PartResult> RobotTask::evaluate_part(const Genome& genome, std::size_t part) const {
+  auto out = std::make_unique<EpisodePart>();
+  const int episodes = type_ != nullptr ? type_->episodes_per_world() : 1;
+  const int world = static_cast<int>(part / static_cast<std::size_t>(episodes));
+  const int episode = static_cast<int>(part % static_cast<std::size_t>(episodes));
+  out->status = run_world_episode(genome, world_for_trial(config_, world), episode, out->score);
+  return out;
+}
+
+EvaluationOutcome RobotTask::fold_parts(const Genome&,
+                                        std::vector<std::unique_ptr<PartResult>>& parts) const {
   const int worlds = config_.world_count();
+  const int episodes = type_ != nullptr ? type_->episodes_per_world() : 1;
+  if (parts.size() != static_cast<std::size_t>(worlds) * static_cast<std::size_t>(episodes))
+    return EvaluationOutcome::failure(std::to_string(parts.size()) + " episodes for " +
+                                      std::to_string(worlds) + " worlds of " +
+                                      std::to_string(episodes));
+  EvaluationOutcome outcome;
   for (int k = 0; k < worlds; ++k) {
+    // The world's episodes merged in order, as run_world() does.
     EpisodeScore score;
-    if (Status s = run_trial(genome, k, score); !s)
-      return EvaluationOutcome::failure("trial " + std::to_string(k) + ": " + s.message());
+    for (int e = 0; e < episodes; ++e) {
+      auto* part = dynamic_cast<EpisodePart*>(
+          parts[static_cast<std::size_t>(k) * static_cast<std::size_t>(episodes) +
+                static_cast<std::size_t>(e)]
+              .get());
+      if (part == nullptr)
+        return EvaluationOutcome::failure("trial " + std::to_string(k) +
+                                          ": an episode gave no result");
+      if (!part->status)
+        return EvaluationOutcome::failure("trial " + std::to_string(k) + ": " +
+                                          part->status.message());
+      if (e == 0) {
+        score = std::move(part->score);
+        continue;
+      }
+      merge_episode(part->score, e + 1, score);
+    }
+    if (!score.world_failure.empty())
+      return EvaluationOutcome::failure("trial " + std::to_string(k) +
+                                        ": simulation: " + score.world_failure);
     if (k == 0) {
       outcome.objectives = score.objectives;
       outcome.constraints = score.constraints;
@@ -252,6 +336,14 @@ EvaluationOutcome RobotTask::evaluate(const Genome& genome) const {
     for (double& v : outcome.constraints) v /= n;
   }
   return outcome;
+}
+
+EvaluationOutcome RobotTask::evaluate(const Genome& genome) const {
+  // The parts one after the other, folded as an evaluator folds them.
+  std::vector<std::unique_ptr<PartResult>> parts;
+  const std::size_t count = part_count(genome);
+  for (std::size_t k = 0; k < count; ++k) parts.push_back(evaluate_part(genome, k));
+  return fold_parts(genome, parts);
 }
 
 }  // namespace stride::opt

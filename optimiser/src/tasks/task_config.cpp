@@ -102,7 +102,8 @@ std::string option_text(const nlohmann::json& v) {
 
 /// The world options a task's trials set (trial_seed, randomisation), not its world.
 constexpr const char* kTrialWorldOptions[] = {
-    "noise", "seed", "friction_range", "mass_range", "strength_range", "latency_probability"};
+    "noise",        "seed", "friction_range", "mass_range", "strength_range", "latency_probability",
+    "contact_range"};
 
 // The simulated world (TaskConfig::world): `world` is a named world ("faithful", "seed"), a
 // world file (its path or its object, with "format": "stride-world") or an object of the
@@ -156,6 +157,15 @@ Status parse_robot(const nlohmann::json& doc, TaskConfig& c) {
   for (const char* key : {"servo_law", "imu", "contact", "physics_step_us"})
     if (doc.contains(key))
       if (Status s = spec.set(key, option_text(doc.at(key)), key); !s) return s;
+  // The trials' physics step: unless the config gives one, the faithful world's trials step at
+  // the task's trial_physics_step_us(), the largest step at which its results hold. The
+  // seed's world and a world file keep the table's default.
+  const bool step_given =
+      doc.contains("physics_step_us") || (doc.contains("world") && doc.at("world").is_object() &&
+                                          doc.at("world").contains("physics_step_us"));
+  const TaskType* type = find_task_type(c.task);
+  if (!step_given && spec.base == sim::WorldPreset::kFaithful && !spec.file && type != nullptr)
+    spec.physics_step_us = type->trial_physics_step_us();
   c.world = std::move(spec);
   if (doc.contains("params")) {
     nlohmann::json values = doc.at("params");
@@ -328,7 +338,8 @@ Status parse_task_config(const nlohmann::json& doc, TaskConfig& out) {
     sim::WorldSpec ranges;
     for (auto [name, target] : {std::pair{"friction_range", &c.randomisation.friction_range},
                                 {"mass_range", &c.randomisation.mass_range},
-                                {"strength_range", &c.randomisation.strength_range}}) {
+                                {"strength_range", &c.randomisation.strength_range},
+                                {"contact_range", &c.randomisation.contact_range}}) {
       if (!r.contains(name)) continue;
       if (!r.at(name).is_number())
         return Status::error(std::string("randomisation.") + name + ": must be a number");
@@ -418,7 +429,8 @@ nlohmann::json to_json(const TaskConfig& c) {
                        {{"imu_noise", c.randomisation.imu_noise},
                         {"friction_range", c.randomisation.friction_range},
                         {"mass_range", c.randomisation.mass_range},
-                        {"strength_range", c.randomisation.strength_range}}}};
+                        {"strength_range", c.randomisation.strength_range},
+                        {"contact_range", c.randomisation.contact_range}}}};
   nlohmann::json engines = nlohmann::json::array();
   for (sim::EngineKind e : c.engines) engines.push_back(sim::to_string(e));
   j["engines"] = engines;

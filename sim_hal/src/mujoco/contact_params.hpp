@@ -24,6 +24,14 @@
 // creeps at (1-d) A F timeconst / (2 impratio); kImpRatio = 10 keeps that near 1 mm/s per N on
 // a foot. The Coulomb bound of the elliptic cone is exact: |f_t| <= mu f_n.
 //
+// The field's damping (issue 41: the soft ground is more damped than turf): the robot and ball
+// geoms' damping ratio against the field is MuJoCo's default 1 scaled by how much more damped
+// the ground's layer is than the seed's grass in Stride's law, relative to its stiffness
+// (c / sqrt(k): the damping ratio of a spring-damper carrying a fixed mass), never below 1:
+// turf and the seed grass (40 N s/m at 1500 N/m) keep 1, the hard ground (100 at 2e4, 0.68 of
+// that) keeps 1, the soft ground (80 at 2000) gets 1.73. A larger damping ratio keeps the
+// static stiffness (timeconst shrinks with it) and raises the damping b = 2 / (d timeconst).
+//
 // The solid ground under the grass (Stride's second, stiffer spring) is modelled only when
 // ContactOptions::mujoco_solid_ground (the turf contact): a second plane at z = 0, touched
 // through explicit pairs whose static stiffness is ground_stiffness_n_m per contact (the grass
@@ -41,5 +49,8 @@ namespace stride::sim::mujoco {
 /// Sets geom_solref/solimp of every robot and ball geom and pair_solref/solimp of the
 /// ball-robot pairs in the compiled model `m` (written by write_mjcf for `model`).
 void set_contact_params(mjModel* m, const EngineModel& model);
+
+/// The damping ratio (solref[1]) of robot and ball contacts with the field for `contact`.
+double field_damping_ratio(const ContactOptions& contact);
 
 }  // namespace stride::sim::mujoco

@@ -96,8 +96,12 @@ std::string write_mjcf(const EngineModel& model) {
                 num(-model.gravity_mps2) +
                 "\" integrator=\"Euler\" cone=\"elliptic\" solver=\"Newton\" impratio=\"" +
                 num(kImpRatio) + "\" iterations=\"100\" tolerance=\"1e-8\"/>");
-  // Fixed buffers (2.2 allocates mjData from these): ample for 20 links, boxes and the ball.
-  w.line(1, R"(<size njmax="2000" nconmax="400"/>)");
+  // Fixed buffers (2.2 allocates mjData from these). The robot lying on turf with the ball
+  // beside it stays far below them; 2.2 keeps an njmax x njmax matrix (efc_AR) that every
+  // mj_resetData clears, so they are no larger than that needs (2000 rows took a fifth of a
+  // 4 s episode's instructions). A step that fills them ends the episode (mujoco_engine.cpp).
+  w.line(1, "<size njmax=\"" + std::to_string(kMaxConstraintRows) + "\" nconmax=\"" +
+                std::to_string(kMaxContacts) + "\"/>");
   w.line(1, "<worldbody>");
   // solmix 0: a robot or ball contact with the field takes the other geom's parameters.
   w.line(2, "<geom name=\"grass\" type=\"plane\" size=\"0 0 1\" pos=\"0 0 " +

@@ -35,6 +35,9 @@ namespace stride::sim::mujoco {
 inline constexpr double kContactImpedance = 0.9;
 inline constexpr double kDampingRatio = 1.0;
 inline constexpr double kImpRatio = 10.0;
+/// mjData's fixed buffers (MJCF <size>): contacts and constraint rows.
+inline constexpr int kMaxContacts = 200;
+inline constexpr int kMaxConstraintRows = 600;
 
 /// The MJCF document for `model`. `model.robot` must be set and the per-link and per-joint
 /// vectors sized to the robot (checked by the caller).

@@ -255,6 +255,8 @@ Status MujocoEngine::start(const EngineStart& start) {
   mj_forward(m_.get(), d_.get());
   for (int k = 0; k < 3; ++k) bad_warnings_[static_cast<std::size_t>(k)] = 0;
   for (int k = 0; k < 3; ++k) d_->warning[mjWARN_BADQPOS + k].number = 0;
+  d_->warning[mjWARN_CONTACTFULL].number = 0;
+  d_->warning[mjWARN_CNSTRFULL].number = 0;
   return Status::ok();
 }
 
@@ -279,6 +281,16 @@ WorldStatus MujocoEngine::step(const std::vector<double>& joint_torque, std::str
                          : "qacc") +
                " and reset the state at t=" + std::to_string(d_->time) + " s";
       return WorldStatus::kNonFinite;
+    }
+  // A full contact or constraint buffer drops contacts silently: end the episode instead.
+  for (const int w : {static_cast<int>(mjWARN_CONTACTFULL), static_cast<int>(mjWARN_CNSTRFULL)})
+    if (d_->warning[w].number > 0) {
+      reason =
+          std::string("MuJoCo's ") +
+          (w == mjWARN_CONTACTFULL ? "contact buffer (" + std::to_string(m_->nconmax) + " contacts)"
+                                   : "constraint buffer (" + std::to_string(m_->njmax) + " rows)") +
+          " is full at t=" + std::to_string(d_->time) + " s";
+      return WorldStatus::kIntegratorFailure;
     }
   const WorldStatus status =
       check_state(d_->qpos, static_cast<std::size_t>(m_->nq), d_->qvel,

@@ -18,7 +18,8 @@
 // last step divided by the step (MuJoCo's qacc of the free joint's translation, world frame).
 // contacts() reads the contacts MuJoCo found at the start of the last step, with their forces
 // (mj_contactForce, rotated to the world frame). MuJoCo's warnings (a bad qpos/qvel/qacc,
-// after which it resets the state itself) end the step with a reason; build() silences
+// after which it resets the state itself) and a full contact or constraint buffer (MuJoCo would
+// drop contacts silently) end the step with a reason; build() silences
 // MuJoCo's global warning handler, which would otherwise write MUJOCO_LOG.TXT.
 #pragma once
 

@@ -277,7 +277,7 @@ GenerationRecord solve(const std::string& name, std::uint64_t seed, int pop, int
 
 TEST(OptimiseQuality, Zdt1SmallBudgetReachesNinetyFivePercentHypervolume) {
   // pop 100 x 100 generations (10,000 evaluations), three seeds; measured 96.7-97.0 %, a random
-  // population is near 0 % and 250 generations reach 99.2 % (tests/bench/README.md).
+  // population is near 0 % and 250 generations reach 99.2 % (tests/bench/RESULTS.md).
   for (const std::uint64_t seed : {1u, 2u, 3u}) {
     const GenerationRecord r = solve("zdt1", seed, 100, 100);
     ASSERT_TRUE(r.hypervolume_ratio.has_value());

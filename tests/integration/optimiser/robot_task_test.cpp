@@ -353,6 +353,7 @@ fs::path short_omni_config(const fs::path& dir) {
 TEST(RobotTask, WalkOmniScoresEverySegmentOfIndO) {
   TaskConfig c = load("walk-omni.json");
   c.trials = 1;
+  c.world.physics_step_us = 2000;  // the step the figures below were measured at
   const RobotTask task(c);
   EpisodeScore a, b;
   ASSERT_TRUE(task.run_trial(task.start_genome(), 0, a));

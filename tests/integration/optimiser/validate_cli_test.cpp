@@ -73,9 +73,11 @@ TEST(ValidateCli, TinyWalkRunValidatesTheSameForAnyThreadCountAndReportShowsIt) 
   EXPECT_EQ(v["format"], "stride-validation-1");
   EXPECT_EQ(v["task"], "walk");
   EXPECT_EQ(v["run_engines"], json({"simbody"}));
-  // The worlds: the other engine, fresh seeds, wider randomisation, half the run's 2 ms step.
+  // The worlds: the other engine, fresh seeds, wider randomisation, half the run's 2.5 ms step
+  // (the walk's trial step),
+  // the soft and the hard ground.
   const json& worlds = v["worlds"];
-  ASSERT_EQ(worlds.size(), 4u);
+  ASSERT_EQ(worlds.size(), 6u);
   EXPECT_EQ(worlds[0]["name"], "engine mujoco");
   EXPECT_EQ(worlds[0]["engine"], "mujoco");
   EXPECT_EQ(worlds[1]["name"], "fresh seeds");
@@ -85,7 +87,18 @@ TEST(ValidateCli, TinyWalkRunValidatesTheSameForAnyThreadCountAndReportShowsIt) 
   EXPECT_DOUBLE_EQ(worlds[2]["strength_range"].get<double>(), 0.15);
   EXPECT_DOUBLE_EQ(worlds[2]["latency_probability"].get<double>(), 0.5);
   EXPECT_EQ(worlds[3]["name"], "half step");
-  EXPECT_EQ(worlds[3]["physics_step_us"], 1000);
+  EXPECT_EQ(worlds[3]["physics_step_us"], 1250);
+  for (std::size_t w = 0; w < 4; ++w) EXPECT_EQ(worlds[w]["contact"], "turf");
+  EXPECT_EQ(worlds[4]["name"], "ground soft");
+  EXPECT_EQ(worlds[4]["contact"], "soft");
+  EXPECT_EQ(worlds[5]["name"], "ground hard");
+  EXPECT_EQ(worlds[5]["contact"], "hard");
+  for (std::size_t w = 4; w < 6; ++w) {
+    EXPECT_EQ(worlds[w]["engine"], "simbody");  // the run's engine, step and randomisation
+    EXPECT_EQ(worlds[w]["physics_step_us"], 2500);
+    EXPECT_EQ(worlds[w]["friction_range"], worlds[1]["friction_range"]);
+    EXPECT_EQ(worlds[w]["contact_range"], 0.0);
+  }
   for (const json& w : worlds) {
     EXPECT_EQ(w["seeds"], json({1001, 1002, 1003})) << w["name"];  // trial_seed 1 + 1000 + i
     EXPECT_FALSE(w.contains("unavailable")) << w["name"];
@@ -142,6 +155,7 @@ TEST(ValidateCli, TinyWalkRunValidatesTheSameForAnyThreadCountAndReportShowsIt) 
   ASSERT_EQ(code, 0) << test::read_file(err);
   EXPECT_NE(text.find("validation of a walk run"), std::string::npos) << text;
   EXPECT_NE(text.find("wider randomisation"), std::string::npos) << text;
+  EXPECT_NE(text.find("ground hard"), std::string::npos) << text;
   // ... then in words: a line per individual, what pass and fail mean.
   EXPECT_NE(text.find("in words:\n  Ind_O: "), std::string::npos) << text;
   EXPECT_NE(text.find("\npass (holds): at least 80 % of the seeds reach the goal"),
@@ -172,7 +186,7 @@ TEST(ValidateCli, AnExplodingWorldIsAFallWithItsReasonAndNoValidateWritesNothing
       "validate " + run.string() + " --seeds 2 --physics-step-us 10000 --engine simbody --json",
       err, code));
   ASSERT_EQ(code, 0) << test::read_file(err);
-  ASSERT_EQ(v["worlds"].size(), 4u);
+  ASSERT_EQ(v["worlds"].size(), 6u);
   EXPECT_EQ(v["worlds"][0]["name"], "engine simbody");  // --engine replaces the list
   EXPECT_EQ(v["worlds"][3]["name"], "step 10000 us");
   for (const json& ind : v["individuals"]) {

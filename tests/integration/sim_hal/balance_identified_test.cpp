@@ -4,7 +4,7 @@
 // The stock balance falls there in every seed within 7 s. With this file: forward, backward,
 // sideways and turning both ways hold (do not fall) at every step from 5 ms to 0.25 ms (only
 // forward and the turns go the commanded way), and the forward walk holds on robots that
-// differ from the model (figures: firmware/src/walk/README.md and tests/bench/README.md; the
+// differ from the model (figures: firmware/src/walk/README.md and tests/bench/RESULTS.md; the
 // benchmark covers the steps this test does not).
 // It pins the world and walk of issue 20: the seed's 2 cm grass, and the firmware's walk
 // defaults of then (firmware/config/seed-walk.json: no compliance feed-forward, no support

@@ -1,5 +1,5 @@
 // The optimised parameter files shipped in firmware/config (issue 32 point 4; where each comes
-// from and its validation table: optimiser/README.md "Results in the faithful world") walk and
+// from and its validation table: optimiser/RESULTS.md "Results in the faithful world") walk and
 // kick in the default world as their runs found, through `stride sim --params` as a user would
 // run them: walk-fast.json to 2.5 m in well under Ind_O's 19 s, walk-most-stable.json with a
 // lower peak acceleration than Ind_O on the same seed, walk-fast-steady.json both at once (the

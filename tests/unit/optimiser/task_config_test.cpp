@@ -236,6 +236,40 @@ TEST(TaskConfig, EnginesAndValidateSeedsParseRoundTripAndNameTheFieldOnError) {
 // The simulated robot (issue 20): another URDF (relative to the config file), the named world
 // (issue 29: faithful by default, seed by name), the servo law, the IMU and the physics step
 // reach every trial's world and survive run.json.
+// The ground range (issue 41 point 1) flows to the randomised trials like the friction range,
+// not to a single nominal trial; the table checks it; a world object may not set it.
+TEST(TaskConfig, TheContactRangeReachesTheTrialsAndNamesTheFieldOnError) {
+  auto d = minimal();
+  d["contact"] = "soft";
+  d["trials"] = 3;
+  d["randomisation"] = {{"contact_range", 0.5}};
+  TaskConfig c;
+  ASSERT_TRUE(parse_task_config(d, c));
+  EXPECT_EQ(c.randomisation.contact_range, 0.5);
+  for (int k = 0; k < 3; ++k) {
+    const sim::WorldOptions w = RobotTask(c).world_options(k);
+    EXPECT_EQ(w.randomise.contact_range, 0.5);
+    EXPECT_STREQ(sim::contact_kind_name(w.contact), "soft");
+  }
+  TaskConfig back;
+  ASSERT_TRUE(parse_task_config(to_json(c), back));
+  EXPECT_EQ(back.randomisation.contact_range, 0.5);
+  d["trials"] = 1;  // the nominal world: no randomisation
+  ASSERT_TRUE(parse_task_config(d, c));
+  EXPECT_EQ(RobotTask(c).world_options(0).randomise.contact_range, 0.0);
+  EXPECT_EQ(TrialRandomisation{}.contact_range, 0.0);  // off unless asked for
+  d["randomisation"] = {{"contact_range", 1.5}};
+  EXPECT_EQ(error_of(d), "randomisation.contact_range: must be in 0..1, got 1.5");
+  d["randomisation"] = {{"contact_range", -0.2}};
+  EXPECT_EQ(error_of(d), "randomisation.contact_range: must be in 0..1, got -0.2");
+  d.erase("randomisation");
+  d.erase("contact");
+  d["world"] = {{"contact", "hard"}, {"contact_range", 0.5}};
+  EXPECT_EQ(error_of(d),
+            "world.contact_range: set per trial by the task (trial_seed, randomisation), not in "
+            "world");
+}
+
 TEST(TaskConfig, RobotFieldsReachTheWorldsAndNameTheFieldOnError) {
   TaskConfig c;
   ASSERT_TRUE(parse_task_config(minimal(), c));
@@ -243,7 +277,24 @@ TEST(TaskConfig, RobotFieldsReachTheWorldsAndNameTheFieldOnError) {
   EXPECT_EQ(RobotTask(c).world_options(0).servo.law, sim::ServoLaw::kIdentified);
   EXPECT_FALSE(RobotTask(c).world_options(0).imu.chain.is_ideal());
   EXPECT_FALSE(RobotTask(c).world_options(0).imu.chain.noise);  // one trial: no noise
+  // The trials' step in the faithful world: the task's (2.5 ms for a walk; the get-up 2 ms),
+  // unless the config gives one.
+  EXPECT_EQ(c.task, "walk");
+  EXPECT_EQ(RobotTask(c).world_options(0).physics_step_ns, 2'500'000);
+  EXPECT_EQ(sim::to_json(c.world).at("physics_step_us"), 2500);  // run.json holds it
+  auto stepped = minimal();
+  stepped["physics_step_us"] = 2000;
+  ASSERT_TRUE(parse_task_config(stepped, c));
   EXPECT_EQ(RobotTask(c).world_options(0).physics_step_ns, 2'000'000);
+  stepped = minimal();
+  stepped["world"] = {{"physics_step_us", 1000}};
+  ASSERT_TRUE(parse_task_config(stepped, c));
+  EXPECT_EQ(RobotTask(c).world_options(0).physics_step_ns, 1'000'000);
+  stepped = minimal();
+  stepped["task"] = "getup";
+  ASSERT_TRUE(parse_task_config(stepped, c));
+  EXPECT_EQ(RobotTask(c).world_options(0).physics_step_ns, 2'000'000);
+  ASSERT_TRUE(parse_task_config(minimal(), c));
   EXPECT_DOUBLE_EQ(RobotTask(c).world_options(0).contact.grass_thickness_m, 0.005);
   // The thesis's world by name; a part named beside it overrides it.
   auto seed = minimal();
@@ -252,6 +303,7 @@ TEST(TaskConfig, RobotFieldsReachTheWorldsAndNameTheFieldOnError) {
   EXPECT_EQ(RobotTask(c).world_options(0).servo.law, sim::ServoLaw::kSeed);
   EXPECT_TRUE(RobotTask(c).world_options(0).imu.chain.is_ideal());
   EXPECT_DOUBLE_EQ(RobotTask(c).world_options(0).contact.grass_thickness_m, 0.02);
+  EXPECT_EQ(RobotTask(c).world_options(0).physics_step_ns, 2'000'000);  // the table's
   seed["imu"] = "cm730";
   ASSERT_TRUE(parse_task_config(seed, c));
   EXPECT_FALSE(RobotTask(c).world_options(0).imu.chain.is_ideal());
@@ -301,7 +353,7 @@ TEST(TaskConfig, RobotFieldsReachTheWorldsAndNameTheFieldOnError) {
   EXPECT_EQ(error_of(d), "imu: expected ideal or cm730, got '3'");
   d = minimal();
   d["contact"] = "lawn";
-  EXPECT_EQ(error_of(d), "contact: expected seed or turf, got 'lawn'");
+  EXPECT_EQ(error_of(d), "contact: expected seed, turf, soft or hard, got 'lawn'");
   d = minimal();
   d["physics_step_us"] = 0;
   EXPECT_EQ(error_of(d), "physics_step_us: must be in 1..20000 us, got 0");
@@ -362,7 +414,7 @@ TEST(TaskConfig, AWorldObjectTakesTheTablesOptions) {
   EXPECT_EQ(error_of(d),
             "world.gravity: unknown world option (known: base, engine, physics_step_us, "
             "servo_law, imu, contact, friction, urdf, noise, seed, friction_range, mass_range, "
-            "strength_range, latency_probability, latency_ticks, push)");
+            "strength_range, latency_probability, contact_range, latency_ticks, push)");
   d["world"] = {{"friction", 9}};
   EXPECT_EQ(error_of(d), "world.friction: must be in 0.05..3, got 9");
   d["world"] = {{"push", {"3,up,1"}}};

@@ -109,7 +109,8 @@ TEST(WorldSpec, EachKindOfBadValueIsNamedOnce) {
     const Status s = parse_flags(words, o);
     return s ? std::string("ok") : s.message();
   };
-  EXPECT_EQ(error({"--contact", "lawn"}), "--contact: expected seed or turf, got 'lawn'");
+  EXPECT_EQ(error({"--contact", "lawn"}),
+            "--contact: expected seed, turf, soft or hard, got 'lawn'");
   EXPECT_EQ(error({"--world", "moon"}),
             "--world: expected faithful, seed or a world file (.json), got 'moon'");
   EXPECT_EQ(error({"--latency-ticks", "4"}), "--latency-ticks: must be in 0..3, got 4");

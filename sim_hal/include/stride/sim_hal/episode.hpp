@@ -1,6 +1,6 @@
 // Episode runner: a controller (anything that turns a SensorFrame into a CommandFrame each
 // tick) against a SimRobot for a fixed duration, with the metrics of the `stride sim --json`
-// contract (DESIGN.md). Used by `stride sim`, the tests and the optimiser's tasks.
+// contract (docs/command-line.md). Used by `stride sim`, the tests and the optimiser's tasks.
 //
 // Metrics (sensor-based ones start after EpisodeOptions::metrics_start_s, as in the seed's
 // evaluator, to skip the settling transient):

@@ -13,7 +13,8 @@
 // push_speed m/s, the scripted impulse) knocks it over, from behind (it falls on its front) or
 // from the front (on its back). The motion manager detects the fall, plays get_up_front or
 // get_up_back and returns to stand. got_up: the robot ends upright (torso z axis within
-// 25 deg of vertical, torso origin above 0.45 m) in MotionState kStand.
+// 25 deg of vertical, torso origin above 0.45 m) in MotionState kStand (stands_at_end,
+// get_up_watch.hpp, which also holds the lying start and the get-up watch).
 #pragma once
 
 #include <Eigen/Core>
@@ -23,6 +24,7 @@
 
 #include "stride/firmware/firmware.hpp"
 #include "stride/sim_hal/episode.hpp"
+#include "stride/sim_hal/get_up_watch.hpp"
 #include "stride/sim_hal/sim_robot.hpp"
 #include "stride/sim_hal/sim_world.hpp"
 
@@ -49,35 +51,6 @@ class KickRequest {
   hal::Tick kick_tick_ = 0;
   bool requested_ = false;
 };
-
-/// Lying still on the grass on the front (face down) or on the back, the joints in the Stand
-/// pose: where a get-up starts. The motion manager sees the fall, lets the robot settle
-/// (motion.fallen_settle_time) and plays get_up_front or get_up_back.
-ResetSpec lying_reset_spec(bool on_front);
-
-/// Follows the motion manager through a get-up (run_push_episode and the optimiser's getup
-/// task): call after every Controller::step.
-class GetUpWatch {
- public:
-  explicit GetUpWatch(double period_s) : period_s_(period_s) {}
-  void after_step(const fw::Controller& controller, hal::Tick tick);
-  int attempts() const { return attempts_; }
-  /// The get-up script the motion manager chose first ("" if none).
-  const std::string& first_script() const { return first_script_; }
-  /// When a get-up last handed over to stand [s] (-1: never).
-  double stand_again_s() const { return stand_again_s_; }
-
- private:
-  double period_s_;
-  fw::MotionState previous_ = fw::MotionState::kStand;
-  int attempts_ = 0;
-  std::string first_script_;
-  double stand_again_s_ = -1.0;
-};
-
-/// The robot stands at the end: torso z axis within 25 deg of vertical, torso origin above
-/// 0.45 m, the world still running and the motion manager in kStand.
-bool stands_at_end(const SimWorld& world, WorldStatus status, const fw::Controller& controller);
 
 struct KickEpisodeOptions {
   std::string script = "kick_right";

@@ -27,6 +27,9 @@ class SimRobot final : public hal::Robot {
   void set_torque_enable(bool enabled) noexcept override;
   const hal::Diagnostics& diagnostics() const noexcept override { return diagnostics_; }
 
+  /// Gives the world back (to restart it for another episode); the robot is then unusable.
+  std::unique_ptr<SimWorld> release_world() { return std::move(world_); }
+
   SimWorld& world() { return *world_; }
   const SimWorld& world() const { return *world_; }
   hal::Tick current_tick() const { return tick_; }

@@ -91,6 +91,17 @@ class SimWorld {
  public:
   /// Loads the URDF, builds the engine and resets to ResetSpec::standing().
   static Status create(const WorldOptions& options, std::unique_ptr<SimWorld>& out);
+  /// create(options) followed by reset(spec), bit for bit, without building and placing the
+  /// robot for the start-up reset first (its random draws are still made, so the stream is
+  /// the same).
+  static Status create(const WorldOptions& options, const ResetSpec& spec,
+                       std::unique_ptr<SimWorld>& out);
+  /// This world made again as create(options, spec) would make it, bit for bit, keeping what it
+  /// can: the engine object of the same kind keeps its built model and rebuilds only what the
+  /// episode changes (the MuJoCo engine's compiled model; see physics_engine.hpp). For one
+  /// world per worker thread, reused for episode after episode. After an error the world is
+  /// not to be used again (make a new one).
+  Status restart(const WorldOptions& options, const ResetSpec& spec);
   ~SimWorld();
   SimWorld(const SimWorld&) = delete;
   SimWorld& operator=(const SimWorld&) = delete;
@@ -129,6 +140,9 @@ class SimWorld {
   double time_s() const;
   std::int64_t period_count() const;
   const WorldOptions& options() const;
+  /// The ground of this episode: options().contact, or the one drawn at the last reset when
+  /// options().randomise.contact_range > 0 (grounds.hpp).
+  const ContactOptions& ground() const;
   const RobotModel& model() const;
   double battery_voltage() const;
   /// Pose of every link of model() in the world frame (for drawings and recordings).

@@ -60,10 +60,42 @@ struct ContactOptions {
     c.mujoco_solid_ground = true;
     return c;
   }
+  /// A carpet or stiff floor (issue 41 point 1, sim_hal/models/README.md "Grounds"): a 3 mm
+  /// pile as stiff as the solid ground under it (the seed's solid ground, 2e4 N/m and
+  /// 100 N s/m per point: the stiffest contact this explicit 2 ms step is known to run; teams'
+  /// MuJoCo models use a rigid plane), the stick spring 0.7 of the normal one (Mindlin, as on
+  /// turf). A standing robot's studs sink 0.4 mm (7.9 N per stud) on both engines; a walking
+  /// stance foot's 0.4 mm at the median tick, 1.2-1.4 mm at a landing (models/README.md).
+  static ContactOptions hard() {
+    ContactOptions c = turf();
+    c.grass_thickness_m = 0.003;
+    c.grass_stiffness_n_m = 2.0e4;
+    c.grass_damping_n_s_m = 100.0;
+    c.tangential_stiffness_n_m = 0.7 * 2.0e4;
+    return c;
+  }
+  /// A deep artificial turf (issue 41 point 1): a 15 mm layer (long pile, infill and shock
+  /// pad) at 2000 N/m per point, so that a standing robot's studs sink 4.0 mm (measured on both
+  /// engines) and a walking stance foot (up to 8 mm) never reaches the base, critically damped for
+  /// one stud's share of the standing robot (2 sqrt(k m / 8) = 80 N s/m, twice turf's 40: FIFA's
+  /// 55-70 % shock absorption is a layer that dissipates most of an impact); stick spring 0.7 of
+  /// the normal.
+  static ContactOptions soft() {
+    ContactOptions c = turf();
+    c.grass_thickness_m = 0.015;
+    c.grass_stiffness_n_m = 2000.0;
+    c.grass_damping_n_s_m = 80.0;
+    c.tangential_stiffness_n_m = 0.7 * 2000.0;
+    return c;
+  }
 };
 
-/// "seed" or "turf" (ContactOptions::seed(), ::turf()); false for anything else.
+/// "seed", "turf", "soft" or "hard" (ContactOptions::seed(), ::turf(), ::soft(), ::hard());
+/// false for anything else.
 bool parse_contact_kind(std::string_view text, ContactOptions& out);
+/// The name parse_contact_kind gives `contact`'s ground (every figure but the friction equal to
+/// that ground's), or "custom".
+const char* contact_kind_name(const ContactOptions& contact);
 
 struct BallOptions {
   bool present = true;
@@ -112,6 +144,10 @@ struct Randomisation {
   double mass_range = 0.0;           ///< per-link mass and inertia scale
   double strength_range = 0.0;       ///< per-servo stall torque scale
   double latency_probability = 0.0;  ///< chance of one control tick of command latency
+  /// The ground drawn at each reset (grounds.hpp draw_ground): u uniform in [-range, range),
+  /// the contact's figures moved the fraction |u| of the way (on a log scale) from the world's
+  /// ground towards the hard ground (u < 0) or the soft one (u > 0). 0: no draw at all.
+  double contact_range = 0.0;
 };
 
 /// How one robot differs from the model (issue 30 point 3): what `stride calibrate` fits from

@@ -55,7 +55,7 @@ struct WorldOptionInfo {
 
 /// Every option of a world, in the order the help lists them: base, engine, physics_step_us,
 /// servo_law, imu, contact, friction, urdf, noise, seed, friction_range, mass_range,
-/// strength_range, latency_probability, latency_ticks, push.
+/// strength_range, latency_probability, contact_range, latency_ticks, push.
 const std::vector<WorldOptionInfo>& world_option_table();
 /// The option of `key`, or null.
 const WorldOptionInfo* find_world_option(std::string_view key);
@@ -79,13 +79,13 @@ struct WorldSpec {
   std::int64_t physics_step_us = 2000;
   std::optional<ServoLaw> servo_law;        ///< unset: the base world's
   std::optional<bool> imu_cm730;            ///< unset: the base world's (true: the CM730 chain)
-  std::optional<std::string> contact;       ///< "seed" or "turf"; unset: the base world's
+  std::optional<std::string> contact;       ///< "turf", "seed", "soft", "hard"; unset: the base's
   std::optional<double> friction;           ///< Coulomb coefficient; unset: the contact's
   std::filesystem::path urdf;               ///< empty: the igus model
   std::shared_ptr<const RobotModel> model;  ///< `urdf` parsed when it was set
   bool noise = true;                        ///< sensor noise and per-reset IMU bias
   std::uint64_t seed = 1;
-  /// Per-reset randomisation: friction, mass and strength ranges, latency probability.
+  /// Per-reset randomisation: friction, mass and strength ranges, latency probability, ground.
   Randomisation randomise;
   std::optional<int> latency_ticks;  ///< unset: the world file's (nominal 0)
   std::vector<TorsoPush> pushes;

@@ -2,7 +2,11 @@
 // which calls `report(index, outcome)` once per candidate, in any order, always on the calling
 // thread. An exception thrown by Problem::evaluate becomes a failed outcome naming it.
 //   SerialEvaluator      one after the other, in batch order;
-//   ThreadPoolEvaluator  `jobs` worker threads; results are reported as they finish, so their
+//   ThreadPoolEvaluator  `jobs` worker threads sharing the parts of the whole batch
+//                        (Problem::part_count: a robot task's episodes), taken in batch and
+//                        part order; a candidate's parts are folded in part order by the
+//                        worker that finishes its last one, so each outcome is the same bits
+//                        for any thread count. Results are reported as they finish, so their
 //                        order varies from run to run (the optimiser does not depend on it).
 #pragma once
 

@@ -3,8 +3,16 @@
 // evaluate() must be a pure function of the genome (same genome, same outcome) and safe to call
 // from several threads at once. A problem may also describe its known Pareto front, which the
 // indicators (hypervolume, IGD) use to normalise and compare.
+//
+// Parts: an evaluation may split into independent parts (a robot task: one per episode), so
+// that an evaluator can spread the parts of a whole batch over its workers and no core idles
+// while one slow genome finishes. part_count(), evaluate_part() and fold_parts() must agree
+// with evaluate(): folding the parts 0..n-1, in that order, gives evaluate()'s outcome bit for
+// bit, whichever thread ran which part. The defaults make the whole evaluate() one part.
 #pragma once
 
+#include <cstddef>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -24,6 +32,12 @@ struct FrontReference {
   std::optional<double> true_hypervolume;  ///< normalised, reference point 1.1
 };
 
+/// The result of one part of an evaluation; each problem derives its own.
+class PartResult {
+ public:
+  virtual ~PartResult() = default;
+};
+
 class Problem {
  public:
   virtual ~Problem() = default;
@@ -33,6 +47,15 @@ class Problem {
   virtual EvaluationOutcome evaluate(const Genome& genome) const = 0;
   /// The known front, if any.
   virtual std::optional<FrontReference> reference() const { return std::nullopt; }
+
+  /// Number of independent parts of one evaluation of `genome` (>= 1).
+  virtual std::size_t part_count(const Genome& genome) const;
+  /// Part `part` (< part_count) of the evaluation. Thread-safe, like evaluate(); it may throw
+  /// (the evaluator then fails the whole evaluation, naming the part).
+  virtual std::unique_ptr<PartResult> evaluate_part(const Genome& genome, std::size_t part) const;
+  /// The evaluation's outcome from all of its parts, in part order.
+  virtual EvaluationOutcome fold_parts(const Genome& genome,
+                                       std::vector<std::unique_ptr<PartResult>>& parts) const;
 };
 
 }  // namespace stride::opt

@@ -1,6 +1,6 @@
 // An optimisation run in a run directory, with checkpoint/resume.
 //
-// Files in the run directory (DESIGN.md "Command-line contract"):
+// Files in the run directory (docs/formats.md, "Run directory"):
 //   run.json           problem, settings, start genome, task config, Stride version
 //   evaluations.jsonl  one line per evaluation actually made (cache hits are not re-logged), in
 //                      batch order whatever order the evaluator finishes in

@@ -10,10 +10,14 @@
 //   fresh seeds         the run's (first) engine and randomisation
 //   wider randomisation friction, masses and servo strength at 1.5x the run's ranges, at least
 //                       1.5x the robust defaults (0.3, 0.075, 0.15), at most 0.9; one control
-//                       tick of command latency in half of the worlds (latency probability 0.5).
+//                       tick of command latency in half of the worlds (latency probability 0.5);
+//                       the ground range at 1.5x the run's (none if the run had none).
 //                       sim_hal has no centre-of-mass randomisation: the mass scale per link
 //                       moves the whole robot's centre of mass only through the link masses.
 //   half step           the physics step halved (or --physics-step-us), the run's randomisation
+//   ground soft         the soft ground (deep turf, studs sink 4 mm; sim::ContactOptions::soft),
+//   ground hard         the hard one (carpet, 0.4 mm): the run's engine, friction and
+//                       randomisation, no ground range
 // A world that fails mid-episode (NaN, explosion) is a fall with its reason; a world that cannot
 // be built (an engine not in this build) is reported as unavailable with the reason.
 //
@@ -106,6 +110,17 @@ std::function<void(std::size_t, std::size_t)> validation_progress_printer(bool t
 
 /// The human table of a validation result, followed by validation_words.
 std::string validation_text(const nlohmann::json& result);
+
+/// A number to two significant digits: 7.5556 -> "7.6", -0.66667 -> "-0.67", 0.96 -> "0.96",
+/// 123 -> "120"; "-" for a non-number.
+std::string two_significant_digits(const nlohmann::json& value);
+
+/// The gain kept of objective m (0 or 1) of one row of validation.json's flat table, as the
+/// tables show it: two significant digits, and "-" unless the run's gain in that objective
+/// (run_gain_fM) exceeds the seeds' spread (seed_spread_fM: the larger of Ind_O's and the
+/// pick's interquartile range over the world's seeds). A row without the two fields (a file
+/// from before they were written) shows the number.
+std::string gain_kept_text(const nlohmann::json& row, int m);
 
 /// The same result in plain words: per individual one line saying in which worlds it holds
 /// (passes the gate) and where and why it fails (falls, misses the goal, slower than in the

@@ -11,7 +11,11 @@
 // lockstep (sim::run_episode) with the task's requests; the task scores the episode. The
 // objectives and constraints of each task are in its file (optimiser/src/tasks/*_task.cpp).
 // Worlds are aggregated per value by mean or worst (max objective, min constraint).
-// Every world and firmware is private to the call, so evaluate() is thread-safe and the
+// Each episode is one part of the evaluation (Problem::part_count), so that a thread pool spreads
+// the episodes of a whole batch over its workers; folding them in part order gives the same
+// outcome whatever the thread count. Each worker thread keeps one SimWorld per engine, made by
+// its first episode and restarted for the next ones (SimWorld::restart: the bits of a new
+// world), and every firmware is private to its episode, so evaluate() is thread-safe and the
 // outcome depends on the genome alone. The files they are built from (servo table, keyframe
 // scripts, URDF) are read once, when the task is made, and shared read-only.
 #pragma once
@@ -38,6 +42,12 @@ class RobotTask final : public Problem {
   const ProblemShape& shape() const override { return shape_; }
   EvaluationOutcome evaluate(const Genome& genome) const override;
   std::optional<FrontReference> reference() const override;
+  /// One part per episode: world_count() worlds x the task's episodes_per_world(), world-major.
+  std::size_t part_count(const Genome& genome) const override;
+  std::unique_ptr<PartResult> evaluate_part(const Genome& genome, std::size_t part) const override;
+  /// Each world's episodes merged in order, then the worlds aggregated: evaluate()'s outcome.
+  EvaluationOutcome fold_parts(const Genome& genome,
+                               std::vector<std::unique_ptr<PartResult>>& parts) const override;
 
   const TaskConfig& config() const { return config_; }
   /// The task against the firmware it runs, before any episode: a robot task's name, and a
@@ -74,6 +84,9 @@ class RobotTask final : public Problem {
   const TaskType* type_ = nullptr;  ///< null: not a robot task (every episode is an error)
   std::int64_t control_period_ns_ = 0;
 
+  /// Episode `episode` of the task in `options`' world, with the task's shared robot model.
+  Status run_world_episode(const Genome& genome, sim::WorldOptions options, int episode,
+                           EpisodeScore& out, sim::EpisodeCapturer* capture = nullptr) const;
   Status run_episode(const Genome& genome, const sim::WorldOptions& options, int index,
                      EpisodeScore& out, sim::EpisodeCapturer* capture) const;
   /// Folds episode `count` (1-based) of a world into the world's score so far.

@@ -41,6 +41,9 @@ struct TrialRandomisation {
   double friction_range = 0.2;
   double mass_range = 0.05;
   double strength_range = 0.1;
+  /// The ground drawn per trial between hard and soft (sim::Randomisation::contact_range);
+  /// 0 (the default): every trial on the world's ground, drawing nothing.
+  double contact_range = 0.0;
 };
 
 /// The segments of the omnidirectional walk task (walk-omni): after start_s of walking in
@@ -54,6 +57,15 @@ struct OmniTiming {
   double stop_s = 2.0;
   double total_s() const { return start_s + 6.0 * (ramp_s + hold_s + stop_s); }
 };
+
+/// The physics step of a walk or kick optimisation's trials in the faithful world when the
+/// config gives none [us] (TaskType::trial_physics_step_us): the largest step at which the
+/// faithful robot's results held within the validation gate on both engines
+/// (tests/bench/RESULTS.md, "The step the model allows": per-direction speeds within the seeds'
+/// spread, time to 2.5 m and the kick within 2 %; 5 ms shifted the sideways and turning speeds
+/// by 10-35 % on MuJoCo). The get-up keeps 2000 (at 2500 its front side stood up 3.5 % sooner
+/// on Simbody); `stride sim` keeps 2000.
+inline constexpr std::int64_t kTrialPhysicsStepUs = 2500;
 
 struct TaskConfig {
   std::string task;  ///< a TaskType's name (task_type.hpp): "walk", "walk-omni", "kick", "getup"
@@ -91,7 +103,10 @@ struct TaskConfig {
   /// `physics_step_us` of before the table still load). Its engine is `engines`; its seed,
   /// noise and randomisation ranges are the trials' (trial_seed, randomisation), so a config
   /// that sets them in `world` is an error naming the field. A relative path (a URDF, a world
-  /// file) is relative to the config file.
+  /// file) is relative to the config file. Its physics step, unless the config gives one, is
+  /// the task type's trial_physics_step_us() in the faithful world (the table's 2000 us in the
+  /// seed's world or a
+  /// world file); run.json always holds the step a run used.
   sim::WorldSpec world;
   /// Parameter values every episode's firmware takes before the genome (config `params`: a
   /// parameter file's path, relative to the config, or an object {name: number}); genes

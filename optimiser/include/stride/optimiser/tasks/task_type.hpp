@@ -96,6 +96,9 @@ class TaskType {
   /// Episodes per world (the get-up: from the front and from the back); their objectives and
   /// constraints are averaged, and a world's score is that average.
   virtual int episodes_per_world() const { return 1; }
+  /// The physics step of the task's trials in the faithful world when the config gives none
+  /// [us] (TaskConfig::world): the largest at which the task's results held.
+  virtual std::int64_t trial_physics_step_us() const { return kTrialPhysicsStepUs; }
   /// How episode `episode` of a world starts (default: standing, the ball before the right foot).
   virtual sim::ResetSpec reset_spec(const TaskConfig& config, int episode) const;
   /// Checks the config's task-specific settings beyond what parse_task_config checks.

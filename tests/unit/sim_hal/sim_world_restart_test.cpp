@@ -1,0 +1,122 @@
+// SimWorld::create(options, spec) and SimWorld::restart: one world per worker, made once and
+// restarted for every episode, must give the bits of a new world made and reset as before
+// (create(options) then reset(spec)), on both engines, with randomisation and sensor noise.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <utility>
+
+#include "stride/sim_hal/sim_robot.hpp"
+#include "stride/sim_hal/sim_world.hpp"
+
+namespace stride::sim {
+namespace {
+
+/// A randomised, noisy world (every per-reset draw in use) on `engine`.
+WorldOptions randomised(EngineKind engine, std::uint64_t seed, bool chain_imu) {
+  WorldOptions o;
+  o.engine = engine;
+  o.seed = seed;
+  o.imu.set_noise(true);
+  if (!chain_imu) o.imu.chain = ImuChain::ideal();  // the plain sampler draws its own noise
+  o.randomise = {0.2, 0.05, 0.1, 0.5};
+  o.randomise.contact_range = 0.5;  // the ground drawn too (one more draw)
+  return o;
+}
+
+/// The reset of a task: the Stand pose with a ball further out.
+ResetSpec task_spec() {
+  ResetSpec spec = ResetSpec::standing();
+  spec.ball_position.x() = 0.5;
+  return spec;
+}
+
+/// Runs 40 periods of a swaying Stand pose; returns the final state hash and the sum of the
+/// accelerometer's x readings (the noise and biases drawn at the reset show there).
+std::pair<std::uint64_t, double> sway(std::unique_ptr<SimWorld> world) {
+  SimRobot robot(std::move(world));
+  hal::SensorFrame sensors;
+  double accel_sum = 0.0;
+  for (hal::Tick k = 1; k <= 40; ++k) {
+    robot.sleep_until(k);
+    robot.read(sensors);
+    accel_sum += sensors.cm730.accel_mps2[0];
+    hal::CommandFrame frame;
+    for (std::size_t i = 0; i < hal::kServoCount; ++i) {
+      frame.servos[i].position_rad =
+          igus_stand_pose()[i] + 0.05 * std::sin(0.1 * static_cast<double>(k));
+      frame.servos[i].p_gain = 76;
+      frame.servos[i].torque_enable = true;
+    }
+    robot.write(frame);
+  }
+  return {robot.world().state_hash(), accel_sum};
+}
+
+/// The way worlds were made before: create() (its start-up reset) and the task's reset.
+std::unique_ptr<SimWorld> create_then_reset(const WorldOptions& options) {
+  std::unique_ptr<SimWorld> world;
+  EXPECT_TRUE(SimWorld::create(options, world));
+  EXPECT_TRUE(world->reset(task_spec()));
+  return world;
+}
+
+class Restart : public ::testing::TestWithParam<std::pair<EngineKind, bool>> {};
+
+TEST_P(Restart, CreateWithASpecGivesTheBitsOfCreateThenReset) {
+  const auto [engine, chain] = GetParam();
+  const WorldOptions options = randomised(engine, 11, chain);
+  const auto before = sway(create_then_reset(options));
+  std::unique_ptr<SimWorld> world;
+  ASSERT_TRUE(SimWorld::create(options, task_spec(), world));
+  const auto now = sway(std::move(world));
+  EXPECT_EQ(now.first, before.first);
+  EXPECT_EQ(now.second, before.second);
+}
+
+TEST_P(Restart, ARestartedWorldGivesTheBitsOfANewOne) {
+  const auto [engine, chain] = GetParam();
+  // A world that has run an episode with other draws (another seed) and then a failed one.
+  std::unique_ptr<SimWorld> world;
+  ASSERT_TRUE(SimWorld::create(randomised(engine, 5, chain), task_spec(), world));
+  SimRobot used(std::move(world));
+  used.sleep_until(30);
+  used.world().set_joint_speed(3, 1e6);  // explodes on the next step
+  used.sleep_until(31);
+  ASSERT_NE(used.world().status(), WorldStatus::kRunning);
+  world = used.release_world();
+  for (const std::uint64_t seed : {11u, 12u}) {
+    const WorldOptions options = randomised(engine, seed, chain);
+    const auto fresh = sway(create_then_reset(options));
+    ASSERT_TRUE(world->restart(options, task_spec()));
+    SimRobot robot(std::move(world));
+    const auto restarted = sway(robot.release_world());
+    EXPECT_EQ(restarted.first, fresh.first) << "seed " << seed;
+    EXPECT_EQ(restarted.second, fresh.second) << "seed " << seed;
+    ASSERT_TRUE(SimWorld::create(options, task_spec(), world));  // for the next round
+  }
+}
+
+TEST(Restart, ABadOptionIsAnErrorNamingIt) {
+  std::unique_ptr<SimWorld> world;
+  ASSERT_TRUE(SimWorld::create(WorldOptions{}, ResetSpec::standing(), world));
+  WorldOptions bad;
+  bad.battery_voltage_v = -1.0;
+  const Status s = world->restart(bad, ResetSpec::standing());
+  ASSERT_FALSE(s);
+  EXPECT_NE(s.message().find("battery voltage"), std::string::npos) << s.message();
+}
+
+std::string restart_case_name(const ::testing::TestParamInfo<std::pair<EngineKind, bool>>& param) {
+  return std::string(to_string(param.param.first)) + (param.param.second ? "Cm730Imu" : "PlainImu");
+}
+
+INSTANTIATE_TEST_SUITE_P(EnginesAndImus, Restart,
+                         ::testing::Values(std::pair{EngineKind::kSimbody, true},
+                                           std::pair{EngineKind::kSimbody, false},
+                                           std::pair{EngineKind::kMujoco, true},
+                                           std::pair{EngineKind::kMujoco, false}),
+                         restart_case_name);
+
+}  // namespace
+}  // namespace stride::sim
