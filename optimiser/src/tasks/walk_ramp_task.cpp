@@ -1,5 +1,6 @@
-// The speed-ramp walk task (issue 32 point 1; settings and the ramp in speed_ramp.hpp): the
-// top speed of each direction, as the Bit-Bots search for it, one episode per direction.
+// The speed-ramp walk task (issue 32 point 1; settings in speed_ramp.hpp, the ramp of one
+// direction in ramp_direction.hpp): the top speed of each direction, as the Bit-Bots search for it,
+// one episode per direction.
 //   Obj1 = -(v_f + v_b + 2 v_side + 0.2 w_turn) [m/s], each v the direction's best speed held,
 //          v_side and w_turn the means of both sides (the Bit-Bots' score): each episode scores
 //          -6 w_d v_d (w = 1, 1, 1, 1, 0.1, 0.1), so that the world's mean is the sum.
@@ -11,9 +12,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <numbers>
 
 #include "stride/firmware/motion_request.hpp"
+#include "stride/optimiser/tasks/ramp_direction.hpp"
 #include "stride/optimiser/tasks/speed_ramp.hpp"
 #include "stride/optimiser/tasks/task_type.hpp"
 
@@ -22,10 +23,6 @@ namespace stride::opt {
 namespace {
 
 constexpr std::array<double, kOmniSegments> kWeights = {1.0, 1.0, 1.0, 1.0, 0.1, 0.1};
-/// The drift ratio's floor [m]: a direction that has walked less is held to 0.5 m's allowance
-/// (5 cm at 10 %), not the walk task's 0.25 m: the first levels are slow, and the feet's
-/// step-to-step sway alone is 1-3 cm (Ind_O drifts 3 cm in its first 0.05 m forward).
-constexpr double kRampDriftFloorM = 0.5;
 
 class RampEpisode final : public TaskEpisode {
  public:
@@ -33,34 +30,33 @@ class RampEpisode final : public TaskEpisode {
       : config_(config),
         direction_(direction),
         period_s_(period_s),
-        axis_(omni_command(static_cast<OmniDirection>(direction))) {}
+        axis_(omni_command(static_cast<OmniDirection>(direction))),
+        ramp_(config) {}
   sim::EpisodeOptions options() const override {
     sim::EpisodeOptions o;
     o.duration_s = config_.ramp.episode_s();
     o.goal_distance_m = 1e9;
     o.stop_on_fall = true;
-    o.stop_when = [this] { return ended_; };
+    o.stop_when = [this] { return ramp_.ended(); };
     return o;
   }
   void before_step(const hal::SensorFrame&, hal::Tick tick, const sim::SimWorld& world,
                    fw::Controller& controller) override {
-    const RampTiming& r = config_.ramp;
     const double t = static_cast<double>(tick) * period_s_;
     yaw_ = tick == 0 ? (yaws_.reset(torso_yaw(world.torso_pose())), yaws_.yaw())
                      : yaws_.update(torso_yaw(world.torso_pose()));
-    const int level = t < r.start_s ? 0 : 1 + static_cast<int>((t - r.start_s) / r.hold_s);
+    const int level = ramp_.level_at(t);
     if (level != level_) {  // a level ends (or the first starts)
       if (level_ >= 1) end_level(world);
       if (level_ == 0) direction_start_ = walking_frame(world.ground_truth(), yaw_);
       level_ = level;
-      if (level_ > r.max_levels) ended_ = true;
-      if (ended_) return;
-      const double c = std::min(1.0, level_ * r.increment);
+      ramp_.begin_level(level_);
+      if (ramp_.ended()) return;
+      const double c = ramp_.command_scale(level_);
       controller.request(fw::MotionRequest::walk(c * axis_[0], c * axis_[1], c * axis_[2]));
     }
     // The measurement window: the level's last measure_s.
-    const double level_end = r.start_s + level_ * r.hold_s;
-    if (level_ >= 1 && !window_open_ && t >= level_end - r.measure_s - 1e-9) {
+    if (level_ >= 1 && !window_open_ && ramp_.window_begun(level_, t)) {
       window_start_ = walking_frame(world.ground_truth(), yaw_);
       window_open_ = true;
     }
@@ -70,75 +66,39 @@ class RampEpisode final : public TaskEpisode {
     if (controller.motion().refused_requests() > 0) return Status::error("walk request refused");
     out.omni = {};
     OmniSegment& s = out.omni[static_cast<std::size_t>(direction_)];
-    s.measured = counted_;
-    s.speed = counted_ ? best_ : 0.0;
-    s.drift_ratio = best_drift_;
-    s.heading_change_rad = best_heading_;
-    s.translation_m = best_translation_;
+    const RampLevel& best = ramp_.best();
+    s.measured = ramp_.counted();
+    s.speed = ramp_.counted() ? best.speed : 0.0;
+    s.drift_ratio = best.drift_ratio;
+    s.heading_change_rad = best.heading_change_rad;
+    s.translation_m = best.translation_m;
     out.objectives = {-static_cast<double>(kOmniSegments) *
                           kWeights[static_cast<std::size_t>(direction_)] * s.speed,
                       r.max_accel};
-    out.constraints = {r.fell && !counted_ ? -1.0 : 0.0, crooked_first_ ? -1.0 : 0.0};
+    out.constraints = {r.fell && !ramp_.counted() ? -1.0 : 0.0, ramp_.crooked_first() ? -1.0 : 0.0};
     return {};
   }
 
  private:
-  /// The level just completed: its speed over the window, its straightness, and whether the
-  /// direction goes on.
+  /// The level just completed: its figures over the window decide whether the direction goes on.
   void end_level(const sim::SimWorld& world) {
     if (!window_open_) return;
     window_open_ = false;
-    const PlanarPose b = walking_frame(world.ground_truth(), yaw_);
-    const double window = config_.ramp.measure_s;
-    const bool turn = axis_[2] != 0.0;
-    const Translation t =
-        measure_translation(window_start_, b, turn ? 1.0 : axis_[0], turn ? 0.0 : axis_[1]);
-    double speed = 0.0, drift = 0.0, heading = 0.0, translation = 0.0;
-    bool straight = true;
-    if (turn) {
-      speed = (b.yaw - window_start_.yaw) * (axis_[2] > 0.0 ? 1.0 : -1.0) / window;
-      translation = t.distance_m;
-      straight =
-          config_.max_turn_translation_m < 0.0 || translation <= config_.max_turn_translation_m;
-    } else {
-      speed = t.along_m / window;
-      // Straightness over the direction so far (from its first level's start): a window of a
-      // few steps sees the feet's step-to-step sway, the whole walk its drift.
-      const Translation so_far = measure_translation(direction_start_, b, axis_[0], axis_[1]);
-      drift = so_far.off_axis_m / std::max(std::abs(so_far.along_m), kRampDriftFloorM);
-      heading = so_far.heading_change_rad;
-      const double heading_limit = config_.max_heading_change_deg * std::numbers::pi / 180.0;
-      straight = (config_.max_drift_ratio < 0.0 || drift <= config_.max_drift_ratio) &&
-                 (heading_limit < 0.0 || heading <= heading_limit);
-    }
-    if (!straight) {
-      if (level_ == 1) crooked_first_ = true;
-      ended_ = true;
-      return;
-    }
-    if (speed <= best_) {  // no faster: the direction ends after `patience` such levels
-      if (++levels_without_gain_ >= config_.ramp.patience) ended_ = true;
-      return;
-    }
-    levels_without_gain_ = 0;
-    best_ = speed;
-    best_drift_ = drift;
-    best_heading_ = heading;
-    best_translation_ = translation;
-    counted_ = true;
+    const PlanarPose end = walking_frame(world.ground_truth(), yaw_);
+    ramp_.end_level(level_,
+                    measure_ramp_level(direction_start_, window_start_, end, axis_, config_));
   }
 
   const TaskConfig& config_;
   int direction_;
   double period_s_;
   std::array<double, 3> axis_;
+  RampDirection ramp_;
   YawTracker yaws_;
   double yaw_ = 0.0;
   int level_ = 0;
-  int levels_without_gain_ = 0;
-  bool ended_ = false, window_open_ = false, counted_ = false, crooked_first_ = false;
+  bool window_open_ = false;
   PlanarPose window_start_, direction_start_;
-  double best_ = 0.0, best_drift_ = 0.0, best_heading_ = 0.0, best_translation_ = 0.0;
 };
 
 class WalkRampTask final : public TaskType {
@@ -215,11 +175,8 @@ Status parse_ramp(const nlohmann::json& doc, RampTiming& out) {
 }
 
 nlohmann::json to_json(const RampTiming& r) {
-  return {{"start_s", r.start_s},
-          {"increment", r.increment},
-          {"hold_s", r.hold_s},
-          {"measure_s", r.measure_s},
-          {"max_levels", r.max_levels}};
+  return {{"start_s", r.start_s},     {"increment", r.increment},   {"hold_s", r.hold_s},
+          {"measure_s", r.measure_s}, {"max_levels", r.max_levels}, {"patience", r.patience}};
 }
 
 }  // namespace stride::opt

@@ -197,8 +197,26 @@ TEST(FlightRecorderCli, AKilledStrideFwLeavesALogThatReadsToItsLastCompleteBlock
   EXPECT_GE(log.ticks.size(), 100u);
   EXPECT_EQ(log.ticks.front().meta.tick, 0);
   expect_ticks_increase(log);
-  EXPECT_LE(log.complete_bytes, log.file_bytes);
   EXPECT_EQ(log.dropped_ticks(), 0u);
+  // The reader stops exactly at the end of the last complete block: a cut tail is reported,
+  // the file cut there reads the same ticks with nothing left over, and one byte less loses
+  // the last tick.
+  EXPECT_EQ(log.stopped_early.empty(), log.complete_bytes == log.file_bytes) << log.stopped_early;
+  const auto cut = dir.path() / "cut.flog";
+  std::filesystem::copy_file(log_path, cut);
+  std::filesystem::resize_file(cut, log.complete_bytes);
+  fw::FlightLog whole;
+  ASSERT_TRUE(fw::read_flight_log(cut, whole));
+  EXPECT_EQ(whole.stopped_early, "");
+  EXPECT_EQ(whole.file_bytes, log.complete_bytes);
+  EXPECT_EQ(whole.complete_bytes, log.complete_bytes);
+  EXPECT_EQ(whole.ticks.size(), log.ticks.size());
+  std::filesystem::resize_file(cut, log.complete_bytes - 1);
+  fw::FlightLog short_by_one;
+  ASSERT_TRUE(fw::read_flight_log(cut, short_by_one));
+  EXPECT_NE(short_by_one.stopped_early, "");
+  EXPECT_EQ(short_by_one.ticks.size(), log.ticks.size() - 1);
+  EXPECT_LT(short_by_one.complete_bytes, log.complete_bytes);
   RecordProperty("ticks_before_kill", static_cast<int>(log.ticks.size()));
 
   const nlohmann::json py = python_summary(log_path);

@@ -105,7 +105,7 @@ TEST(StrideFwSimPush, TheFirmwareOnTheSimHalTakesPushesToo) {
   const std::string err = stride::test::run_command(
       std::string(STRIDE_BIN_DIR) + "/stride-fw --hal sim --ticks 10 --no-rt --push 1,up,1 2>&1",
       code);
-  EXPECT_NE(code, 0);
+  EXPECT_EQ(code, 2) << err;  // bad input (DESIGN.md "Command-line contract")
   EXPECT_NE(err.find("--push: direction must be"), std::string::npos) << err;
   EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
 }

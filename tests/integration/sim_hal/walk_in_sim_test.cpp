@@ -154,8 +154,9 @@ TEST(WalkInSim, BackwardAndTurningTwentySecondsWithoutFalling) {
 namespace stride {
 namespace {
 
-// Heading hold (walk.balance.heading_*, off by default; firmware/src/walk/README.md has the
-// measurements behind the settings used here).
+// Heading hold (walk.balance.heading_*, gain 0.5 by default since issue 29; these tests set it
+// on or off themselves; firmware/src/walk/README.md has the measurements behind the settings
+// used here).
 const std::vector<fw::ParamWrite> kHoldOn{{"walk.balance.heading_gain", 0.5},
                                           {"walk.balance.heading_max_correction", 0.3}};
 constexpr double kDeg = 180.0 / 3.141592653589793;

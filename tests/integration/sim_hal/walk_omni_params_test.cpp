@@ -1,9 +1,11 @@
 // The walk-omni run's chosen parameter file (firmware/config/walk-omni.json: the front member
-// of optimiser/configs/walk-omni.json's full run, issue 22) drives the firmware in every
-// direction: one direction per axis, 20 s on 10 noisy seeds, no fall. It pins the world it was
-// found in (the seed's: WorldPreset::kSeed) and the walk defaults of then (seed-walk.json).
+// of optimiser/configs/walk-omni.json's full run, issue 22) drives the firmware in one
+// direction per axis, 20 s on 10 noisy seeds, without a fall; only the turn goes the
+// commanded way. It pins the world it was found in (the seed's: WorldPreset::kSeed) and the
+// walk defaults of then (seed-walk.json).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <memory>
 
@@ -16,7 +18,9 @@ namespace {
 
 const char* const kParams = STRIDE_SOURCE_DIR "/firmware/config/walk-omni.json";
 
-sim::EpisodeResult walk(std::uint64_t seed, double vx, double vy, double vth) {
+/// One 20 s walk; `state` gets the motion state at its end.
+sim::EpisodeResult walk(std::uint64_t seed, double vx, double vy, double vth,
+                        fw::MotionState* state) {
   std::unique_ptr<fw::Firmware> firmware;
   EXPECT_TRUE(fw::Firmware::create({}, firmware));
   EXPECT_TRUE(
@@ -37,10 +41,17 @@ sim::EpisodeResult walk(std::uint64_t seed, double vx, double vy, double vth) {
   };
   sim::EpisodeOptions episode;
   episode.duration_s = 20.0;
-  return sim::run_episode(robot, step, episode);
+  const sim::EpisodeResult result = sim::run_episode(robot, step, episode);
+  *state = controller.motion().state();
+  return result;
 }
 
-TEST(WalkOmniParams, BackwardSidewaysAndTurningTwentySecondsOnTenSeeds) {
+// Backward, left and turning left, 20 s on seeds 1-10: no fall, still walking at the end, and
+// the turn turns left (measured 1.68-2.44 rad). Backward and left step but do not go the
+// commanded way in this world (measured: backward ends 0.02-0.31 m *forward* on every seed; left
+// ends 0.18 m left on seed 5 and 0.003-0.11 m *right* on the nine others: the issue-22 run
+// found no feasible member, optimiser/README.md), so for them the test checks no more than that.
+TEST(WalkOmniParams, BackwardAndLeftTwentySecondsWithoutAFallAndTheTurnTurnsOnTenSeeds) {
   struct Direction {
     const char* name;
     double vx, vy, vth;
@@ -48,13 +59,22 @@ TEST(WalkOmniParams, BackwardSidewaysAndTurningTwentySecondsOnTenSeeds) {
   for (const Direction d : {Direction{"backward", -1, 0, 0}, Direction{"left", 0, 1, 0},
                             Direction{"turn left", 0, 0, 1}}) {
     int survived = 0;
+    double least_turn = 1e9;
     for (std::uint64_t seed = 1; seed <= 10; ++seed) {
-      const sim::EpisodeResult r = walk(seed, d.vx, d.vy, d.vth);
+      fw::MotionState state = fw::MotionState::kStand;
+      const sim::EpisodeResult r = walk(seed, d.vx, d.vy, d.vth, &state);
+      std::printf("  %s seed %llu: x %.4f m y %.4f m turned %.4f rad\n", d.name,
+                  static_cast<unsigned long long>(seed), r.distance_m, r.lateral_m, r.turned_rad);
       EXPECT_FALSE(r.fell) << d.name << ", seed " << seed << " at " << r.sim_time_s << " s";
       EXPECT_EQ(r.status, sim::WorldStatus::kRunning) << r.failure_reason;
+      EXPECT_EQ(state, fw::MotionState::kWalk) << d.name << ", seed " << seed;
       survived += r.fell ? 0 : 1;
+      least_turn = std::min(least_turn, r.turned_rad);
     }
     std::printf("walk-omni.json %s: %d/10 seeds 20 s without a fall\n", d.name, survived);
+    if (d.vth > 0) {
+      EXPECT_GT(least_turn, 1.4) << "turned left at least";  // measured 1.68
+    }
   }
 }
 

@@ -1,10 +1,14 @@
-// CaptureStep: off by default (the clock-driven seed walk); the walk's own periodic rocking is
-// learned and not fed back; a tilt beyond it moves the next footstep towards where the robot
-// falls and changes the step timing the right way; allocation-free.
+// CaptureStep: its footstep and timing feedback off by default (gains 0), its support exchange
+// at touchdown on (since issue 29); the walk's own periodic rocking is learned and not fed back;
+// a tilt beyond it moves the next footstep towards where the robot falls and changes the step
+// timing the right way, in the class and inside the walk engine; allocation-free.
 #include "stride/firmware/walk/capture_step.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -137,6 +141,120 @@ TEST(WalkCaptureStep, ALandedSwingFootEndsItsStepEarly) {
   const int early = steps_taken(0.3, 0.5, 10.0);
   EXPECT_GT(early, by_clock);
   EXPECT_LE(early, by_clock + 2);
+}
+
+/// A walk engine walking in place 12 s with the trunk upright, then (from `disturb_s`) rolled
+/// `roll` rad to its right, as the IMU reports it; per step, the feet at the step's last tick
+/// and the tick the step began.
+struct EngineWalk {
+  std::vector<WalkEngine::Snapshot> step_ends;
+  std::vector<hal::Tick> step_starts;
+  double max_phase_rate = 1.0, min_phase_rate = 1.0;
+};
+
+EngineWalk walk_engine(const std::vector<ParamWrite>& gains, double disturb_s, double roll) {
+  ParameterStore store;
+  WalkEngine engine(store, ServoTable::defaults(), 10'000'000);
+  EXPECT_TRUE(store.set_now(gains).is_ok());
+  hal::SensorFrame sensors;
+  hal::CommandFrame out{};
+  engine.set_velocity(0.0, 0.0, 0.0);
+  sensors.cm730 = imu_at(0.0, 0.0, 0.0, 0.0);
+  engine.start(sensors, out, 0);
+  EngineWalk walk;
+  WalkEngine::Snapshot last;
+  for (hal::Tick tick = 0; tick < 1200; ++tick) {
+    sensors.cm730 = imu_at(tick * kPeriod >= disturb_s ? roll : 0.0, 0.0, 0.0, 0.0);
+    engine.step(sensors, tick, out);
+    const WalkEngine::Snapshot& now = engine.snapshot();
+    if (now.step_count != last.step_count) {
+      if (last.step_count > 0) walk.step_ends.push_back(last);
+      walk.step_starts.push_back(tick);
+    }
+    walk.max_phase_rate = std::max(walk.max_phase_rate, now.phase_rate);
+    walk.min_phase_rate = std::min(walk.min_phase_rate, now.phase_rate);
+    last = now;
+  }
+  return walk;
+}
+
+/// The first step that began after `s` seconds.
+std::size_t first_step_after(const EngineWalk& walk, double s) {
+  std::size_t i = 0;
+  while (i < walk.step_starts.size() && walk.step_starts[i] * kPeriod < s) ++i;
+  return i;
+}
+
+// Inside the walk engine: the trunk rolls 0.05 rad to its right at 8 s, beyond the rocking the
+// capture step has learned; the next right footstep lands further right (the footstep feedback)
+// and the steps' timing changes (the timing feedback). With the gains at 0 (the default) the
+// same disturbance changes nothing.
+TEST(WalkCaptureStep, InTheWalkEngineALateralTiltMovesTheNextFootstep) {
+  const std::vector<ParamWrite> footstep{{"walk.capture.step_gain_y", 1.0}};
+  const EngineWalk calm = walk_engine(footstep, 1e9, 0.0);
+  const EngineWalk tilted = walk_engine(footstep, 8.0, 0.05);
+  const EngineWalk off = walk_engine({}, 8.0, 0.05);
+  ASSERT_EQ(tilted.step_starts, calm.step_starts);  // the timing feedback is off
+  ASSERT_EQ(off.step_ends.size(), calm.step_ends.size());
+  const std::size_t first = first_step_after(calm, 8.0);
+  ASSERT_LT(first + 2, calm.step_ends.size());
+  double right_shift = 0.0;
+  for (std::size_t i = 0; i < calm.step_ends.size(); ++i) {
+    const double left = tilted.step_ends[i].left_foot.y - calm.step_ends[i].left_foot.y;
+    const double right = tilted.step_ends[i].right_foot.y - calm.step_ends[i].right_foot.y;
+    std::printf("step %zu (%s swings): left foot %+.4f m, right foot %+.4f m, capture y %+.4f\n",
+                i + 1, calm.step_ends[i].swing == Foot::kLeft ? "left" : "right", left, right,
+                tilted.step_ends[i].capture_y);
+    if (i < first) {
+      EXPECT_EQ(left, 0.0) << i;  // before the tilt: the same walk
+      EXPECT_EQ(right, 0.0) << i;
+    }
+    if (i >= first && calm.step_ends[i].swing == Foot::kRight && right_shift == 0.0)
+      right_shift = right;
+    EXPECT_EQ(off.step_ends[i].right_foot.y, calm.step_ends[i].right_foot.y) << i;
+    EXPECT_EQ(off.step_ends[i].left_foot.y, calm.step_ends[i].left_foot.y) << i;
+  }
+  // Measured: the first right step after the tilt lands 17.5 mm further right (the capture
+  // point's deviation then, -19 mm, times step_gain_y 1).
+  EXPECT_NEAR(right_shift, -0.0175, 0.001);
+  EXPECT_GE(right_shift, -0.04 - 1e-9);  // walk.capture.max_step_y
+}
+
+TEST(WalkCaptureStep, InTheWalkEngineALateralTiltChangesTheStepTiming) {
+  const std::vector<ParamWrite> timing{{"walk.capture.timing_gain", 10.0}};
+  const EngineWalk calm = walk_engine(timing, 1e9, 0.0);
+  const EngineWalk tilted = walk_engine(timing, 8.0, 0.05);
+  const EngineWalk off = walk_engine({}, 8.0, 0.05);
+  EXPECT_EQ(off.step_starts, walk_engine({}, 1e9, 0.0).step_starts);
+  const std::size_t first = first_step_after(calm, 8.0);
+  ASSERT_LT(first + 2, calm.step_starts.size());
+  ASSERT_GT(first, 3u);
+  for (std::size_t i = 0; i < first; ++i) EXPECT_EQ(tilted.step_starts[i], calm.step_starts[i]);
+  std::printf("steps begin at ticks: calm");
+  for (std::size_t i = first - 1; i < first + 3; ++i)
+    std::printf(" %lld", static_cast<long long>(calm.step_starts[i]));
+  std::printf(", tilted");
+  for (std::size_t i = first - 1; i < first + 3; ++i)
+    std::printf(" %lld", static_cast<long long>(tilted.step_starts[i]));
+  std::printf("; phase rate %.3f..%.3f\n", tilted.min_phase_rate, tilted.max_phase_rate);
+  // The step in flight at the tilt swings the left foot, away from where the capture point
+  // goes: it lands later (measured 14 ticks); the next one, the right foot's, sooner (71 ticks
+  // instead of 85); the calm walk keeps the clock's 85.
+  ASSERT_EQ(calm.step_ends[first - 1].swing, Foot::kLeft);
+  const auto duration = [](const EngineWalk& w, std::size_t i) {
+    return w.step_starts[i + 1] - w.step_starts[i];
+  };
+  EXPECT_GE(tilted.step_starts[first] - calm.step_starts[first], 5);
+  EXPECT_EQ(duration(calm, first), 85);
+  EXPECT_LE(duration(tilted, first), 80);
+  EXPECT_GE(duration(tilted, first), 85 / 1.3);  // walk.capture.max_timing 0.3
+  EXPECT_GT(duration(tilted, first + 1), 85);    // the left foot's again: later
+  EXPECT_GT(tilted.max_phase_rate, 1.05);
+  EXPECT_LT(tilted.min_phase_rate, 0.95);
+  EXPECT_GE(tilted.min_phase_rate, 0.7 - 1e-9);
+  EXPECT_LE(tilted.max_phase_rate, 1.3 + 1e-9);
+  EXPECT_EQ(calm.max_phase_rate, 1.0);  // no deviation, no change
+  EXPECT_EQ(calm.min_phase_rate, 1.0);
 }
 
 TEST(WalkCaptureStep, UpdateAllocatesNothing) {

@@ -1,6 +1,7 @@
-// ComplianceCompensation: off by default (the seed's walk); the torques it predicts balance the
-// robot's weight (a stance knee must extend, the robot's weight shared in double support); the
-// goals move by torque / servo stiffness, bounded; it allocates nothing per tick.
+// ComplianceCompensation: on by default (gain 1 since issue 29; seed-walk.json sets 0, off); the
+// torques it predicts balance the robot's weight (a stance knee must extend, the robot's weight
+// shared in double support); the goals move by torque / servo stiffness, bounded; it allocates
+// nothing per tick.
 #include "stride/firmware/walk/compliance_compensation.hpp"
 
 #include <cmath>

@@ -19,7 +19,8 @@ namespace {
 constexpr double kPeriod = 0.01;
 constexpr std::int64_t kPeriodNs = 10'000'000;
 
-// The hold is off by default (walk.balance.heading_gain 0); these tests switch it on.
+// The hold is on by default (walk.balance.heading_gain 0.5 since issue 29); these tests set
+// their own gain and limit.
 const std::vector<ParamWrite> kOn{{"walk.balance.heading_gain", 0.3},
                                   {"walk.balance.heading_max_correction", 0.1}};
 

@@ -496,14 +496,6 @@ TEST(TaskConfig, AWorldFileReachesEveryTrialWorld) {
   EXPECT_EQ(error_of(d), "world: robot.latency_ticks: must be an integer in 0..3, got 9");
 }
 
-TEST(TaskConfig, RoundTripsThroughJson) {
-  TaskConfig a, b;
-  ASSERT_TRUE(load_task_config(kConfigs + "walk.json", a));
-  ASSERT_TRUE(parse_task_config(to_json(a), b));
-  EXPECT_EQ(to_json(a), to_json(b));
-  EXPECT_EQ(b.genes.size(), 46u);
-}
-
 TEST(RunReport, NonDominatedAndKnee) {
   const auto front = non_dominated({{3, 1}, {1, 3}, {2, 2}, {2.5, 2.5}, {4, 4}, {1, 5}});
   ASSERT_EQ(front.size(), 3u);

@@ -381,7 +381,7 @@
   });
 
   // For the browser test: hide the robots (an empty-scene render to compare pixels with), the
-  // world positions of every shown link, a fresh render.
+  // world positions of every shown link (and each individual's link origins), a fresh render.
   api.render = renderNow;
   api.canvas = canvas;
   api.shown = function () { return shown().map(function (run) { return run.ind.name; }); };
@@ -397,6 +397,19 @@
         out.push([p.x, p.y, p.z]);
       }
     return out;
+  };
+  // Per shown individual: its index in #replay-data and its links' origins as drawn, in the
+  // simulation's world frame (the layout's lane offset taken off), model link order.
+  api.linkOrigins = function () {
+    return shown().map(function (run) {
+      run.lane.updateMatrixWorld(true);
+      const links = [];
+      for (let i = 0; i < run.links.length; ++i) {
+        const l = run.links[i];
+        links.push(l ? run.lane.worldToLocal(l.getWorldPosition(new THREE.Vector3())).toArray() : null);
+      }
+      return {index: run.index, links: links};
+    });
   };
 
   resize();

@@ -1,0 +1,65 @@
+// The speed ramp of one direction (task "walk-ramp", speed_ramp.hpp has the rules), apart from
+// the simulation: which level a moment belongs to, its command and measurement window, each
+// level's speed and straightness from three walking frames, and whether the direction goes on
+// (levels, patience, straightness). walk_ramp_task.cpp feeds it the simulated robot's frames.
+#pragma once
+
+#include <array>
+
+#include "stride/optimiser/tasks/task_config.hpp"
+#include "stride/optimiser/tasks/walk_measures.hpp"
+
+namespace stride::opt {
+
+/// The drift ratio's floor of a ramp [m]: a direction that has walked less is held to 0.5 m's
+/// allowance (5 cm at 10 %), not the walk task's 0.25 m: the first levels are slow, and the
+/// feet's step-to-step sway alone is 1-3 cm (Ind_O drifts 3 cm in its first 0.05 m forward).
+inline constexpr double kRampDriftFloorM = 0.5;
+
+/// One completed level's figures.
+struct RampLevel {
+  double speed = 0.0;               ///< over the window, along the command [m/s or rad/s]
+  double drift_ratio = 0.0;         ///< translations: since the direction's start
+  double heading_change_rad = 0.0;  ///< translations: since the direction's start
+  double translation_m = 0.0;       ///< turns: over the window
+  bool straight = true;             ///< within the config's straightness limits
+};
+
+/// A level's figures from the walking frame at the direction's first level start, at its
+/// measurement window's start and at its end; `axis` the direction's normalised command, the
+/// limits the config's max_drift_ratio, max_heading_change_deg, max_turn_translation_m.
+RampLevel measure_ramp_level(const PlanarPose& direction_start, const PlanarPose& window_start,
+                             const PlanarPose& end, const std::array<double, 3>& axis,
+                             const TaskConfig& config);
+
+class RampDirection {
+ public:
+  explicit RampDirection(const TaskConfig& config) : config_(config) {}
+  /// The level at `t` [s] from the episode's start: 0 before ramp.start_s, then 1, 2, ...
+  int level_at(double t) const;
+  /// The command's share of full scale at `level`: min(1, level * increment).
+  double command_scale(int level) const;
+  /// Whether `level`'s measurement window (its last measure_s) has begun at `t`.
+  bool window_begun(int level, double t) const;
+  /// `level` begins: the direction ends past max_levels.
+  void begin_level(int level);
+  /// A level's figures: the direction ends if it was not straight, or after `patience` levels
+  /// in a row no faster than the best; otherwise a faster level becomes the best.
+  void end_level(int level, const RampLevel& figures);
+
+  bool ended() const { return ended_; }
+  /// A level was held (its speed counted).
+  bool counted() const { return counted_; }
+  /// The first level was already beyond the straightness limits.
+  bool crooked_first() const { return crooked_first_; }
+  /// The fastest straight level (zeros until one is counted).
+  const RampLevel& best() const { return best_; }
+
+ private:
+  const TaskConfig& config_;
+  int levels_without_gain_ = 0;
+  bool ended_ = false, counted_ = false, crooked_first_ = false;
+  RampLevel best_;
+};
+
+}  // namespace stride::opt
