@@ -1,5 +1,6 @@
-// WalkEngine: the seed's open-loop ZMP walk (NUbots OldWalkEngine, a port of the UPenn 2013
-// DARwIn walk; igus.md 2) driving the igus legs through exact leg IK. firmware/src/walk/README.md
+// WalkEngine: the seed's ZMP walk (NUbots OldWalkEngine, a port of the UPenn 2013 DARwIn walk;
+// igus.md 2) driving the igus legs through exact leg IK, closed by the balance feedback below
+// (on by default; with its gains at 0 it is the seed's open-loop walk). firmware/src/walk/README.md
 // has the equations, parameter names and the departures from NUbots.
 //
 // Per tick: phase phi = (t - t_step_begin)/T; at phi >= 1 a new step is planned (velocity
