@@ -8,6 +8,7 @@
 
 #include "stride/sim_hal/sim_robot.hpp"
 #include "stride/sim_hal/sim_world.hpp"
+#include "sway_episode.hpp"
 
 namespace stride::sim {
 namespace {
@@ -31,26 +32,8 @@ ResetSpec task_spec() {
   return spec;
 }
 
-/// Runs 40 periods of a swaying Stand pose; returns the final state hash and the sum of the
-/// accelerometer's x readings (the noise and biases drawn at the reset show there).
 std::pair<std::uint64_t, double> sway(std::unique_ptr<SimWorld> world) {
-  SimRobot robot(std::move(world));
-  hal::SensorFrame sensors;
-  double accel_sum = 0.0;
-  for (hal::Tick k = 1; k <= 40; ++k) {
-    robot.sleep_until(k);
-    robot.read(sensors);
-    accel_sum += sensors.cm730.accel_mps2[0];
-    hal::CommandFrame frame;
-    for (std::size_t i = 0; i < hal::kServoCount; ++i) {
-      frame.servos[i].position_rad =
-          igus_stand_pose()[i] + 0.05 * std::sin(0.1 * static_cast<double>(k));
-      frame.servos[i].p_gain = 76;
-      frame.servos[i].torque_enable = true;
-    }
-    robot.write(frame);
-  }
-  return {robot.world().state_hash(), accel_sum};
+  return test::sway(std::move(world), 40);
 }
 
 /// The way worlds were made before: create() (its start-up reset) and the task's reset.

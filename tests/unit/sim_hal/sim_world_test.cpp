@@ -5,6 +5,7 @@
 
 #include "stride/sim_hal/sim_robot.hpp"
 #include "stride/sim_hal/sim_world.hpp"
+#include "sway_episode.hpp"
 
 namespace stride::sim {
 namespace {
@@ -165,24 +166,7 @@ TEST(SimWorld, SameSeedGivesBitIdenticalStatesAndOtherSeedsDiffer) {
   options.randomise = {0.2, 0.05, 0.1, 0.5};
   auto run = [&](std::uint64_t seed) {
     options.seed = seed;
-    auto world = make_world(options);
-    SimRobot robot(std::move(world));
-    hal::SensorFrame sensors;
-    double accel_sum = 0;
-    for (hal::Tick k = 1; k <= 50; ++k) {
-      robot.sleep_until(k);
-      robot.read(sensors);
-      accel_sum += sensors.cm730.accel_mps2[0];
-      hal::CommandFrame frame;
-      for (std::size_t i = 0; i < hal::kServoCount; ++i) {
-        frame.servos[i].position_rad =
-            igus_stand_pose()[i] + 0.05 * std::sin(0.1 * static_cast<double>(k));
-        frame.servos[i].p_gain = 76;
-        frame.servos[i].torque_enable = true;
-      }
-      robot.write(frame);
-    }
-    return std::pair{robot.world().state_hash(), accel_sum};
+    return test::sway(make_world(options), 50);
   };
   const auto a = run(7), b = run(7), c = run(8);
   EXPECT_EQ(a.first, b.first);
