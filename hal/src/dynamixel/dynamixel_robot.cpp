@@ -79,9 +79,11 @@ bool DynamixelRobot::transact(std::span<const std::uint8_t> packet, std::uint8_t
   const std::int64_t tx_deadline = now + wire_time_ns(packet.size(), baud) + options_.margin_ns;
   if (!send(packet, tx_deadline)) return false;
   if (!expect_reply) return true;
-  // Start-up replies may still come with the factory return delay (250 * 2 us).
+  // Start-up replies may still come with the factory return delay (250 * 2 us); the wait is
+  // the start-up one, not the loop's margin (nothing is budgeted before the loop runs).
   const std::int64_t deadline = monotonic_ns() + wire_time_ns(packet.size(), baud) +
-                                wire_time_ns(6 + reply_params, baud) + 500'000 + options_.margin_ns;
+                                wire_time_ns(6 + reply_params, baud) + 500'000 +
+                                std::max(options_.margin_ns, options_.startup_reply_wait_ns);
   for (;;) {
     while (parser_.next(packet_)) {
       diagnostics_.bytes_rx += 0;

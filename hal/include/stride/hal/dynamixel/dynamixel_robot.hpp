@@ -48,7 +48,12 @@ class DynamixelRobot final : public Robot {
     std::array<std::string, kServoCount> names{};  ///< joint names, for messages
     std::uint8_t status_return_level = 1;
     std::int64_t margin_ns = 1'500'000;  ///< added to every transaction's computed time
-    double bus_budget_fraction = 0.6;    ///< read+write must finish within this part of a period
+    /// Start-up (start()) only: how long a ping or register read waits past its wire time.
+    /// Outside the loop nothing is budgeted, so it is generous: a real device answers within
+    /// its return delay (<= 0.5 ms), but a device emulated by another process (stride vbus on
+    /// a pty) may wait for a core on a loaded host. A missing device costs ping_retries x this.
+    std::int64_t startup_reply_wait_ns = 25'000'000;
+    double bus_budget_fraction = 0.6;  ///< read+write must finish within this part of a period
     std::uint32_t max_consecutive_failures = 5;
     std::uint32_t retry_interval_ticks = 50;
     std::uint32_t refresh_interval_ticks = 100;
