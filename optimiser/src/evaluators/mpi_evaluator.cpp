@@ -20,10 +20,13 @@ constexpr int kTagResult = 2;
 constexpr int kTagStop = 3;
 constexpr int kTagReason = 4;
 
-std::vector<double> encode_task(std::size_t index, const Genome& genome) {
+// A task: index, draw, real count, reals, bits (the draw is exact below 2^53).
+std::vector<double> encode_task(std::size_t index, const Candidate& candidate) {
+  const Genome& genome = candidate.genome;
   std::vector<double> msg;
-  msg.reserve(2 + genome.reals.size() + genome.bits.size());
+  msg.reserve(3 + genome.reals.size() + genome.bits.size());
   msg.push_back(static_cast<double>(index));
+  msg.push_back(static_cast<double>(candidate.draw));
   msg.push_back(static_cast<double>(genome.reals.size()));
   msg.insert(msg.end(), genome.reals.begin(), genome.reals.end());
   for (std::uint8_t b : genome.bits) msg.push_back(b);
@@ -81,7 +84,7 @@ void MpiEvaluator::evaluate(const Problem& problem, const std::vector<Candidate>
   }
   std::size_t next = 0, outstanding = 0;
   for (int r = 1; r < ranks_ && next < batch.size(); ++r, ++next, ++outstanding) {
-    const std::vector<double> msg = encode_task(next, batch[next].genome);
+    const std::vector<double> msg = encode_task(next, batch[next]);
     MPI_Send(msg.data(), static_cast<int>(msg.size()), MPI_DOUBLE, r, kTagTask, MPI_COMM_WORLD);
   }
   while (outstanding > 0) {
@@ -91,7 +94,7 @@ void MpiEvaluator::evaluate(const Problem& problem, const std::vector<Candidate>
     std::string reason = receive_text(worker, kTagReason);
     --outstanding;
     if (next < batch.size()) {
-      const std::vector<double> task = encode_task(next, batch[next].genome);
+      const std::vector<double> task = encode_task(next, batch[next]);
       MPI_Send(task.data(), static_cast<int>(task.size()), MPI_DOUBLE, worker, kTagTask,
                MPI_COMM_WORLD);
       ++next;
@@ -129,15 +132,16 @@ Status run_mpi_worker(const Problem& problem) {
       return {};
     }
     const std::vector<double> msg = receive_doubles(0, kTagTask, status);
-    if (msg.size() < 2) return Status::error("MPI: malformed task from rank 0");
+    if (msg.size() < 3) return Status::error("MPI: malformed task from rank 0");
     Genome genome;
-    const auto reals = static_cast<std::size_t>(msg[1]);
-    if (reals != n_reals || msg.size() < 2 + reals)
+    const auto draw = static_cast<std::uint64_t>(msg[1]);
+    const auto reals = static_cast<std::size_t>(msg[2]);
+    if (reals != n_reals || msg.size() < 3 + reals)
       return Status::error("MPI: task gene count differs from the problem");
-    genome.reals.assign(msg.begin() + 2, msg.begin() + 2 + static_cast<std::ptrdiff_t>(reals));
-    for (std::size_t i = 2 + reals; i < msg.size(); ++i)
+    genome.reals.assign(msg.begin() + 3, msg.begin() + 3 + static_cast<std::ptrdiff_t>(reals));
+    for (std::size_t i = 3 + reals; i < msg.size(); ++i)
       genome.bits.push_back(msg[i] != 0.0 ? 1 : 0);
-    const EvaluationOutcome outcome = evaluate_safely(problem, genome);
+    const EvaluationOutcome outcome = evaluate_safely(problem, genome, draw);
     std::vector<double> out = {msg[0], outcome.failed ? 1.0 : 0.0,
                                static_cast<double>(outcome.objectives.size()),
                                static_cast<double>(outcome.constraints.size())};

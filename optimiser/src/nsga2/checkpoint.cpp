@@ -58,16 +58,18 @@ Status parse_genome(const json& j, const ProblemShape& shape, Individual& ind) {
 }
 
 json settings_json(const Nsga2Settings& s) {
-  return json{{"seed", s.seed},
-              {"pop_size", s.pop_size},
-              {"generations", s.generations},
-              {"real_cross_prob", exact_double(s.real_cross_prob)},
-              {"real_mut_prob", exact_double(s.real_mut_prob)},
-              {"eta_c", exact_double(s.eta_c)},
-              {"eta_m", exact_double(s.eta_m)},
-              {"bin_cross_prob", exact_double(s.bin_cross_prob)},
-              {"bin_mut_prob", exact_double(s.bin_mut_prob)},
-              {"seed_mutation_fraction", exact_double(s.seed_mutation_fraction)}};
+  json j{{"seed", s.seed},
+         {"pop_size", s.pop_size},
+         {"generations", s.generations},
+         {"real_cross_prob", exact_double(s.real_cross_prob)},
+         {"real_mut_prob", exact_double(s.real_mut_prob)},
+         {"eta_c", exact_double(s.eta_c)},
+         {"eta_m", exact_double(s.eta_m)},
+         {"bin_cross_prob", exact_double(s.bin_cross_prob)},
+         {"bin_mut_prob", exact_double(s.bin_mut_prob)},
+         {"seed_mutation_fraction", exact_double(s.seed_mutation_fraction)}};
+  if (s.resample) j["resample"] = true;  // written only when on: older checkpoints stay equal
+  return j;
 }
 
 Status parse_settings(const json& j, Nsga2Settings& s) {
@@ -88,6 +90,7 @@ Status parse_settings(const json& j, Nsga2Settings& s) {
         return Status::error(std::string("checkpoint: settings.") + name + " is malformed");
       }
     }
+    s.resample = j.value("resample", false);
   } catch (const json::exception& e) {
     return Status::error(std::string("checkpoint: settings are malformed: ") + e.what());
   }
@@ -214,9 +217,10 @@ Status Nsga2::restore(const json& cp, const ProblemShape& shape,
   }
   const auto n = static_cast<std::size_t>(settings.pop_size);
   const bool initial = engine->completed_ == 0;
+  // A resampling run's batch holds the parents again after the children (nsga2.hpp).
+  const std::size_t batch = engine->finished() ? 0 : settings.resample && !initial ? 2 * n : n;
   if (engine->completed_ < 0 || engine->completed_ > settings.generations ||
-      engine->population_.size() != (initial ? 0 : n) ||
-      engine->batch_.size() != (engine->finished() ? 0 : n)) {
+      engine->population_.size() != (initial ? 0 : n) || engine->batch_.size() != batch) {
     return Status::error("checkpoint: population or batch size does not match its settings");
   }
   for (std::size_t i = 1; i < engine->batch_.size(); ++i) {
@@ -224,8 +228,12 @@ Status Nsga2::restore(const json& cp, const ProblemShape& shape,
       return Status::error("checkpoint: batch ids are not consecutive");
     }
   }
-  for (const auto& [genome, result] : known)
-    engine->cache_.insert_or_assign(HashedGenome{GenomeBitsHash{}(genome), genome}, result);
+  // The cache of a resampling run holds the current draw only, and nothing of the batch after
+  // a checkpoint has been evaluated yet.
+  if (!settings.resample) {
+    for (const auto& [genome, result] : known)
+      engine->cache_.insert_or_assign(HashedGenome{GenomeBitsHash{}(genome), genome}, result);
+  }
   engine->resolve_batch();
   out = std::move(engine);
   return {};

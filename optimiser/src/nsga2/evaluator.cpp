@@ -12,9 +12,10 @@
 
 namespace stride::opt {
 
-EvaluationOutcome evaluate_safely(const Problem& problem, const Genome& genome) {
+EvaluationOutcome evaluate_safely(const Problem& problem, const Genome& genome,
+                                  std::uint64_t draw) {
   try {
-    return problem.evaluate(genome);
+    return problem.evaluate_on(genome, draw);
   } catch (const std::exception& e) {
     return EvaluationOutcome::failure(std::string("evaluation threw: ") + e.what());
   } catch (...) {
@@ -25,16 +26,17 @@ EvaluationOutcome evaluate_safely(const Problem& problem, const Genome& genome) 
 void SerialEvaluator::evaluate(const Problem& problem, const std::vector<Candidate>& batch,
                                const ReportFn& report) {
   for (std::size_t i = 0; i < batch.size(); ++i)
-    report(i, evaluate_safely(problem, batch[i].genome));
+    report(i, evaluate_safely(problem, batch[i].genome, batch[i].draw));
 }
 
 namespace {
 
 /// Part `part` of `genome`'s evaluation, or why it failed (an exception, a missing result).
 std::unique_ptr<PartResult> evaluate_part_safely(const Problem& problem, const Genome& genome,
-                                                 std::size_t part, std::string& error) {
+                                                 std::size_t part, std::uint64_t draw,
+                                                 std::string& error) {
   try {
-    std::unique_ptr<PartResult> result = problem.evaluate_part(genome, part);
+    std::unique_ptr<PartResult> result = problem.evaluate_part(genome, part, draw);
     if (result == nullptr) error = "part " + std::to_string(part) + " gave no result";
     return result;
   } catch (const std::exception& e) {
@@ -114,7 +116,8 @@ void ThreadPoolEvaluator::evaluate(const Problem& problem, const std::vector<Can
       const Job job = jobs[j];
       Parts& p = parts[job.candidate];
       const Genome& genome = batch[job.candidate].genome;
-      p.results[job.part] = evaluate_part_safely(problem, genome, job.part, p.errors[job.part]);
+      p.results[job.part] = evaluate_part_safely(problem, genome, job.part,
+                                                 batch[job.candidate].draw, p.errors[job.part]);
       // acq_rel: the worker that takes the count to zero sees every other part's writes.
       if (p.remaining.fetch_sub(1, std::memory_order_acq_rel) == 1)
         finish(job.candidate, fold_safely(problem, genome, p.results, p.errors));

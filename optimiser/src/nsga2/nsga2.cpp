@@ -45,25 +45,37 @@ Nsga2::Nsga2(const Nsga2Settings& settings, const ProblemShape& shape)
 
 Status Nsga2::create(const Nsga2Settings& settings, const ProblemShape& shape,
                      const std::optional<Genome>& start, std::unique_ptr<Nsga2>& out) {
+  return create(settings, shape, start ? std::vector<Genome>{*start} : std::vector<Genome>{}, out);
+}
+
+Status Nsga2::create(const Nsga2Settings& settings, const ProblemShape& shape,
+                     const std::vector<Genome>& starts, std::unique_ptr<Nsga2>& out) {
   if (auto st = validate(settings); !st) return st;
   if (auto st = validate(shape); !st) return st;
-  if (start) {
-    if (auto st = validate_genome(shape, *start); !st) return st;
+  if (starts.size() > static_cast<std::size_t>(settings.pop_size))
+    return Status::error(std::to_string(starts.size()) + " start genomes for a population of " +
+                         std::to_string(settings.pop_size));
+  for (std::size_t k = 0; k < starts.size(); ++k) {
+    if (auto st = validate_genome(shape, starts[k]); !st)
+      return starts.size() == 1
+                 ? st
+                 : Status::error("start " + std::to_string(k + 1) + ": " + st.message());
   }
   std::unique_ptr<Nsga2> engine(new Nsga2(settings, shape));
-  engine->make_initial_batch(start);
+  engine->make_initial_batch(starts);
   out = std::move(engine);
   return {};
 }
 
-void Nsga2::make_initial_batch(const std::optional<Genome>& start) {
+void Nsga2::make_initial_batch(const std::vector<Genome>& starts) {
   const auto n = static_cast<std::size_t>(settings_.pop_size);
   batch_.assign(n, Individual{});
   for (std::size_t i = 0; i < n; ++i) {
     Genome& g = batch_[i].genome;
-    if (start) {
-      g = *start;
-      if (i == 0) continue;  // the start genome itself, unmutated
+    if (!starts.empty()) {
+      // The starts themselves first, then mutated copies of each in turn.
+      g = starts[i < starts.size() ? i : (i - starts.size()) % starts.size()];
+      if (i < starts.size()) continue;
       for (std::size_t k = 0; k < g.reals.size(); ++k) {
         if (!rng_.chance(settings_.seed_mutation_fraction)) continue;
         g.reals[k] = polynomial_mutation_value(g.reals[k], shape_.reals[k].min, shape_.reals[k].max,
@@ -131,9 +143,13 @@ std::vector<Candidate> Nsga2::ask() const {
   out.reserve(batch_.size());
   for (std::size_t i = 0; i < batch_.size(); ++i) {
     if (batch_[i].evaluated || alias_of_[i] >= 0) continue;
-    out.push_back(Candidate{batch_[i].id, batch_[i].genome});
+    out.push_back(Candidate{batch_[i].id, batch_[i].genome, batch_draw()});
   }
   return out;
+}
+
+std::uint64_t Nsga2::batch_draw() const {
+  return settings_.resample ? static_cast<std::uint64_t>(completed_) : 0;
 }
 
 const Individual* Nsga2::batch_member(std::uint64_t id) const {
@@ -190,6 +206,9 @@ Status Nsga2::advance() {
   if (population_.empty()) {
     population_ = std::move(batch_);
     rank_and_crowd(population_, nullptr);
+  } else if (settings_.resample) {
+    population_.clear();  // re-evaluated in the batch, on the batch's draw
+    survive();
   } else {
     survive();
   }
@@ -208,6 +227,20 @@ Status Nsga2::extend(int generations) {
   settings_.generations = generations;
   if (was_finished && !finished() && completed_ > 0) make_children();
   return {};
+}
+
+void Nsga2::add_reevaluations() {
+  // The parents again, after the children, for the new draw (their old results are another
+  // draw's): the cache is emptied for the same reason.
+  const std::size_t children = batch_.size();
+  batch_.resize(children + population_.size());
+  for (std::size_t i = 0; i < population_.size(); ++i) {
+    Individual& again = batch_[children + i];
+    again = Individual{};
+    again.genome = population_[i].genome;
+    again.id = next_id_++;
+  }
+  cache_.clear();
 }
 
 void Nsga2::survive() {
@@ -288,6 +321,7 @@ void Nsga2::make_children() {
     bit_flip_mutation(child.genome.bits, settings_.bin_mut_prob, rng_);
     child.id = next_id_++;
   }
+  if (settings_.resample) add_reevaluations();
   resolve_batch();
 }
 

@@ -19,8 +19,13 @@ std::size_t Problem::part_count(const Genome&) const {
   return 1;
 }
 
-std::unique_ptr<PartResult> Problem::evaluate_part(const Genome& genome, std::size_t) const {
-  return std::make_unique<WholeEvaluation>(evaluate(genome));
+EvaluationOutcome Problem::evaluate_on(const Genome& genome, std::uint64_t) const {
+  return evaluate(genome);
+}
+
+std::unique_ptr<PartResult> Problem::evaluate_part(const Genome& genome, std::size_t,
+                                                   std::uint64_t draw) const {
+  return std::make_unique<WholeEvaluation>(evaluate_on(genome, draw));
 }
 
 EvaluationOutcome Problem::fold_parts(const Genome&,

@@ -1,6 +1,7 @@
 // Evaluators: how a batch of genomes gets evaluated. The driver hands a batch to an evaluator,
 // which calls `report(index, outcome)` once per candidate, in any order, always on the calling
-// thread. An exception thrown by Problem::evaluate becomes a failed outcome naming it.
+// thread. An exception thrown by Problem::evaluate becomes a failed outcome naming it. Each
+// candidate is evaluated on its own draw (Candidate::draw, Problem::evaluate_on).
 //   SerialEvaluator      one after the other, in batch order;
 //   ThreadPoolEvaluator  `jobs` worker threads sharing the parts of the whole batch
 //                        (Problem::part_count: a robot task's episodes), taken in batch and
@@ -28,8 +29,9 @@ class Evaluator {
                         const ReportFn& report) = 0;
 };
 
-/// Problem::evaluate with exceptions turned into failures.
-EvaluationOutcome evaluate_safely(const Problem& problem, const Genome& genome);
+/// Problem::evaluate_on(genome, draw) with exceptions turned into failures.
+EvaluationOutcome evaluate_safely(const Problem& problem, const Genome& genome,
+                                  std::uint64_t draw = 0);
 
 class SerialEvaluator final : public Evaluator {
  public:

@@ -13,6 +13,11 @@
 // is not handed out again: its cached result is reused; a genome occurring twice in one batch
 // is handed out once.
 //
+// Resampling (Nsga2Settings::resample, for noisy problems): each batch carries its draw of the
+// problem's noise; the cache then holds one draw only, and from the second generation on the
+// batch is the children followed by the parents again, and survival picks from that batch
+// alone, so that every result compared in one survival comes from the same draw.
+//
 // Checkpoints: checkpoint() after advance() captures everything (population with ranks and
 // crowding, the next batch, the Rng state, counters); restore() with the evaluations made up to
 // that point (for the cache) continues exactly as the uninterrupted run would. Doubles are
@@ -50,6 +55,7 @@ struct Individual {
 struct Candidate {
   std::uint64_t id = 0;
   Genome genome;
+  std::uint64_t draw = 0;  ///< the draw of the problem's noise to evaluate on (Problem)
 };
 
 struct Nsga2Counters {
@@ -65,6 +71,11 @@ class Nsga2 {
   /// Validates everything and builds the first batch. `start` seeds the initial population.
   static Status create(const Nsga2Settings& settings, const ProblemShape& shape,
                        const std::optional<Genome>& start, std::unique_ptr<Nsga2>& out);
+  /// As above with several start genomes: the first members of the initial population are
+  /// the starts unmutated, the others are mutated copies of the starts in turn (one start
+  /// gives exactly the population of the single-start create()). At most pop_size starts.
+  static Status create(const Nsga2Settings& settings, const ProblemShape& shape,
+                       const std::vector<Genome>& starts, std::unique_ptr<Nsga2>& out);
   /// Continues from checkpoint() output. `known` holds every evaluation made up to that
   /// checkpoint (genome and sanitised result), which refills the cache.
   static Status restore(const nlohmann::json& checkpoint, const ProblemShape& shape,
@@ -73,6 +84,9 @@ class Nsga2 {
 
   /// Members of the current batch still waiting for a result (empty when none).
   std::vector<Candidate> ask() const;
+  /// The draw the current batch is evaluated on: its generation's index with
+  /// settings().resample (0 for the initial population), else always 0.
+  std::uint64_t batch_draw() const;
   /// Records the result of batch member `id`; an unknown id or a second result is an error.
   Status tell(std::uint64_t id, EvaluationOutcome outcome);
   bool batch_complete() const;
@@ -99,7 +113,8 @@ class Nsga2 {
 
  private:
   Nsga2(const Nsga2Settings& settings, const ProblemShape& shape);
-  void make_initial_batch(const std::optional<Genome>& start);
+  void make_initial_batch(const std::vector<Genome>& starts);
+  void add_reevaluations();
   void make_children();
   void resolve_batch();
   const Individual& tournament(const Individual& a, const Individual& b);

@@ -9,9 +9,15 @@
 // while one slow genome finishes. part_count(), evaluate_part() and fold_parts() must agree
 // with evaluate(): folding the parts 0..n-1, in that order, gives evaluate()'s outcome bit for
 // bit, whichever thread ran which part. The defaults make the whole evaluate() one part.
+//
+// Draws: a noisy problem (a robot task's randomised trial worlds) may be evaluated on another
+// draw of its noise (Candidate::draw, Nsga2Settings::resample; draw 0 is evaluate()). The
+// outcome must be a pure function of the genome and the draw. A problem without noise ignores
+// the draw (the defaults do).
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
@@ -45,6 +51,8 @@ class Problem {
   virtual const ProblemShape& shape() const = 0;
   /// Evaluates one genome (reals in limits; binary genes decoded with decode_binaries()).
   virtual EvaluationOutcome evaluate(const Genome& genome) const = 0;
+  /// Evaluates one genome on draw `draw` of the problem's noise; the default ignores the draw.
+  virtual EvaluationOutcome evaluate_on(const Genome& genome, std::uint64_t draw) const;
   /// The known front, if any.
   virtual std::optional<FrontReference> reference() const { return std::nullopt; }
 
@@ -52,7 +60,8 @@ class Problem {
   virtual std::size_t part_count(const Genome& genome) const;
   /// Part `part` (< part_count) of the evaluation. Thread-safe, like evaluate(); it may throw
   /// (the evaluator then fails the whole evaluation, naming the part).
-  virtual std::unique_ptr<PartResult> evaluate_part(const Genome& genome, std::size_t part) const;
+  virtual std::unique_ptr<PartResult> evaluate_part(const Genome& genome, std::size_t part,
+                                                    std::uint64_t draw) const;
   /// The evaluation's outcome from all of its parts, in part order.
   virtual EvaluationOutcome fold_parts(const Genome& genome,
                                        std::vector<std::unique_ptr<PartResult>>& parts) const;

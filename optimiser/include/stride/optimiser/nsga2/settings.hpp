@@ -13,6 +13,8 @@
 //   bin_cross_prob        [0, 1]  (recommended 0.5-0.9)   single-point crossover per pair
 //   bin_mut_prob          [0, 1]  (recommended 1/bits)    bit-flip probability per bit
 //   seed_mutation_fraction [0, 1] (default 0.2)           genes mutated around a start genome
+//   resample              false/true (default false)      a new draw of the problem's noise
+//                                                         every generation (see the field)
 // Problem shape: objectives 1..64, constraints 0..1024, at least one gene, real limits finite
 // with min < max, binary genes 1..52 bits with finite min < max.
 #pragma once
@@ -35,9 +37,19 @@ struct Nsga2Settings {
   double bin_cross_prob = 0.9;
   double bin_mut_prob = 0.05;
   double seed_mutation_fraction = 0.2;
+  /// For a noisy problem (a robot task's randomised trial worlds): every generation is
+  /// evaluated on its own draw (Candidate::draw = the generation's index, 0 for the initial
+  /// population), and the parents are evaluated again on that draw beside their children, so
+  /// that survival compares results of one draw and no genome lives on a lucky draw. A batch
+  /// then holds 2 x pop_size genomes from the second generation on (children, then parents).
+  bool resample = false;
 
   bool operator==(const Nsga2Settings&) const = default;
 };
+
+/// The draw no generation uses (generations stay below 10^6): a resampling run scores its
+/// final front again on it before its picks are named (front-rescored.json).
+inline constexpr std::uint64_t kRescoreDraw = 1'000'000;
 
 Status validate(const Nsga2Settings& settings);
 Status validate(const ProblemShape& shape);
