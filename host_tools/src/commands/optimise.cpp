@@ -46,6 +46,10 @@ class SlowProblem final : public opt::Problem {
     std::this_thread::sleep_for(delay_);
     return inner_->evaluate(genome);
   }
+  opt::EvaluationOutcome evaluate_on(const opt::Genome& genome, std::uint64_t draw) const override {
+    std::this_thread::sleep_for(delay_);
+    return inner_->evaluate_on(genome, draw);
+  }
   std::optional<opt::FrontReference> reference() const override { return inner_->reference(); }
 
  private:
@@ -284,6 +288,8 @@ int run_optimise(int argc, char** argv) {
     if (auto st = robot_task->check(); !st) return bad_input(st.message());
     s.config.problem = task.task;
     s.config.start = robot_task->start_genome();
+    if (auto st = robot_task->extra_start_genomes(s.config.extra_starts); !st)
+      return bad_input(st.message());
     s.config.task = opt::to_json(task);
     problem = std::move(robot_task);
     if (!worker && std::filesystem::exists(dir / "run.json")) {
@@ -342,6 +348,10 @@ int run_optimise(int argc, char** argv) {
   options.resume = resume;
   opt::ProgressPrinter progress(isatty(STDERR_FILENO) != 0);
   options.on_generation = [&progress](const opt::GenerationRecord& r) { progress.print(r); };
+  options.on_rescore = [&progress](std::size_t members) {
+    progress.finish();
+    std::fprintf(stderr, "scoring the final front again on fresh worlds (%zu members)\n", members);
+  };
   options.stop = &g_stop;
   g_stop.store(false);
   struct sigaction action {};

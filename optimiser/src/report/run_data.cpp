@@ -53,6 +53,31 @@ std::string run_progress_text(std::size_t done, std::size_t planned) {
   return std::to_string(done) + " generations";
 }
 
+/// front-rescored.json into the front's rows (nothing if absent; a warning if it does not fit).
+void read_rescored(const fs::path& path, std::vector<FrontMember>& front,
+                   std::vector<std::string>& warnings) {
+  if (!fs::exists(path)) return;
+  std::ifstream in(path);
+  const json doc = json::parse(in, nullptr, false);
+  const auto fail = [&](const std::string& why) {
+    for (FrontMember& m : front) m.rescored.clear();
+    warnings.push_back(path.string() + ": " + why + "; the picks use the run's scores");
+  };
+  if (doc.is_discarded() || !doc.contains("members") || !doc["members"].is_array())
+    return fail("not a rescored front");
+  const json& members = doc["members"];
+  if (members.size() != front.size()) return fail("its rows do not match pareto.csv");
+  for (std::size_t i = 0; i < members.size(); ++i) {
+    const json& m = members[i];
+    std::vector<double> objectives = objectives_of(m);
+    if (objectives.size() != front[i].objectives.size() || !m.contains("run_objectives") ||
+        m["run_objectives"] != json(front[i].objectives))
+      return fail("row " + std::to_string(i) + " does not match pareto.csv");
+    front[i].rescored = std::move(objectives);
+    front[i].rescored_feasible = feasible(m);
+  }
+}
+
 Status load_run_data(const fs::path& dir, RunData& out) {
   out = RunData{};
   out.dir = dir;
@@ -71,6 +96,7 @@ Status load_run_data(const fs::path& dir, RunData& out) {
     out.front.clear();
     out.warnings.push_back(s.message());
   }
+  read_rescored(dir / "front-rescored.json", out.front, out.warnings);
   for (const json& g : out.generations)
     if (g.contains("generation") && g["generation"].is_number_unsigned())
       out.generations_done = std::max(out.generations_done, g["generation"].get<std::size_t>());
@@ -135,11 +161,51 @@ const json* find_ind_o(const RunData& data) {
   return nullptr;
 }
 
+namespace {
+
+/// The pareto.csv rows the picks are chosen from, and the scores they are chosen by: every row
+/// by the run's scores, or for a rescored run the rows feasible and non-dominated on the fresh
+/// worlds, by those (all rows by the run's scores if none is feasible there).
+void pick_candidates(const RunData& data, std::vector<std::size_t>& rows,
+                     std::vector<std::vector<double>>& scores) {
+  rows.clear();
+  scores.clear();
+  for (std::size_t i = 0; i < data.front.size(); ++i)
+    if (!data.front[i].rescored.empty() && data.front[i].rescored_feasible) rows.push_back(i);
+  if (rows.empty()) {
+    for (std::size_t i = 0; i < data.front.size(); ++i) {
+      rows.push_back(i);
+      scores.push_back(data.front[i].objectives);
+    }
+    return;
+  }
+  const auto dominates = [](const std::vector<double>& a, const std::vector<double>& b) {
+    bool better = false;
+    for (std::size_t m = 0; m < a.size(); ++m) {
+      if (a[m] > b[m]) return false;
+      better = better || a[m] < b[m];
+    }
+    return better;
+  };
+  std::vector<std::size_t> kept;
+  for (const std::size_t i : rows) {
+    bool dominated = false;
+    for (const std::size_t j : rows)
+      dominated = dominated || dominates(data.front[j].rescored, data.front[i].rescored);
+    if (!dominated) kept.push_back(i);
+  }
+  rows = kept;
+  for (const std::size_t i : rows) scores.push_back(data.front[i].rescored);
+}
+
+}  // namespace
+
 std::vector<RunPick> run_picks(const RunData& data) {
   std::vector<RunPick> picks;
   if (data.front.empty()) return picks;
+  std::vector<std::size_t> rows;
   std::vector<std::vector<double>> objs;
-  for (const auto& m : data.front) objs.push_back(m.objectives);
+  pick_candidates(data, rows, objs);
   std::size_t best1 = 0, best2 = 0;
   for (std::size_t i = 0; i < objs.size(); ++i) {
     if (objs[i].size() < 2) return picks;
@@ -147,8 +213,9 @@ std::vector<RunPick> run_picks(const RunData& data) {
     if (objs[i][1] < objs[best2][1]) best2 = i;
   }
   const RunPickNames names = run_pick_names(data.task);
-  const std::pair<std::string, std::size_t> chosen[] = {
-      {names.best_obj1, best1}, {names.best_obj2, best2}, {"knee", knee_index(objs)}};
+  const std::pair<std::string, std::size_t> chosen[] = {{names.best_obj1, rows[best1]},
+                                                        {names.best_obj2, rows[best2]},
+                                                        {"knee", rows[knee_index(objs)]}};
   for (const auto& [key, index] : chosen) {
     std::string label = key;
     for (char& c : label)
@@ -166,7 +233,8 @@ std::vector<RunPick> run_picks(const RunData& data) {
                      index,
                      front_file_name(index),
                      data.front[index].objectives,
-                     data.front[index].genes});
+                     data.front[index].genes,
+                     data.front[index].rescored});
   }
   return picks;
 }

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -23,16 +24,18 @@ constexpr const char* kRunFormat = "stride-optimiser-run";
 constexpr const char* kStrideVersion = "0.1.0";
 
 json settings_json(const Nsga2Settings& s) {
-  return json{{"seed", s.seed},
-              {"popSize", s.pop_size},
-              {"generations", s.generations},
-              {"realCrossProb", s.real_cross_prob},
-              {"realMutProb", s.real_mut_prob},
-              {"etaC", s.eta_c},
-              {"etaM", s.eta_m},
-              {"binCrossProb", s.bin_cross_prob},
-              {"binMutProb", s.bin_mut_prob},
-              {"seedMutationFraction", s.seed_mutation_fraction}};
+  json j{{"seed", s.seed},
+         {"popSize", s.pop_size},
+         {"generations", s.generations},
+         {"realCrossProb", s.real_cross_prob},
+         {"realMutProb", s.real_mut_prob},
+         {"etaC", s.eta_c},
+         {"etaM", s.eta_m},
+         {"binCrossProb", s.bin_cross_prob},
+         {"binMutProb", s.bin_mut_prob},
+         {"seedMutationFraction", s.seed_mutation_fraction}};
+  if (s.resample) j["resample"] = true;  // only when on: older run.json files stay equal
+  return j;
 }
 
 json shape_json(const ProblemShape& shape) {
@@ -101,9 +104,8 @@ std::string number_text(double v) {
   return text;
 }
 
-/// pareto.csv: the distinct genomes of the first front, sorted by objectives.
-std::string pareto_csv(const ProblemShape& shape, const std::vector<Individual>& population,
-                       std::size_t& rows) {
+/// The distinct genomes of the first front, sorted by objectives: pareto.csv's rows.
+std::vector<const Individual*> front_rows(const std::vector<Individual>& population) {
   std::vector<const Individual*> members;
   std::set<std::string> seen;
   for (const Individual& ind : population) {
@@ -115,6 +117,13 @@ std::string pareto_csv(const ProblemShape& shape, const std::vector<Individual>&
     }
     return a->id < b->id;
   });
+  return members;
+}
+
+/// pareto.csv: the distinct genomes of the first front, sorted by objectives.
+std::string pareto_csv(const ProblemShape& shape, const std::vector<Individual>& population,
+                       std::size_t& rows) {
+  const std::vector<const Individual*> members = front_rows(population);
   std::string text;
   for (int m = 0; m < shape.objectives; ++m) text += (m ? ",f" : "f") + std::to_string(m + 1);
   for (std::size_t k = 0; k < shape.reals.size(); ++k) text += ",x" + std::to_string(k + 1);
@@ -131,6 +140,34 @@ std::string pareto_csv(const ProblemShape& shape, const std::vector<Individual>&
   return text;
 }
 
+/// front-rescored.json: every pareto.csv row scored again on kRescoreDraw, in row order.
+Status rescore_front(const Problem& problem, Evaluator& evaluator,
+                     const std::vector<Individual>& population, const fs::path& path) {
+  const std::vector<const Individual*> rows = front_rows(population);
+  std::vector<Candidate> batch;
+  for (const Individual* ind : rows) batch.push_back(Candidate{ind->id, ind->genome, kRescoreDraw});
+  std::vector<std::optional<Result>> results(batch.size());
+  evaluator.evaluate(problem, batch, [&](std::size_t index, EvaluationOutcome outcome) {
+    if (index < results.size()) results[index] = sanitise(problem.shape(), std::move(outcome));
+  });
+  json members = json::array();
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    if (!results[i])
+      return Status::error("rescoring: pareto.csv row " + std::to_string(i) + " got no result");
+    const Result& r = *results[i];
+    members.push_back({{"row", i},
+                       {"id", rows[i]->id},
+                       {"objectives", r.objectives},
+                       {"constraints", r.constraints},
+                       {"violation", r.violation},
+                       {"failed", r.failed},
+                       {"reason", r.reason},
+                       {"run_objectives", rows[i]->result.objectives}});
+  }
+  const json doc = {{"draw", kRescoreDraw}, {"members", members}};
+  return core::write_file_atomically(path, doc.dump(1) + "\n");
+}
+
 Status read_json(const fs::path& path, json& out) {
   std::ifstream in(path);
   if (!in) return Status::error(path.string() + ": cannot be read");
@@ -145,19 +182,42 @@ Status read_json(const fs::path& path, json& out) {
 }  // namespace
 
 json run_description(const Problem& problem, const RunConfig& config) {
-  json start = nullptr;
-  if (config.start) {
-    start = json{{"reals", config.start->reals}, {"bits", bits_to_text(config.start->bits)}};
+  const auto genome_json = [](const Genome& g) {
+    return json{{"reals", g.reals}, {"bits", bits_to_text(g.bits)}};
+  };
+  json j{{"format", kRunFormat},
+         {"format_version", 1},
+         {"stride_version", kStrideVersion},
+         {"problem", config.problem.empty() ? problem.name() : config.problem},
+         {"settings", settings_json(config.settings)},
+         {"shape", shape_json(problem.shape())},
+         {"start", config.start ? genome_json(*config.start) : json(nullptr)},
+         {"task", config.task}};
+  if (!config.extra_starts.empty()) {  // only when given: older run.json files stay equal
+    j["extra_starts"] = json::array();
+    for (const Genome& g : config.extra_starts) j["extra_starts"].push_back(genome_json(g));
   }
-  return json{{"format", kRunFormat},
-              {"format_version", 1},
-              {"stride_version", kStrideVersion},
-              {"problem", config.problem.empty() ? problem.name() : config.problem},
-              {"settings", settings_json(config.settings)},
-              {"shape", shape_json(problem.shape())},
-              {"start", start},
-              {"task", config.task}};
+  return j;
 }
+
+namespace {
+
+/// The start genomes of a run: `start`, then `extra_starts`.
+std::vector<Genome> start_genomes(const RunConfig& config) {
+  std::vector<Genome> starts;
+  if (config.start) starts.push_back(*config.start);
+  starts.insert(starts.end(), config.extra_starts.begin(), config.extra_starts.end());
+  return starts;
+}
+
+Status parse_genome_json(const json& j, const char* field, Genome& g) {
+  g.reals = j.at("reals").get<std::vector<double>>();
+  if (!bits_from_text(j.at("bits").get<std::string>(), g.bits))
+    return Status::error(std::string("run.json: ") + field + ".bits are not 0/1 text");
+  return {};
+}
+
+}  // namespace
 
 Status read_run_config(const fs::path& dir, RunConfig& config) {
   json j;
@@ -178,14 +238,18 @@ Status read_run_config(const fs::path& dir, RunConfig& config) {
     config.settings.bin_cross_prob = s.at("binCrossProb").get<double>();
     config.settings.bin_mut_prob = s.at("binMutProb").get<double>();
     config.settings.seed_mutation_fraction = s.at("seedMutationFraction").get<double>();
+    config.settings.resample = s.value("resample", false);
     config.start.reset();
     if (!j.at("start").is_null()) {
       Genome g;
-      g.reals = j["start"].at("reals").get<std::vector<double>>();
-      if (!bits_from_text(j["start"].at("bits").get<std::string>(), g.bits)) {
-        return Status::error("run.json: start.bits are not 0/1 text");
-      }
+      if (auto st = parse_genome_json(j["start"], "start", g); !st) return st;
       config.start = g;
+    }
+    config.extra_starts.clear();
+    for (const json& e : j.value("extra_starts", json::array())) {
+      Genome g;
+      if (auto st = parse_genome_json(e, "extra_starts", g); !st) return st;
+      config.extra_starts.push_back(std::move(g));
     }
     config.task = j.at("task");
   } catch (const json::exception& e) {
@@ -276,7 +340,8 @@ Status run_optimisation(const Problem& problem, const RunConfig& config, Evaluat
       if (auto st = Nsga2::restore(cp.at("engine"), problem.shape(), known, engine); !st) {
         return Status::error(checkpoint_path.string() + ": " + st.message());
       }
-    } else if (auto st = Nsga2::create(config.settings, problem.shape(), config.start, engine);
+    } else if (auto st =
+                   Nsga2::create(config.settings, problem.shape(), start_genomes(config), engine);
                !st) {
       return st;
     }
@@ -291,7 +356,8 @@ Status run_optimisation(const Problem& problem, const RunConfig& config, Evaluat
     if (fs::exists(run_path) || fs::exists(checkpoint_path) || fs::exists(evaluations_path)) {
       return Status::error(dir.string() + " already holds a run (use --resume or another --out)");
     }
-    if (auto st = Nsga2::create(config.settings, problem.shape(), config.start, engine); !st) {
+    if (auto st = Nsga2::create(config.settings, problem.shape(), start_genomes(config), engine);
+        !st) {
       return st;
     }
     if (auto st = core::write_file_atomically(run_path, description.dump(2) + "\n"); !st) return st;
@@ -369,6 +435,14 @@ Status run_optimisation(const Problem& problem, const RunConfig& config, Evaluat
       summary.stopped = true;
       break;
     }
+  }
+  // A resampling run's final front, scored again on worlds no generation saw.
+  const fs::path rescored_path = dir / "front-rescored.json";
+  if (config.settings.resample && engine->finished() &&
+      (summary.last.generation != 0 || !fs::exists(rescored_path))) {
+    if (options.on_rescore) options.on_rescore(front_rows(engine->population()).size());
+    if (auto st = rescore_front(problem, evaluator, engine->population(), rescored_path); !st)
+      return st;
   }
   if (summary.last.generation == 0) {  // resumed a finished run: report its final state
     summary.last = measure(problem, engine->population(), reference);

@@ -20,12 +20,12 @@ namespace {
 
 /// The config's world with the trial's engine, seed, noise and randomisation: trial 1 of 1 is
 /// the nominal world (no noise, no randomisation); K > 1 trials are randomised worlds.
-sim::WorldOptions world_for_trial(const TaskConfig& config, int world) {
+sim::WorldOptions world_for_trial(const TaskConfig& config, int world, std::uint64_t draw) {
   sim::WorldSpec spec = config.world;
   const int trial = world % config.trials;
   spec.engine =
       config.engines[static_cast<std::size_t>(world / config.trials) % config.engines.size()];
-  spec.seed = config.trial_seed + static_cast<std::uint64_t>(trial);
+  spec.seed = trial_world_seed(config, trial, draw);
   spec.noise = config.trials > 1 && config.randomisation.imu_noise;
   spec.randomise = {};
   if (config.trials > 1) {
@@ -62,6 +62,10 @@ Status restart_thread_world(const sim::WorldOptions& options, const sim::ResetSp
 }
 
 }  // namespace
+
+std::uint64_t trial_world_seed(const TaskConfig& config, int trial, std::uint64_t draw) {
+  return config.trial_seed + draw * kDrawSeedSpacing + static_cast<std::uint64_t>(trial);
+}
 
 RobotTask::RobotTask(TaskConfig config)
     : config_(std::move(config)), type_(find_task_type(config_.task)) {
@@ -104,6 +108,37 @@ Genome RobotTask::start_genome() const {
   return g;
 }
 
+Status RobotTask::extra_start_genomes(std::vector<Genome>& out) const {
+  out.clear();
+  std::unique_ptr<fw::Firmware> firmware;  // the registered defaults, for "defaults"
+  for (std::size_t k = 0; k < config_.starts.size(); ++k) {
+    const TaskConfig::Start& start = config_.starts[k];
+    const std::string field = "starts[" + std::to_string(k) + "]";
+    if (start.firmware_defaults && firmware == nullptr) {
+      if (Status s = firmware_files_ ? fw::Firmware::create({}, *firmware_files_, firmware)
+                                     : fw::Firmware::create({}, firmware);
+          !s)
+        return Status::error(field + ": " + s.message());
+    }
+    Genome g = start_genome();
+    for (std::size_t i = 0; i < config_.genes.size(); ++i) {
+      const TaskGene& gene = config_.genes[i];
+      if (start.firmware_defaults) {
+        if (Status s = firmware->params().get(gene.parameter, g.reals[i]); !s)
+          return Status::error(field + ": " + s.message());
+      }
+      for (const auto& [name, value] : start.values)
+        if (name == gene.parameter) g.reals[i] = value;
+      if (!(g.reals[i] >= gene.min && g.reals[i] <= gene.max))
+        return Status::error(field + ": " + gene.parameter + " = " + std::to_string(g.reals[i]) +
+                             " is outside the gene's range [" + std::to_string(gene.min) + ", " +
+                             std::to_string(gene.max) + "]");
+    }
+    out.push_back(std::move(g));
+  }
+  return {};
+}
+
 nlohmann::json RobotTask::parameter_file(const Genome& genome) const {
   nlohmann::json doc = nlohmann::json::object();
   for (std::size_t i = 0; i < config_.genes.size() && i < genome.reals.size(); ++i)
@@ -119,13 +154,13 @@ std::optional<FrontReference> RobotTask::reference() const {
   return r;
 }
 
-sim::WorldOptions RobotTask::world_options(int world) const {
-  return world_for_trial(config_, world);
+sim::WorldOptions RobotTask::world_options(int world, std::uint64_t draw) const {
+  return world_for_trial(config_, world, draw);
 }
 
 Status RobotTask::run_trial(const Genome& genome, int world, EpisodeScore& out,
                             sim::EpisodeCapturer* capture) const {
-  if (Status s = run_world(genome, world_for_trial(config_, world), out, capture); !s) return s;
+  if (Status s = run_world(genome, world_for_trial(config_, world, 0), out, capture); !s) return s;
   if (!out.world_failure.empty()) return Status::error("simulation: " + out.world_failure);
   return {};
 }
@@ -282,12 +317,14 @@ std::size_t RobotTask::part_count(const Genome&) const {
   return static_cast<std::size_t>(config_.world_count()) * static_cast<std::size_t>(episodes);
 }
 
-std::unique_ptr<PartResult> RobotTask::evaluate_part(const Genome& genome, std::size_t part) const {
+std::unique_ptr<PartResult> RobotTask::evaluate_part(const Genome& genome, std::size_t part,
+                                                     std::uint64_t draw) const {
   auto out = std::make_unique<EpisodePart>();
   const int episodes = type_ != nullptr ? type_->episodes_per_world() : 1;
   const int world = static_cast<int>(part / static_cast<std::size_t>(episodes));
   const int episode = static_cast<int>(part % static_cast<std::size_t>(episodes));
-  out->status = run_world_episode(genome, world_for_trial(config_, world), episode, out->score);
+  out->status =
+      run_world_episode(genome, world_for_trial(config_, world, draw), episode, out->score);
   return out;
 }
 
@@ -346,10 +383,14 @@ EvaluationOutcome RobotTask::fold_parts(const Genome&,
 }
 
 EvaluationOutcome RobotTask::evaluate(const Genome& genome) const {
+  return evaluate_on(genome, 0);
+}
+
+EvaluationOutcome RobotTask::evaluate_on(const Genome& genome, std::uint64_t draw) const {
   // The parts one after the other, folded as an evaluator folds them.
   std::vector<std::unique_ptr<PartResult>> parts;
   const std::size_t count = part_count(genome);
-  for (std::size_t k = 0; k < count; ++k) parts.push_back(evaluate_part(genome, k));
+  for (std::size_t k = 0; k < count; ++k) parts.push_back(evaluate_part(genome, k, draw));
   return fold_parts(genome, parts);
 }
 

@@ -65,6 +65,8 @@ const char* const kKnownFields[] = {"task",
                                     "etac",
                                     "etam",
                                     "seed_fraction",
+                                    "resample",
+                                    "starts",
                                     "genes",
                                     "duration_s",
                                     "goal_distance_m",
@@ -222,6 +224,48 @@ Status parse_engines(const nlohmann::json& doc, std::vector<sim::EngineKind>& ou
 
 }  // namespace
 
+/// Config `starts`: a list of parameter files (read here), objects or "defaults"; a start
+/// keeps the values of the config's genes only.
+Status parse_starts(const nlohmann::json& doc, TaskConfig& c) {
+  c.starts.clear();
+  if (!doc.contains("starts")) return {};
+  const nlohmann::json& list = doc.at("starts");
+  if (!list.is_array()) return Status::error("starts: must be a list");
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const std::string field = "starts[" + std::to_string(i) + "]";
+    nlohmann::json values = list[i];
+    TaskConfig::Start start;
+    if (values.is_string() && values.get<std::string>() == "defaults") {
+      start.firmware_defaults = true;
+      c.starts.push_back(std::move(start));
+      continue;
+    }
+    if (values.is_string()) {
+      const std::string file = values.get<std::string>();
+      std::ifstream in(file);
+      if (!in) return Status::error(field + ": cannot open '" + file + "'");
+      values = nlohmann::json::parse(in, nullptr, false);
+      if (values.is_discarded()) return Status::error(field + ": '" + file + "' is not valid JSON");
+    }
+    if (!values.is_object())
+      return Status::error(field +
+                           ": must be a parameter file's path, an object {name: number} or "
+                           "\"defaults\"");
+    for (const auto& [name, value] : values.items()) {
+      if (!value.is_number())
+        return Status::error(field + "." + name + ": must be a number, got " + value.dump());
+      for (const TaskGene& g : c.genes)
+        if (g.parameter == name) start.values.emplace_back(name, value.get<double>());
+    }
+    c.starts.push_back(std::move(start));
+  }
+  if (c.starts.size() + 1 > static_cast<std::size_t>(c.settings.pop_size))
+    return Status::error("starts: " + std::to_string(c.starts.size()) +
+                         " starts and Ind_O do not fit a population of " +
+                         std::to_string(c.settings.pop_size));
+  return {};
+}
+
 Status parse_task_config(const nlohmann::json& doc, TaskConfig& out) {
   if (!doc.is_object()) return Status::error("config: must be a JSON object");
   for (const auto& [key, value] : doc.items()) {
@@ -248,6 +292,11 @@ Status parse_task_config(const nlohmann::json& doc, TaskConfig& out) {
   if (Status s = number(doc, "etam", c.settings.eta_m, true); !s) return s;
   if (Status s = number(doc, "seed_fraction", c.settings.seed_mutation_fraction, false); !s)
     return s;
+  if (doc.contains("resample")) {
+    if (!doc.at("resample").is_boolean())
+      return Status::error("resample: must be true or false, got " + doc.at("resample").dump());
+    c.settings.resample = doc.at("resample").get<bool>();
+  }
   if (Status s = validate(c.settings); !s) return s;
 
   if (!doc.contains("genes") || !doc.at("genes").is_array() || doc.at("genes").empty())
@@ -272,6 +321,7 @@ Status parse_task_config(const nlohmann::json& doc, TaskConfig& out) {
         return Status::error(prefix + "parameter: '" + gene.parameter + "' appears twice");
     c.genes.push_back(gene);
   }
+  if (Status s = parse_starts(doc, c); !s) return s;
   if (Status s = number(doc, "duration_s", c.duration_s, false); !s) return s;
   if (!(c.duration_s > 0.0 && c.duration_s <= 600.0))
     return Status::error("duration_s: must be in (0, 600]");
@@ -394,6 +444,14 @@ Status load_task_config(const std::filesystem::path& path, TaskConfig& out) {
           (std::filesystem::absolute(path).parent_path() / file).lexically_normal().string();
   };
   for (const char* key : {"urdf", "params", "world"}) relative_to_config(doc, key);
+  if (doc.is_object() && doc.contains("starts") && doc.at("starts").is_array()) {
+    for (nlohmann::json& entry : doc["starts"]) {
+      if (!entry.is_string() || entry.get<std::string>() == "defaults") continue;
+      const std::filesystem::path file = entry.get<std::string>();
+      if (file.is_relative() && !file.empty())
+        entry = (std::filesystem::absolute(path).parent_path() / file).lexically_normal().string();
+    }
+  }
   if (doc.is_object() && doc.contains("world"))
     for (const char* key : {"urdf", "base"}) relative_to_config(doc["world"], key);
   if (Status s = parse_task_config(doc, out); !s)
@@ -439,6 +497,21 @@ nlohmann::json to_json(const TaskConfig& c) {
     nlohmann::json params = nlohmann::json::object();
     for (const auto& [name, value] : c.base_params) params[name] = value;
     j["params"] = params;  // the values, so that run.json stands alone
+  }
+  // Written only when set, so that the run.json of a run from before them stays equal.
+  if (c.settings.resample) j["resample"] = true;
+  if (!c.starts.empty()) {
+    nlohmann::json starts = nlohmann::json::array();
+    for (const TaskConfig::Start& s : c.starts) {
+      if (s.firmware_defaults) {
+        starts.push_back("defaults");
+        continue;
+      }
+      nlohmann::json values = nlohmann::json::object();
+      for (const auto& [name, value] : s.values) values[name] = value;
+      starts.push_back(values);
+    }
+    j["starts"] = starts;
   }
   j["world"] = sim::to_json(c.world);  // a world file by value, as the params
   auto limit = [](double v) { return v < 0.0 ? nlohmann::json(nullptr) : nlohmann::json(v); };

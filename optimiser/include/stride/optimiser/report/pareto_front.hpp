@@ -16,6 +16,9 @@ namespace stride::opt {
 struct FrontMember {
   std::vector<double> objectives;
   std::vector<double> genes;
+  /// A resampling run's score of this row on fresh worlds (front-rescored.json; empty if none).
+  std::vector<double> rescored;
+  bool rescored_feasible = false;
 };
 
 Status read_pareto_csv(const std::filesystem::path& path, int objectives,

@@ -49,14 +49,17 @@ std::vector<double> start_genes(const RunData& data);
 /// A chosen front member. Members picked for several reasons appear once, `label` naming
 /// every reason ("fastest, knee").
 struct RunPick {
-  std::vector<std::string> keys;  ///< summary keys: run_pick_names() and "knee"
-  std::string label;              ///< e.g. "fastest, knee"
-  std::size_t front_index = 0;    ///< pareto.csv row
-  std::string file;               ///< "front/NNN.json"
-  std::vector<double> objectives;
+  std::vector<std::string> keys;   ///< summary keys: run_pick_names() and "knee"
+  std::string label;               ///< e.g. "fastest, knee"
+  std::size_t front_index = 0;     ///< pareto.csv row
+  std::string file;                ///< "front/NNN.json"
+  std::vector<double> objectives;  ///< the run's (pareto.csv)
   std::vector<double> genes;
+  std::vector<double> rescored;  ///< on fresh worlds (front-rescored.json), if the run has them
 };
 /// The best member for each objective and the knee point of the front, without duplicates.
+/// A resampling run's picks come from its rescored front: the rows feasible on the fresh
+/// worlds, non-dominated there, picked by their fresh scores.
 std::vector<RunPick> run_picks(const RunData& data);
 
 /// The front file name of pareto.csv row `index`: "front/NNN.json".

@@ -8,6 +8,9 @@
 //   checkpoint.json    the optimiser state after the last completed generation, plus how many
 //                      lines of the two logs belong to it; replaced atomically every generation
 //   pareto.csv         the current population's non-dominated members: objectives then genes
+//   front-rescored.json  a resampling run (Nsga2Settings::resample), once finished: every
+//                      pareto.csv row scored again on fresh worlds (kRescoreDraw), from which
+//                      its picks are named (report::run_picks)
 // Resume reads checkpoint.json, cuts both logs back to the recorded line counts (dropping the
 // work of the interrupted generation), refills the evaluation cache from evaluations.jsonl and
 // continues; the files then end up byte for byte as in an uninterrupted run (wall_s aside).
@@ -33,7 +36,10 @@ namespace stride::opt {
 struct RunConfig {
   std::string problem;  ///< problem or task name
   Nsga2Settings settings;
-  std::optional<Genome> start;                     ///< seeds the initial population when set
+  std::optional<Genome> start;  ///< seeds the initial population when set
+  /// Further start genomes beside `start` (needs `start`): the initial population holds each
+  /// unmutated and mutated copies of all in turn (Nsga2::create). run.json's "extra_starts".
+  std::vector<Genome> extra_starts;
   nlohmann::json task = nlohmann::json::object();  ///< task configuration, recorded as is
 };
 
@@ -58,6 +64,8 @@ struct RunOptions {
   std::function<void(const GenerationRecord&)> on_generation;
   /// When set and true after a generation's checkpoint, the run stops there (Ctrl-C).
   const std::atomic<bool>* stop = nullptr;
+  /// Called before a resampling run scores its final front again (the member count).
+  std::function<void(std::size_t members)> on_rescore;
 };
 
 struct RunSummary {

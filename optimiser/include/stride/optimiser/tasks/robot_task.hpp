@@ -3,7 +3,7 @@
 //
 // One evaluation = `trials` x engines worlds (TaskConfig::world_count), each of the task's
 // episodes_per_world() episodes. Each episode builds a simulated world (SimWorld on the world's
-// engine, seeded with trial_seed + trial; trial 0 of a single-trial task is the nominal world,
+// engine, seeded with trial_world_seed(); trial 0 of a single-trial task is the nominal world,
 // robust trials randomise friction, masses, servo strength and IMU noise) and a Firmware, resets
 // the world to the task's start, stages the genome into the firmware's ParameterStore
 // (ParameterStore::stage, the console's atomic write; it takes effect at tick 0 through
@@ -35,16 +35,28 @@
 
 namespace stride::opt {
 
+/// Seed spacing of the draws: draw d's K trial worlds are seeded trial_seed + d * 10^6 + k
+/// (k < K <= 1000), so no two draws share a world, and none meets stride validate's seeds
+/// (trial_seed + 1000 + i, i < 1000). Draw 0 is the fixed trials of a run without resampling;
+/// kRescoreDraw (settings.hpp) the fresh worlds a resampling run's final front is scored on.
+inline constexpr std::uint64_t kDrawSeedSpacing = 1'000'000;
+/// The seed of trial `trial` of draw `draw`.
+std::uint64_t trial_world_seed(const TaskConfig& config, int trial, std::uint64_t draw);
+
 class RobotTask final : public Problem {
  public:
   explicit RobotTask(TaskConfig config);
   std::string name() const override { return config_.task; }
   const ProblemShape& shape() const override { return shape_; }
+  /// evaluate_on(genome, 0): the trial worlds of draw 0.
   EvaluationOutcome evaluate(const Genome& genome) const override;
+  /// The genome in the trial worlds of draw `draw` (trial_world_seed).
+  EvaluationOutcome evaluate_on(const Genome& genome, std::uint64_t draw) const override;
   std::optional<FrontReference> reference() const override;
   /// One part per episode: world_count() worlds x the task's episodes_per_world(), world-major.
   std::size_t part_count(const Genome& genome) const override;
-  std::unique_ptr<PartResult> evaluate_part(const Genome& genome, std::size_t part) const override;
+  std::unique_ptr<PartResult> evaluate_part(const Genome& genome, std::size_t part,
+                                            std::uint64_t draw) const override;
   /// Each world's episodes merged in order, then the worlds aggregated: evaluate()'s outcome.
   EvaluationOutcome fold_parts(const Genome& genome,
                                std::vector<std::unique_ptr<PartResult>>& parts) const override;
@@ -60,8 +72,11 @@ class RobotTask final : public Problem {
   const TaskType* type() const { return type_; }
   /// The start genome (Ind_O: every gene's start value).
   Genome start_genome() const;
-  /// The options of world `world` (0-based, < config().world_count()) of the task.
-  sim::WorldOptions world_options(int world) const;
+  /// The config's further starts (TaskConfig::starts) as genomes; the error names the start
+  /// and the gene whose value lies outside the gene's range.
+  Status extra_start_genomes(std::vector<Genome>& out) const;
+  /// The options of world `world` (0-based, < config().world_count()) of the task's draw.
+  sim::WorldOptions world_options(int world, std::uint64_t draw = 0) const;
   /// One episode in world `world` (0-based); a failure reason on a broken set-up or world.
   /// `capture`, if given, observes every tick (replays in `stride report`); it changes nothing.
   Status run_trial(const Genome& genome, int world, EpisodeScore& out,

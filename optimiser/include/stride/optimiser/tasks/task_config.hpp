@@ -113,6 +113,16 @@ struct TaskConfig {
   /// override them. Sorted by name. E.g. firmware/config/seed-walk.json with `"world": "seed"`
   /// reproduces the thesis's world and walk.
   std::vector<std::pair<std::string, double>> base_params;
+  /// A start genome beside Ind_O (config `starts`, a list; each entry a parameter file's path,
+  /// relative to the config, an object {name: number}, or "defaults": the firmware's
+  /// registered defaults). A start sets the genes it names, the others keep their `start`
+  /// value; names that are not genes are left out (the genome cannot carry them). A value
+  /// outside its gene's range is an error (RobotTask::start_genomes). run.json holds the values.
+  struct Start {
+    bool firmware_defaults = false;
+    std::vector<std::pair<std::string, double>> values;  ///< gene values, sorted by name
+  };
+  std::vector<Start> starts;
   /// `stride validate` after a run (config `validate` {seeds}): fresh seeds per world.
   int validate_seeds = 10;
   // Hypervolume normalisation (ideal and nadir objective vectors).
