@@ -5,7 +5,9 @@ registered range = about +-50 %), the kick genes from firmware/scripts/kick_righ
 2..N-1, +-0.5 rad clipped to the servo limits of firmware/config/servo_table.json).
 The omnidirectional walk (walk-omni.json, issue 22) takes the same 46 genes with the wider
 store ranges of walk_parameters.cpp (kWideRanges) where it has them, plus the walk.balance.*
-gains (firmware/src/walk/balance_feedback.cpp, heading_hold.cpp).
+gains (firmware/src/walk/balance_feedback.cpp, heading_hold.cpp). The get-up genes
+(getup.json, issue 31) come from the authored get-up scripts the getup run started from,
+getup-start/get_up_front.json and get_up_back.json (the firmware's scripts carry the run's pick).
 Run from the repository root: python3 optimiser/configs/make_configs.py"""
 import json
 import re
@@ -118,10 +120,12 @@ json.dump(omni, open('optimiser/configs/walk-omni.json', 'w'), indent=1)
 # Get-up (issue 31 point 4): the keyframes of both get-up scripts. Targets of frames 2..N-1
 # +-0.3 rad about the stock script (clipped to the servo limits), as the kick's genome leaves the
 # first and last frames (the poses it starts from and hands over in) alone; every frame's
-# duration from half to 1.5 times the stock one.
+# duration from half to 1.5 times the stock one. The stock scripts are the authored ones the getup
+# run started from (optimiser/RESULTS.md), kept in getup-start/: the firmware's scripts now carry
+# the run's pick, and the run's start genome stays the one it was run from.
 getup_genes = []
 for name in ('get_up_front', 'get_up_back'):
-    frames = json.load(open('firmware/scripts/%s.json' % name))['frames']
+    frames = json.load(open('optimiser/configs/getup-start/%s.json' % name))['frames']
     for f in range(1, len(frames) - 1):
         for t in frames[f]['targets']:
             s, p = servos[t['servo']], t['position']

@@ -1,6 +1,8 @@
-// The get-up task (issue 31 point 4): the stock get-up scripts stand the robot up from lying on
-// its front and on its back in the faithful world, the task scores what the episodes measured,
-// a get-up script that cannot work is infeasible, and the task is one entry of the registry.
+// The get-up task (issue 31 point 4): the task scores what the episodes measured, a get-up
+// script that cannot work is infeasible, and the task is one entry of the registry. Its start
+// genome is the authored get-up scripts the getup run started from
+// (optimiser/configs/getup-start/): they stand up on the seed's grass and not on turf. The run's
+// pick (firmware/config/get-up-turf.json) is the firmware's default get-up and stands up on turf.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -8,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "stride/firmware/firmware.hpp"
 #include "stride/optimiser/tasks/robot_task.hpp"
 
 namespace stride::opt {
@@ -35,7 +38,7 @@ EpisodeScore nominal_episodes(TaskConfig config, const std::string& contact) {
   return score;
 }
 
-TEST(GetUpTask, TheStockScriptsStandUpOnTheSeedsGrass) {
+TEST(GetUpTask, TheStartGenomeStandsUpOnTheSeedsGrass) {
   TaskConfig config = getup_config();
   config.duration_s = 40.0;  // the front roll may need a retry
   const EpisodeScore s = nominal_episodes(config, "seed");
@@ -50,9 +53,10 @@ TEST(GetUpTask, TheStockScriptsStandUpOnTheSeedsGrass) {
   EXPECT_FALSE(s.fell);
 }
 
-// The scripts were authored on the seed's 2 cm grass; on the faithful world's turf (a 5 mm layer
-// over solid ground) neither stands the robot up, which is what the getup run is for.
-TEST(GetUpTask, OnTurfTheStockScriptsDoNotStandAndTheGenomeIsInfeasible) {
+// The authored scripts (the start genome) were tuned on the seed's 2 cm grass; on the faithful
+// world's turf (a 5 mm layer over solid ground) neither stands the robot up, which is what the
+// getup run was for.
+TEST(GetUpTask, OnTurfTheStartGenomeDoesNotStandAndIsInfeasible) {
   const TaskConfig config = getup_config();
   const EpisodeScore s = nominal_episodes(config, "turf");
   EXPECT_EQ(s.stood, 0);
@@ -72,27 +76,59 @@ Genome genome_from_file(const TaskConfig& config, const std::string& file) {
   return g;
 }
 
-// The shipped pick (firmware/config/get-up-turf.json, the getup run's knee): it stands up from
-// both sides on the faithful world's turf, where the stock scripts stay down, on both engines.
-TEST(GetUpTask, TheShippedPickStandsUpOnTurfOnBothEngines) {
+/// The genome of the firmware's defaults: what its get-up scripts hold without a parameter file.
+Genome genome_of_the_firmware_defaults(const TaskConfig& config) {
+  std::unique_ptr<fw::Firmware> firmware;
+  const Status s = fw::Firmware::create({}, firmware);
+  EXPECT_TRUE(s) << s.message();
+  Genome g;
+  if (!firmware) return g;
+  for (const TaskGene& gene : config.genes) {
+    const auto handle = firmware->params().find(gene.parameter);
+    EXPECT_TRUE(handle.has_value()) << gene.parameter;
+    g.reals.push_back(handle ? firmware->params().spec(*handle).default_value : 0.0);
+  }
+  return g;
+}
+
+// The shipped pick (firmware/config/get-up-turf.json, the getup run's knee) is the firmware's
+// default get-up: the scripts hold its targets exactly and its frame durations rounded to whole
+// milliseconds (cumulatively, so every frame ends on the same 100 Hz tick), and the default
+// scripts score what the pick scores, bit for bit. It stands up from both sides on the faithful
+// world's turf, where the start genome stays down on Simbody, on both engines.
+TEST(GetUpTask, TheDefaultScriptsAreTheShippedPickAndStandUpOnTurfOnBothEngines) {
   TaskConfig config = getup_config();
   const Genome pick = genome_from_file(
       config, std::string(STRIDE_SOURCE_DIR) + "/firmware/config/get-up-turf.json");
+  const Genome defaults = genome_of_the_firmware_defaults(config);
+  ASSERT_EQ(defaults.reals.size(), pick.reals.size());
+  for (std::size_t i = 0; i < pick.reals.size(); ++i) {
+    const std::string& name = config.genes[i].parameter;
+    if (name.find("duration_ms") != std::string::npos) {
+      EXPECT_NEAR(defaults.reals[i], pick.reals[i], 1.0) << name;
+    } else {
+      EXPECT_EQ(defaults.reals[i], pick.reals[i]) << name;
+    }
+  }
   for (const sim::EngineKind engine : {sim::EngineKind::kSimbody, sim::EngineKind::kMujoco}) {
     config.engines = {engine};
     config.trials = 1;  // the nominal world
     const RobotTask task(config);
-    EpisodeScore stock, picked;
-    ASSERT_TRUE(task.run_trial(task.start_genome(), 0, stock));
+    EpisodeScore start, picked, by_default;
+    ASSERT_TRUE(task.run_trial(task.start_genome(), 0, start));
     ASSERT_TRUE(task.run_trial(pick, 0, picked));
-    std::printf("%s: stock stood %d of 2 (%.2f s), the pick %d of 2 in %.2f s, peak |a| %.1f\n",
-                sim::to_string(engine), stock.stood, stock.stand_time_s, picked.stood,
-                picked.stand_time_s, picked.objectives[1]);
+    ASSERT_TRUE(task.run_trial(defaults, 0, by_default));
+    EXPECT_EQ(by_default.objectives, picked.objectives) << sim::to_string(engine);
+    EXPECT_EQ(by_default.stood, picked.stood) << sim::to_string(engine);
+    std::printf(
+        "%s: start genome stood %d of 2 (%.2f s), the pick %d of 2 in %.2f s, peak |a| %.1f\n",
+        sim::to_string(engine), start.stood, start.stand_time_s, picked.stood, picked.stand_time_s,
+        picked.objectives[1]);
     EXPECT_EQ(picked.stood, 2) << sim::to_string(engine);
     EXPECT_GT(picked.stand_time_s, 0.0);
     EXPECT_LT(picked.stand_time_s, 12.0) << sim::to_string(engine);
     if (engine == sim::EngineKind::kSimbody) {
-      EXPECT_EQ(stock.stood, 0);
+      EXPECT_EQ(start.stood, 0);
     }
   }
 }

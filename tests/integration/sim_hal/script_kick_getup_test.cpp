@@ -1,6 +1,7 @@
 // Issue 6 point 6 in the simulator: the firmware's KickRight from stand sends the ball at
 // least 0.5 m without a fall in 10 of 10 seeds; the robot knocked over by a scripted impulse
-// gets up in at least 8 of 10 trials, with the get-up script of the side it lies on.
+// gets up in 10 of 10 trials on the seed's grass and on turf, with the get-up script of the side
+// it lies on.
 // Figures (ball distance, max field-plane sway) are printed for the report.
 #include <algorithm>
 #include <cstdio>
@@ -113,12 +114,15 @@ TEST(SimScripts, KickIsDeterministicAndAnUnknownScriptIsAnError) {
   EXPECT_NE(status.message().find("kick_sideways"), std::string::npos);
 }
 
-// Pins the seed's 2 cm grass (in the faithful world otherwise): on turf the stock get-up
-// scripts stand the knocked-over robot up in only 2 of these 10 trials, because its softer stick
-// spring (1000 N/m, Mindlin) lets hands and feet slide where the scripts push on them (7 of 10
-// with the seed's 5000 N/m). Re-tuning the get-up for turf is the get-up optimisation's work.
-TEST(SimScripts, PushedOverTheRobotGetsUp) {
-  int knocked_over = 0, got_up = 0, right_script = 0;
+struct PushFigures {
+  int knocked_over = 0, got_up = 0, right_script = 0, back_first_try = 0;
+  double back_slowest_s = 0.0;  // the slowest stand-up of the trials lying on their back
+};
+
+/// Ten trials: the robot standing, knocked over by a ball thrown at its chest at 10-14.5 m/s,
+/// from behind and from the front in turn, randomised worlds on `contact`, 40 s each.
+PushFigures push_trials(const ContactOptions& contact) {
+  PushFigures f;
   for (int trial = 0; trial < 10; ++trial) {
     PushEpisodeOptions push;
     push.from_behind = trial % 2 == 0;
@@ -126,9 +130,9 @@ TEST(SimScripts, PushedOverTheRobotGetsUp) {
     push.duration_s = 40.0;  // a front fall: roll onto the back, then get_up_back; retries
     PushEpisodeResult result;
     WorldOptions world = world_for_seed(static_cast<std::uint64_t>(100 + trial), true);
-    world.contact = ContactOptions::seed();
+    world.contact = contact;
     const Status status = run_push_episode(world, push, result);
-    ASSERT_TRUE(status) << status.message();
+    EXPECT_TRUE(status) << status.message();
     const char* expected = push.from_behind ? "get_up_front" : "get_up_back";
     std::printf(
         "push trial %d (%s, %.1f m/s): knocked over %d, first script %s, %d get-up attempts, "
@@ -136,15 +140,46 @@ TEST(SimScripts, PushedOverTheRobotGetsUp) {
         trial, push.from_behind ? "from behind" : "from the front", push.push_speed,
         result.episode.fell, result.get_up_script.c_str(), result.get_up_attempts,
         result.stand_again_s, result.got_up, result.final_upright);
-    knocked_over += result.episode.fell ? 1 : 0;
-    got_up += result.got_up ? 1 : 0;
-    right_script += result.get_up_script == expected ? 1 : 0;
+    f.knocked_over += result.episode.fell ? 1 : 0;
+    f.got_up += result.got_up ? 1 : 0;
+    f.right_script += result.get_up_script == expected ? 1 : 0;
+    if (!push.from_behind) {
+      f.back_first_try += result.got_up && result.get_up_attempts == 1 ? 1 : 0;
+      f.back_slowest_s = std::max(f.back_slowest_s, result.got_up ? result.stand_again_s : 1e9);
+    }
   }
-  std::printf("push and get up: %d/10 knocked over, %d/10 got up, %d/10 chose the right side\n",
-              knocked_over, got_up, right_script);
-  EXPECT_EQ(knocked_over, 10);
-  EXPECT_EQ(right_script, 10);
-  EXPECT_GE(got_up, 8);
+  std::printf(
+      "push and get up: %d/10 knocked over, %d/10 got up, %d/10 chose the right side, %d/5 on "
+      "the back up at the first try, slowest from the back %.1f s\n",
+      f.knocked_over, f.got_up, f.right_script, f.back_first_try, f.back_slowest_s);
+  return f;
+}
+
+// On the seed's 2 cm grass (in the faithful world otherwise), where the get-up scripts were
+// authored: with the default scripts (the get-up run's pick) every trial gets up, those lying on
+// the back at the first try in under 8 s. (The authored scripts: 10/10 as well, but three of
+// the five on the back needed 2-5 tries, up to 39.4 s.)
+TEST(SimScripts, PushedOverTheRobotGetsUp) {
+  const PushFigures f = push_trials(ContactOptions::seed());
+  EXPECT_EQ(f.knocked_over, 10);
+  EXPECT_EQ(f.right_script, 10);
+  EXPECT_EQ(f.got_up, 10);
+  EXPECT_EQ(f.back_first_try, 5);
+  EXPECT_LT(f.back_slowest_s, 8.0);
+}
+
+// The same on the faithful world's turf, whose softer stick spring (1000 N/m, Mindlin) lets hands
+// and feet slide where the scripts push: every trial gets up (those lying on the back at the
+// first try, under 8 s; the front rolls in 12.5-35.8 s). The authored scripts stood up in only
+// 4 of these 10 trials (one of the five on the back at the first try), which is what the get-up
+// run was for.
+TEST(SimScripts, PushedOverOnTurfTheRobotGetsUp) {
+  const PushFigures f = push_trials(ContactOptions::turf());
+  EXPECT_EQ(f.knocked_over, 10);
+  EXPECT_EQ(f.right_script, 10);
+  EXPECT_EQ(f.got_up, 10);
+  EXPECT_EQ(f.back_first_try, 5);
+  EXPECT_LT(f.back_slowest_s, 8.0);
 }
 
 std::string run_stride(const std::string& args, int& code) {

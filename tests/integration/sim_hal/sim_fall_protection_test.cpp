@@ -13,7 +13,6 @@
 
 namespace {
 
-const std::string kGetUpTurf = std::string(STRIDE_SOURCE_DIR) + "/firmware/config/get-up-turf.json";
 const std::string kConfigs = std::string(STRIDE_SOURCE_DIR) + "/tests/integration/sim_hal/";
 
 nlohmann::json sim_json(const std::string& args) {
@@ -74,10 +73,9 @@ TEST(FallProtection, LowersThePeakServoTorqueAtImpactForwardAndBackward) {
 }
 
 TEST(FallProtection, TheGetUpFollowsAProtectedFall) {
-  // get-up-turf.json leaves fall.protect on (the default); the robot lands protected, lies
-  // still, and stands up.
-  const nlohmann::json back =
-      sim_json("stand --push 1,backward,12 --after-fall getup --params " + kGetUpTurf);
+  // The default firmware (its get-up the get-up run's knee, fall.protect on): the robot lands
+  // protected, lies still, and stands up.
+  const nlohmann::json back = sim_json("stand --push 1,backward,12 --after-fall getup");
   EXPECT_TRUE(back.contains("fall_predicted_s"));
   EXPECT_TRUE(back.at("fell").get<bool>());
   ASSERT_FALSE(back.at("stood_up_s").is_null()) << back.dump();
