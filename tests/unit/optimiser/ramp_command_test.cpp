@@ -1,11 +1,15 @@
 // The walk's planned speed along a direction and the command for a speed (ramp_command.hpp,
 // issue 41 point 3): the closed forms of its header against the footstep planner's steady walk,
-// each step limit's cap, and the walk's parameters read back from a firmware's store.
+// each step limit's cap, the walk's parameters read back from a firmware's store, and the speeds
+// the walk-ramp genome's ranges can plan.
 #include "stride/optimiser/tasks/ramp_command.hpp"
 
 #include <gtest/gtest.h>
 
+#include <string>
+
 #include "stride/firmware/walk/walk_parameters.hpp"
+#include "stride/optimiser/tasks/task_config.hpp"
 
 namespace stride::opt {
 namespace {
@@ -98,6 +102,55 @@ TEST(RampCommand, TheWalksParametersAreReadFromTheFirmwaresStore) {
   EXPECT_EQ(p.velocity_limits.y_max, 0.06);
   EXPECT_EQ(p.velocity_limits.y_min, -0.01);  // Ind_O
   EXPECT_EQ(p.step_limits.angle_max, 0.262);
+}
+
+/// A gene's bound in walk-ramp.json (`upper`: its max).
+double gene_bound(const TaskConfig& config, const std::string& name, bool upper) {
+  for (const TaskGene& g : config.genes)
+    if (g.parameter == name) return upper ? g.max : g.min;
+  ADD_FAILURE() << name << " is not a gene of walk-ramp.json";
+  return 0.0;
+}
+
+// Issue 41 point 3: the walk-ramp genome's ranges plan the NUgus's speeds in simulation (0.38 m/s
+// forward, 0.42 backward, 0.26 sideways, 1.97 rad/s turning) and beyond: at its fastest corner
+// (shortest step, widest limits, widest stance, closest feet allowed), and stepping-turf-omni's
+// 0.5 s steps with the limits at their ranges' ends still plan the translations.
+TEST(RampCommand, TheWalkRampGenomeReachesThePublishedSpeeds) {
+  TaskConfig config;
+  ASSERT_TRUE(load_task_config(std::string(STRIDE_SOURCE_DIR) + "/optimiser/configs/walk-ramp.json",
+                               config));
+  const std::string cycle = "walk.walk_cycle.";
+  auto max = [&](const std::string& name) { return gene_bound(config, cycle + name, true); };
+  auto min = [&](const std::string& name) { return gene_bound(config, cycle + name, false); };
+  WalkParameters p = fw::walk::default_walk_parameters();
+  p.step_time = min("step_time");
+  p.step_limits = {
+      min("step.limits.x_min"),    max("step.limits.x_max"), 0.0, max("step.limits.y_max"), 0.0,
+      max("step.limits.angle_max")};
+  p.velocity_limits = {min("velocity.limits.x_min"),     max("velocity.limits.x_max"),
+                       min("velocity.limits.y_min"),     max("velocity.limits.y_max"),
+                       min("velocity.limits.angle_min"), max("velocity.limits.angle_max")};
+  p.foot_offset_y = gene_bound(config, "walk.stance.foot_offset.y", false);
+  p.limit_margin_y = gene_bound(config, "walk.stance.limit_margin_y", true);
+  EXPECT_EQ(p.step_time, 0.35);
+  EXPECT_EQ(p.step_limits.angle_max, 1.6);
+  EXPECT_GE(planned_speed(p, kForward, 1.0), 0.38 * 1.5);
+  EXPECT_GE(planned_speed(p, kBackward, 1.0), 0.42 * 1.5);
+  EXPECT_GE(planned_speed(p, kLeft, 1.0), 0.26 * 1.5);
+  EXPECT_GE(planned_speed(p, kRight, 1.0), 0.26 * 1.5);
+  EXPECT_GE(planned_speed(p, kTurnLeft, 1.0), 1.97 * 1.1);
+  EXPECT_GE(planned_speed(p, kTurnRight, 1.0), 1.97 * 1.1);
+  // With the issue-22 ranges (0.425 s steps, 0.8 rad per pair) turning stopped at 0.94 rad/s.
+  WalkParameters old = p;
+  old.step_time = 0.425;
+  old.step_limits.angle_max = 0.8;
+  EXPECT_LT(planned_speed(old, kTurnLeft, 1.0), 0.95);
+  // At stepping-turf-omni.json's 0.5 s the translations still plan beyond the NUgus's.
+  p.step_time = 0.5;
+  EXPECT_GE(planned_speed(p, kForward, 1.0), 0.38);
+  EXPECT_GE(planned_speed(p, kBackward, 1.0), 0.42);
+  EXPECT_GE(planned_speed(p, kLeft, 1.0), 0.26);
 }
 
 }  // namespace
