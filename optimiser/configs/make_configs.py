@@ -4,8 +4,10 @@ the registered walk parameters (firmware/src/walk/walk_parameters.cpp: default =
 registered range = about +-50 %), the kick genes from firmware/scripts/kick_right.json (frames
 2..N-1, +-0.5 rad clipped to the servo limits of firmware/config/servo_table.json).
 The omnidirectional walk (walk-omni.json, issue 22) takes the same 46 genes with the wider
-store ranges of walk_parameters.cpp (kWideRanges) where it has them, plus the walk.balance.*
-gains (firmware/src/walk/balance_feedback.cpp, heading_hold.cpp). The get-up genes
+store ranges of walk_parameters.cpp (kWideRanges, as they were in issue 22) where it has them,
+plus the walk.balance.* gains (firmware/src/walk/balance_feedback.cpp, heading_hold.cpp). The
+speed ramp (walk-ramp.json, issue 41 point 3) takes today's wide ranges, more of walk.balance.*
+and the capture step's gains (firmware/src/walk/capture_step.cpp). The get-up genes
 (getup.json, issue 31) come from the authored get-up scripts the getup run started from,
 getup-start/get_up_front.json and get_up_back.json (the firmware's scripts carry the run's pick).
 Run from the repository root: python3 optimiser/configs/make_configs.py"""
@@ -75,12 +77,18 @@ json.dump(two, open('optimiser/configs/walk-two-engines.json', 'w'), indent=1)
 # store range, plus the walk.balance.* gains by name.
 wide = {n: (float(lo), float(hi)) for n, lo, hi in re.findall(
     r'\{"(walk\.[^"]+)",\s*([-\d.e]+),\s*([-\d.e]+)\}', src)}
-assert len(wide) == 14, len(wide)
+assert len(wide) == 15, len(wide)
+# walk-omni keeps the store ranges of issue 22 (its recorded runs, and the exactness test that runs
+# it, read this file): issue 41 widened the step time (0.425 -> 0.35 s) and the turning step limit
+# (0.8 -> 1.6 rad) for the speed ramp.
+omni_wide = dict(wide)
+del omni_wide["walk.walk_cycle.step_time"]
+omni_wide["walk.walk_cycle.step.limits.angle_max"] = (0.131, 0.80)
 omni_genes = []
 for g in genes:
     g = dict(g)
-    if g["parameter"] in wide:
-        g["min"], g["max"] = wide[g["parameter"]]
+    if g["parameter"] in omni_wide:
+        g["min"], g["max"] = omni_wide[g["parameter"]]
     omni_genes.append(g)
 balance_src = open('firmware/src/walk/balance_feedback.cpp').read() + open('firmware/src/walk/heading_hold.cpp').read()
 gain_pat = re.compile(r'add_real\(\s*"(walk\.balance\.[a-z_]*gain)",\s*([-\d.e]+),\s*([-\d.e]+),\s*([-\d.e]+)', re.S)
@@ -152,21 +160,70 @@ getup = {"_comment": [
 json.dump(getup, open('optimiser/configs/getup.json', 'w'), indent=1)
 
 # Speed ramp (issue 32 point 1): the top speed of each direction, as the Bit-Bots search for it.
+# Its genome (issue 41 point 3, "a search space that can win"): the 46 walk genes with every
+# store range of walk_parameters.cpp (the step time down to 0.35 s; the step and velocity limits
+# of every direction reach stepping-turf-omni.json's and the published speeds: 0.38 m/s forward,
+# 0.42 backward, 0.26 sideways, 1.97 rad/s turning, tests/unit/optimiser/ramp_command_test.cpp),
+# walk-omni's 8 walk.balance.* gains, the balance feedback's filters, deadband, shift limit,
+# double-support share and start sway (the rest of walk.balance.* that stepping-turf-omni.json
+# sets; tilt_reference_time stays out: 0 is another mode, the walk-start tilt), and the capture
+# step's footstep and timing gains. Every start value is the firmware's default.
+ramp_genes = []
+for g in genes:
+    g = dict(g)
+    if g["parameter"] in wide:
+        g["min"], g["max"] = wide[g["parameter"]]
+    ramp_genes.append(g)
+ramp_genes += [dict(g) for g in omni_genes[46:]]
+registered = {n: (float(d), float(lo), float(hi)) for n, d, lo, hi in re.findall(
+    r'add_real\(\s*"(walk\.(?:balance|capture)\.[a-z_]+)",\s*([-\d.e]+),\s*([-\d.e]+),\s*([-\d.e]+)',
+    balance_src + open('firmware/src/walk/capture_step.cpp').read())}
+for n in ('filter_time', 'deadband', 'max_shift', 'double_support_weight', 'start_sway_steps',
+          'tilt_filter_time'):
+    # As the gains: +-50 % of both the default and the seed world's value, within the store's range.
+    n = 'walk.balance.' + n
+    d, lo, hi = registered[n]
+    old = seed_walk.get(n, d)
+    ramp_genes.append({"parameter": n, "min": round(max(lo, 0.5 * min(d, old)), 6),
+                       "max": round(min(hi, 1.5 * max(d, old)), 6), "start": d})
+# The capture step (capture_step.cpp, off by default): a footstep gain of 1 steps onto the
+# capture point (Englsberger et al. 2011), 1.5 over-corrects by half; a timing gain of 20 /m
+# reaches the largest phase rate change (max_timing, up to 0.6) at a 3 cm deviation. The
+# corrections' limits span their whole store ranges.
+capture = {"walk.capture.step_gain_x": (0.0, 1.5), "walk.capture.step_gain_y": (0.0, 1.5),
+           "walk.capture.max_step_x": None, "walk.capture.max_step_y": None,
+           "walk.capture.timing_gain": (0.0, 20.0), "walk.capture.max_timing": None}
+for n, bounds in capture.items():
+    d, lo, hi = registered[n]
+    lo, hi = bounds if bounds else (lo, hi)
+    ramp_genes.append({"parameter": n, "min": lo, "max": hi, "start": d})
+assert len(ramp_genes) == 66, len(ramp_genes)
+# Every gene within the store's range, and its start the firmware's default.
+table = {n: (float(d), float(lo), float(hi)) for n, d, lo, hi in pat.findall(src)}
+for g in ramp_genes + omni_genes:
+    n = g["parameter"]
+    d, lo, hi = registered.get(n) or (table[n][0],) + wide.get(n, table[n][1:])
+    assert lo <= g["min"] <= g["start"] <= g["max"] <= hi and g["start"] == d, g
 ramp = {"_comment": [
     "Speed-ramp walk optimisation (issue 32 point 1): per direction (forward, backward, left, right,",
-    "turn left, turn right), from standing, the command rises by ramp.increment every ramp.hold_s",
-    "(speed measured over the level's last ramp.measure_s) until a fall, a level no faster than the",
+    "turn left, turn right), from standing, level k asks for k * ramp.increment_mps [m/s] or, turning,",
+    "k * ramp.increment_radps [rad/s] for ramp.hold_s each (issue 41 point 3: the walk's command for it",
+    "comes from the genome's step time, velocity and step limits; speed measured over the level's last",
+    "ramp.measure_s) until a fall, a level the walk's limits cannot command, a level no faster than the",
     "best for ramp.patience levels in a row, or drift/heading since the first level beyond the",
     "straightness limits; a direction's score is its best speed held.",
     "Obj1 = -(v_f + v_b + 2 v_side + 0.2 w_turn) of the top speeds, Obj2 = max |a| (mean of the",
     "directions' peaks). Constraints: a level held before any fall, and a straight first level, in",
-    "every direction. Genes as walk-omni.json. Robust: 3 randomised trials. Generated by make_configs.py."],
+    "every direction. Genes (issue 41 point 3): the 46 walk parameters with the store's wide ranges (step",
+    "time down to 0.35 s; step and velocity limits of every direction up to the published speeds), the",
+    "walk.balance.* gains, filters and limits, and the capture step's footstep and timing gains, each",
+    "starting at the firmware's default. Robust: 3 randomised trials. Generated by make_configs.py."],
     "task": "walk-ramp", "seed": 32, "pop": 40, "generations": 50, "pc": 0.8, "pm": 0.025, "etac": 13,
     "etam": 20, "seed_fraction": 0.2,
-    "ramp": {"start_s": 2.0, "increment": 0.1, "hold_s": 4.0, "measure_s": 3.0, "max_levels": 10,
-             "patience": 2},
+    "ramp": {"start_s": 2.0, "increment_mps": 0.05, "increment_radps": 0.2, "hold_s": 4.0,
+             "measure_s": 3.0, "max_levels": 10, "patience": 2},
     "max_drift_ratio": 0.1, "max_heading_change_deg": 10.0, "max_turn_translation_m": 0.1,
     "trials": 3, "aggregate": "mean", "trial_seed": 1,
     "randomisation": {"imu_noise": True, "friction_range": 0.2, "mass_range": 0.05, "strength_range": 0.1},
-    "hypervolume_ideal": [-2.0, 9.81], "hypervolume_nadir": [0.5, 100.0], "genes": omni_genes}
+    "hypervolume_ideal": [-2.0, 9.81], "hypervolume_nadir": [0.5, 100.0], "genes": ramp_genes}
 json.dump(ramp, open('optimiser/configs/walk-ramp.json', 'w'), indent=1)

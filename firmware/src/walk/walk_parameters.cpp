@@ -117,10 +117,17 @@ constexpr std::array<WalkParameterInfo, kWalkParameterCount> kTable{{
 // 0.42 backward, 0.26 sideways, 1.97 rad/s turning) are reachable at step times of 0.5-0.85 s:
 // velocities in m/step or rad/step = speed x step time, step limits about 1.5 x that, and
 // acceleration limits that reach full speed within about two steps.
-constexpr std::array<WalkParameterRange, 14> kWideRanges{{
+// Turning (issue 41 point 3): a step pair turns at most step.limits.angle_max (the inner foot only
+// closes up to the outer one), so 1.97 rad/s needs angle_max / (2 step_time) >= 1.97. The feet's
+// relative yaw is shared by the two hip yaw servos (the torso is midway), whose limits are
+// +-0.8 rad (servo_table.json): angle_max up to 1.6 rad; and steps down to 0.35 s (the step
+// frequency of the teams that walk this robot class fast, 2.5-3 steps/s), with which 1.6 rad per
+// pair is 2.3 rad/s.
+constexpr std::array<WalkParameterRange, 15> kWideRanges{{
+    {"walk.walk_cycle.step_time", 0.35, 1.275},
     {"walk.walk_cycle.step.limits.x_min", -0.30, -0.02},
     {"walk.walk_cycle.step.limits.x_max", 0.05, 0.30},
-    {"walk.walk_cycle.step.limits.angle_max", 0.131, 0.80},
+    {"walk.walk_cycle.step.limits.angle_max", 0.131, 1.6},
     {"walk.walk_cycle.velocity.limits.x_min", -0.30, -0.0135},
     {"walk.walk_cycle.velocity.limits.y_min", -0.25, -0.005},
     {"walk.walk_cycle.velocity.limits.y_max", 0.005, 0.25},

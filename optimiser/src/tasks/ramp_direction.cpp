@@ -4,6 +4,9 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
+
+#include "stride/optimiser/tasks/ramp_command.hpp"
 
 namespace stride::opt {
 
@@ -40,8 +43,10 @@ int RampDirection::level_at(double t) const {
   return t < r.start_s ? 0 : 1 + static_cast<int>((t - r.start_s) / r.hold_s);
 }
 
-double RampDirection::command_scale(int level) const {
-  return std::min(1.0, level * config_.ramp.increment);
+double RampDirection::level_speed(int level) const {
+  const RampTiming& r = config_.ramp;
+  if (r.normalised()) return std::min(1.0, level * r.increment);
+  return level * (axis_[2] != 0.0 ? r.increment_radps : r.increment_mps);
 }
 
 bool RampDirection::window_begun(int level, double t) const {
@@ -50,8 +55,16 @@ bool RampDirection::window_begun(int level, double t) const {
   return t >= level_end - r.measure_s - 1e-9;
 }
 
-void RampDirection::begin_level(int level) {
+double RampDirection::begin_level(int level, const fw::walk::WalkParameters& walk) {
   if (level > config_.ramp.max_levels) ended_ = true;
+  if (ended_) return 0.0;
+  if (config_.ramp.normalised()) return level_speed(level);
+  const std::optional<double> command = command_for_speed(walk, axis_, level_speed(level));
+  if (!command) {
+    ended_ = beyond_walk_limits_ = true;
+    return 0.0;
+  }
+  return *command;
 }
 
 void RampDirection::end_level(int level, const RampLevel& figures) {

@@ -240,8 +240,11 @@ Status RobotTask::run_episode(const Genome& genome, const sim::WorldOptions& opt
 
   double controller_s = 0.0;
   const double setup_s = std::chrono::duration<double>(Clock::now() - setup_start).count();
+  bool first_tick = true;
   const sim::StepFunction step = [&](const hal::SensorFrame& sensors, hal::Tick tick) {
     params.apply_staged();
+    if (first_tick) task_episode->parameters_applied(params);
+    first_tick = false;
     task_episode->before_step(sensors, tick, robot.world(), controller);
     const auto before = Clock::now();
     hal::CommandFrame commands = controller.step(sensors, tick);

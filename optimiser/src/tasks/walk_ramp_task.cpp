@@ -9,11 +9,14 @@
 //   c1   = -(directions whose first level was already beyond the straightness limits) / 6.
 // A direction's best speed is EpisodeScore::omni[d] (measured: a level counted), so the run's
 // report and stride validate show the per-direction top speeds beside the reference figures.
+// A level is a speed (speed_ramp.hpp); the episode commands it with the walk's parameters as the
+// genome set them, read once at the first tick (parameters_applied).
 #include <algorithm>
 #include <array>
 #include <cmath>
 
 #include "stride/firmware/motion_request.hpp"
+#include "stride/optimiser/tasks/ramp_command.hpp"
 #include "stride/optimiser/tasks/ramp_direction.hpp"
 #include "stride/optimiser/tasks/speed_ramp.hpp"
 #include "stride/optimiser/tasks/task_type.hpp"
@@ -31,7 +34,7 @@ class RampEpisode final : public TaskEpisode {
         direction_(direction),
         period_s_(period_s),
         axis_(omni_command(static_cast<OmniDirection>(direction))),
-        ramp_(config) {}
+        ramp_(config, axis_) {}
   sim::EpisodeOptions options() const override {
     sim::EpisodeOptions o;
     o.duration_s = config_.ramp.episode_s();
@@ -39,6 +42,9 @@ class RampEpisode final : public TaskEpisode {
     o.stop_on_fall = true;
     o.stop_when = [this] { return ramp_.ended(); };
     return o;
+  }
+  void parameters_applied(const fw::ParameterStore& params) override {
+    walk_read_ = read_walk_parameters(params, walk_);
   }
   void before_step(const hal::SensorFrame&, hal::Tick tick, const sim::SimWorld& world,
                    fw::Controller& controller) override {
@@ -50,9 +56,8 @@ class RampEpisode final : public TaskEpisode {
       if (level_ >= 1) end_level(world);
       if (level_ == 0) direction_start_ = walking_frame(world.ground_truth(), yaw_);
       level_ = level;
-      ramp_.begin_level(level_);
+      const double c = ramp_.begin_level(level_, walk_);
       if (ramp_.ended()) return;
-      const double c = ramp_.command_scale(level_);
       controller.request(fw::MotionRequest::walk(c * axis_[0], c * axis_[1], c * axis_[2]));
     }
     // The measurement window: the level's last measure_s.
@@ -64,6 +69,7 @@ class RampEpisode final : public TaskEpisode {
   Status score(const sim::EpisodeResult& r, const sim::SimWorld&, const fw::Controller& controller,
                EpisodeScore& out) override {
     if (controller.motion().refused_requests() > 0) return Status::error("walk request refused");
+    if (!walk_read_) return Status::error("walk parameters: " + walk_read_.message());
     out.omni = {};
     OmniSegment& s = out.omni[static_cast<std::size_t>(direction_)];
     const RampLevel& best = ramp_.best();
@@ -94,6 +100,8 @@ class RampEpisode final : public TaskEpisode {
   double period_s_;
   std::array<double, 3> axis_;
   RampDirection ramp_;
+  fw::walk::WalkParameters walk_;  ///< as the genome set them (parameters_applied)
+  Status walk_read_ = Status::error("never read");
   YawTracker yaws_;
   double yaw_ = 0.0;
   int level_ = 0;
@@ -143,11 +151,13 @@ Status parse_ramp(const nlohmann::json& doc, RampTiming& out) {
   if (!doc.is_object()) return Status::error("ramp: must be an object");
   RampTiming r = out;
   for (const auto& [key, value] : doc.items()) {
-    double* target = key == "start_s"     ? &r.start_s
-                     : key == "increment" ? &r.increment
-                     : key == "hold_s"    ? &r.hold_s
-                     : key == "measure_s" ? &r.measure_s
-                                          : nullptr;
+    double* target = key == "start_s"           ? &r.start_s
+                     : key == "increment_mps"   ? &r.increment_mps
+                     : key == "increment_radps" ? &r.increment_radps
+                     : key == "increment"       ? &r.increment
+                     : key == "hold_s"          ? &r.hold_s
+                     : key == "measure_s"       ? &r.measure_s
+                                                : nullptr;
     if (key == "max_levels" || key == "patience") {
       if (!value.is_number_integer() || value.get<int>() < 1 || value.get<int>() > 100)
         return Status::error("ramp." + key + ": must be an integer in 1..100, got " + value.dump());
@@ -156,16 +166,22 @@ Status parse_ramp(const nlohmann::json& doc, RampTiming& out) {
     }
     if (target == nullptr)
       return Status::error("ramp." + key +
-                           ": unknown field (known: start_s, increment, hold_s, measure_s, "
-                           "max_levels, patience)");
+                           ": unknown field (known: start_s, increment_mps, increment_radps, "
+                           "increment, hold_s, measure_s, max_levels, patience)");
     if (!value.is_number() || !std::isfinite(value.get<double>()))
       return Status::error("ramp." + key + ": must be a number, got " + value.dump());
     *target = value.get<double>();
   }
   if (!(r.start_s >= 0.0 && r.start_s <= 60.0))
     return Status::error("ramp.start_s: must be in [0, 60] s");
-  if (!(r.increment > 0.0 && r.increment <= 1.0))
-    return Status::error("ramp.increment: must be in (0, 1]");
+  if (!(r.increment_mps > 0.0 && r.increment_mps <= 1.0))
+    return Status::error("ramp.increment_mps: must be in (0, 1] m/s");
+  if (!(r.increment_radps > 0.0 && r.increment_radps <= 5.0))
+    return Status::error("ramp.increment_radps: must be in (0, 5] rad/s");
+  if (!(r.increment >= 0.0 && r.increment <= 1.0))
+    return Status::error(
+        "ramp.increment: must be in [0, 1] (normalised command per level; 0: levels of "
+        "increment_mps and increment_radps)");
   if (!(r.hold_s >= 1.0 && r.hold_s <= 60.0))
     return Status::error("ramp.hold_s: must be in [1, 60] s");
   if (!(r.measure_s > 0.0 && r.measure_s <= r.hold_s))
@@ -175,8 +191,14 @@ Status parse_ramp(const nlohmann::json& doc, RampTiming& out) {
 }
 
 nlohmann::json to_json(const RampTiming& r) {
-  return {{"start_s", r.start_s},     {"increment", r.increment},   {"hold_s", r.hold_s},
-          {"measure_s", r.measure_s}, {"max_levels", r.max_levels}, {"patience", r.patience}};
+  return {{"start_s", r.start_s},
+          {"increment_mps", r.increment_mps},
+          {"increment_radps", r.increment_radps},
+          {"increment", r.increment},
+          {"hold_s", r.hold_s},
+          {"measure_s", r.measure_s},
+          {"max_levels", r.max_levels},
+          {"patience", r.patience}};
 }
 
 }  // namespace stride::opt

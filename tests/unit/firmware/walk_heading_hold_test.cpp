@@ -193,6 +193,14 @@ TEST(WalkParameters, WideRangesContainTheSeedBoundsAndTheStoreAcceptsThem) {
   // Sideways up to 0.25 m/step (the seed's bounds stop at 0.015).
   EXPECT_TRUE(store.check("walk.walk_cycle.velocity.limits.y_max", 0.25).is_ok());
   EXPECT_FALSE(store.check("walk.walk_cycle.velocity.limits.y_max", 0.26).is_ok());
+  // A step pair's turn up to the hip yaw servos' +-0.8 rad each, steps down to 0.35 s.
+  EXPECT_TRUE(store.check("walk.walk_cycle.step.limits.angle_max", 1.6).is_ok());
+  EXPECT_FALSE(store.check("walk.walk_cycle.step.limits.angle_max", 1.61).is_ok());
+  EXPECT_TRUE(store.check("walk.walk_cycle.step_time", 0.35).is_ok());
+  EXPECT_FALSE(store.check("walk.walk_cycle.step_time", 0.34).is_ok());
+  // The defaults stay Ind_O.
+  EXPECT_EQ(store.spec(*store.find("walk.walk_cycle.step_time")).default_value, 0.85);
+  EXPECT_EQ(store.spec(*store.find("walk.walk_cycle.step.limits.angle_max")).default_value, 0.262);
 }
 
 }  // namespace

@@ -1,6 +1,6 @@
 // The speed ramp's mechanics without a simulation (ramp_direction.hpp, issue 44 point 5): the
-// levels and their commands and windows, the patience, and the straightness limits, each on
-// walking frames made up for the case.
+// levels, their speeds, commands and windows, the end at the walk's limits (issue 41 point 3),
+// the patience, and the straightness limits, each on walking frames made up for the case.
 #include "stride/optimiser/tasks/ramp_direction.hpp"
 
 #include <gtest/gtest.h>
@@ -11,15 +11,22 @@
 namespace stride::opt {
 namespace {
 
-constexpr std::array<double, 3> kForward = {1.0, 0.0, 0.0}, kLeft = {0.0, 1.0, 0.0},
-                                kTurnLeft = {0.0, 0.0, 1.0}, kTurnRight = {0.0, 0.0, -1.0};
+constexpr std::array<double, 3> kForward = {1.0, 0.0, 0.0}, kBackward = {-1.0, 0.0, 0.0},
+                                kLeft = {0.0, 1.0, 0.0}, kTurnLeft = {0.0, 0.0, 1.0},
+                                kTurnRight = {0.0, 0.0, -1.0};
 constexpr double kDeg = std::numbers::pi / 180.0;
 
-/// walk-ramp.json's settings: start 2 s, increment 0.1, hold 4 s, measure 3 s, 10 levels,
-/// patience 2, drift ratio 0.1, heading 10 deg, turn translation 0.1 m.
+/// walk-ramp.json's settings: start 2 s, 0.05 m/s and 0.2 rad/s per level, hold 4 s, measure
+/// 3 s, 10 levels, patience 2, drift ratio 0.1, heading 10 deg, turn translation 0.1 m.
 TaskConfig ramp_config() {
   TaskConfig c;
-  c.ramp = {2.0, 0.1, 4.0, 3.0, 10, 2};
+  c.ramp.start_s = 2.0;
+  c.ramp.increment_mps = 0.05;
+  c.ramp.increment_radps = 0.2;
+  c.ramp.hold_s = 4.0;
+  c.ramp.measure_s = 3.0;
+  c.ramp.max_levels = 10;
+  c.ramp.patience = 2;
   c.max_drift_ratio = 0.1;
   c.max_heading_change_deg = 10.0;
   c.max_turn_translation_m = 0.1;
@@ -32,34 +39,108 @@ RampLevel straight_at(double speed) {
   return level;
 }
 
-TEST(RampDirection, LevelsRiseEveryHoldFromTheStartWithTheirCommandAndWindow) {
+/// The walk of firmware/config/stepping-turf-omni.json as far as the planner sees it: Ind_O with
+/// 0.5 s steps, step limits x_max 0.15 m and angle_max 0.8 rad, velocity limits x_min -0.1 and
+/// y +-0.06 m/step. Its planned top speeds: forward 0.15 / 0.5 = 0.3 m/s (the step limit),
+/// backward 0.2 m/s, sideways 0.115 m/s (the inner foot at the collision margin beyond 0.05
+/// m/step: (0.025 + 1.5 * 0.06) / (2 * 0.5)), turning 0.8 / (2 * 0.5) = 0.8 rad/s.
+fw::walk::WalkParameters fast_walk() {
+  fw::walk::WalkParameters p = fw::walk::default_walk_parameters();
+  p.step_time = 0.5;
+  p.step_limits.x_max = 0.15;
+  p.step_limits.angle_max = 0.8;
+  p.velocity_limits.x_min = -0.1;
+  p.velocity_limits.y_min = -0.06;
+  p.velocity_limits.y_max = 0.06;
+  return p;
+}
+
+TEST(RampDirection, LevelsRiseEveryHoldFromTheStartWithTheirSpeedAndWindow) {
   const TaskConfig c = ramp_config();
-  RampDirection ramp(c);
+  RampDirection ramp(c, kForward), turn(c, kTurnLeft);
   EXPECT_EQ(ramp.level_at(0.0), 0);
   EXPECT_EQ(ramp.level_at(1.99), 0);
   EXPECT_EQ(ramp.level_at(2.0), 1);
   EXPECT_EQ(ramp.level_at(5.99), 1);
   EXPECT_EQ(ramp.level_at(6.0), 2);
   EXPECT_EQ(ramp.level_at(41.0), 10);
-  EXPECT_DOUBLE_EQ(ramp.command_scale(1), 0.1);
-  EXPECT_DOUBLE_EQ(ramp.command_scale(7), 0.7);
-  EXPECT_DOUBLE_EQ(ramp.command_scale(13), 1.0);  // never beyond full scale
+  // A level is a speed: 0.05 m/s per level forward, 0.2 rad/s per level turning.
+  EXPECT_DOUBLE_EQ(ramp.level_speed(1), 0.05);
+  EXPECT_DOUBLE_EQ(ramp.level_speed(7), 0.35);
+  EXPECT_DOUBLE_EQ(turn.level_speed(3), 0.6000000000000001);
   // Level 2 holds from 6 s to 10 s and is measured over its last 3 s.
   EXPECT_FALSE(ramp.window_begun(2, 6.99));
   EXPECT_TRUE(ramp.window_begun(2, 7.0));
-  // After max_levels the direction ends.
-  ramp.begin_level(10);
-  EXPECT_FALSE(ramp.ended());
-  ramp.begin_level(11);
-  EXPECT_TRUE(ramp.ended());
+  // After max_levels the direction ends (the walk could command more).
+  TaskConfig fast = c;
+  fast.ramp.increment_mps = 0.01;
+  RampDirection slow(fast, kForward);
+  EXPECT_GT(slow.begin_level(10, fast_walk()), 0.0);
+  EXPECT_FALSE(slow.ended());
+  EXPECT_EQ(slow.begin_level(11, fast_walk()), 0.0);
+  EXPECT_TRUE(slow.ended());
+  EXPECT_FALSE(slow.beyond_walk_limits());
   EXPECT_DOUBLE_EQ(c.ramp.episode_s(), 42.0);
+}
+
+TEST(RampDirection, ALevelCommandsItsSpeedWithTheWalksLimitsAndEndsBeyondThem) {
+  const TaskConfig c = ramp_config();
+  const fw::walk::WalkParameters walk = fast_walk();
+  // Forward: command = speed * T / velocity.limits.x_max while the step limit does not bind.
+  RampDirection forward(c, kForward);
+  EXPECT_NEAR(forward.begin_level(1, walk), 0.05 * 0.5 / 0.3, 1e-11);
+  EXPECT_NEAR(forward.begin_level(6, walk), 0.3 * 0.5 / 0.3, 1e-11);  // 0.15 m/step: the limit
+  EXPECT_FALSE(forward.ended());
+  EXPECT_EQ(forward.begin_level(7, walk), 0.0);  // 0.35 m/s: beyond the step limit
+  EXPECT_TRUE(forward.ended());
+  EXPECT_TRUE(forward.beyond_walk_limits());
+  EXPECT_FALSE(forward.counted());
+  // Backward: of |velocity.limits.x_min| = 0.1 m/step, up to 0.2 m/s.
+  RampDirection backward(c, kBackward);
+  EXPECT_NEAR(backward.begin_level(2, walk), 0.1 * 0.5 / 0.1, 1e-11);
+  EXPECT_NEAR(backward.begin_level(4, walk), 1.0, 1e-11);
+  EXPECT_EQ(backward.begin_level(5, walk), 0.0);
+  EXPECT_TRUE(backward.beyond_walk_limits());
+  // Sideways: 0.1 m/s is 0.05 m/step, the collision margin's edge; 0.15 m/s is beyond 0.115.
+  RampDirection left(c, kLeft);
+  EXPECT_NEAR(left.begin_level(1, walk), 0.05 * 0.5 / 0.06, 1e-11);
+  EXPECT_NEAR(left.begin_level(2, walk), 0.1 * 0.5 / 0.06, 1e-11);
+  EXPECT_EQ(left.begin_level(3, walk), 0.0);
+  EXPECT_TRUE(left.beyond_walk_limits());
+  // Turning: 0.75 c L / T = 0.2 rad/s at c = 0.2 / (0.75 * 0.8 / 0.5); 0.8 rad/s is the step
+  // limit's cap (angle_max per step pair), reached at c = 0.8 / 1.2.
+  RampDirection turn(c, kTurnRight);
+  EXPECT_NEAR(turn.begin_level(1, walk), 0.2 / 1.2, 1e-11);
+  EXPECT_NEAR(turn.begin_level(4, walk), 0.8 / 1.2, 1e-11);
+  EXPECT_EQ(turn.begin_level(5, walk), 0.0);
+  EXPECT_TRUE(turn.beyond_walk_limits());
+  // Ind_O's sideways limit (0.01 m/step at 0.85 s: 0.012 m/s) cannot command the first level.
+  RampDirection ind_o(c, kLeft);
+  EXPECT_EQ(ind_o.begin_level(1, fw::walk::default_walk_parameters()), 0.0);
+  EXPECT_TRUE(ind_o.ended());
+  EXPECT_TRUE(ind_o.beyond_walk_limits());
+}
+
+TEST(RampDirection, ANormalisedRampCommandsItsShareWhateverTheWalk) {
+  TaskConfig c = ramp_config();
+  c.ramp.increment = 0.1;  // issue 32's ramp, as its run.json files give it
+  RampDirection ramp(c, kLeft);
+  const fw::walk::WalkParameters ind_o = fw::walk::default_walk_parameters();
+  EXPECT_DOUBLE_EQ(ramp.level_speed(7), 0.7);
+  EXPECT_DOUBLE_EQ(ramp.begin_level(1, ind_o), 0.1);
+  EXPECT_DOUBLE_EQ(ramp.begin_level(7, ind_o), 0.7);
+  EXPECT_DOUBLE_EQ(ramp.begin_level(10, ind_o), 1.0);
+  EXPECT_FALSE(ramp.ended());
+  c.ramp.max_levels = 13;
+  EXPECT_DOUBLE_EQ(ramp.begin_level(13, ind_o), 1.0);  // never beyond full scale
+  EXPECT_FALSE(ramp.beyond_walk_limits());
 }
 
 /// The levels a direction measures before it ends, for these speeds and this patience.
 int levels_until_end(const std::vector<double>& speeds, int patience, double& best) {
   TaskConfig c = ramp_config();
   c.ramp.patience = patience;
-  RampDirection ramp(c);
+  RampDirection ramp(c, kForward);
   int level = 0;
   for (const double speed : speeds) {
     ramp.end_level(++level, straight_at(speed));
@@ -81,7 +162,7 @@ TEST(RampDirection, PatienceLevelsInARowNoFasterThanTheBestEndTheDirection) {
   EXPECT_DOUBLE_EQ(best, 0.30);
   // A direction that never moves counts nothing and ends after `patience` levels.
   TaskConfig c = ramp_config();
-  RampDirection still(c);
+  RampDirection still(c, kForward);
   still.end_level(1, straight_at(0.0));
   EXPECT_FALSE(still.ended());
   still.end_level(2, straight_at(-0.01));
@@ -92,7 +173,7 @@ TEST(RampDirection, PatienceLevelsInARowNoFasterThanTheBestEndTheDirection) {
 
 TEST(RampDirection, ACrookedLevelEndsTheDirectionAndKeepsTheBestStraightOne) {
   const TaskConfig c = ramp_config();
-  RampDirection first(c);
+  RampDirection first(c, kForward);
   RampLevel crooked = straight_at(0.5);
   crooked.straight = false;
   first.end_level(1, crooked);
@@ -100,7 +181,7 @@ TEST(RampDirection, ACrookedLevelEndsTheDirectionAndKeepsTheBestStraightOne) {
   EXPECT_TRUE(first.crooked_first());
   EXPECT_FALSE(first.counted());
 
-  RampDirection later(c);
+  RampDirection later(c, kForward);
   later.end_level(1, straight_at(0.1));
   later.end_level(2, crooked);
   EXPECT_TRUE(later.ended());

@@ -1,6 +1,7 @@
 // Task configs through run.json (issue 44 point 1): every shipped config, written as
 // `stride optimise` writes run.json and read back as --resume and `stride validate` read it,
-// keeps every value its file gives; a ramp's patience survives the trip.
+// keeps every value its file gives; every ramp setting survives the trip, and an issue-32 ramp
+// (a normalised increment) still loads.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -84,15 +85,75 @@ TEST(TaskConfig, EveryShippedConfigKeepsEveryValueThroughRunJson) {
   EXPECT_EQ(configs, 8);
 }
 
-TEST(TaskConfig, ARampsPatienceSurvivesRunJson) {
+TEST(TaskConfig, EveryRampSettingSurvivesRunJson) {
   TaskConfig config, reread;
   ASSERT_TRUE(load_task_config(kConfigs / "walk-ramp.json", config));
-  config.ramp.patience = 5;  // not the default 2
+  // None of them the default (RampTiming's), so that a field the writer drops is seen.
+  config.ramp.start_s = 1.5;
+  config.ramp.increment_mps = 0.03;
+  config.ramp.increment_radps = 0.15;
+  config.ramp.increment = 0.0;
+  config.ramp.hold_s = 5.0;
+  config.ramp.measure_s = 2.5;
+  config.ramp.max_levels = 12;
+  config.ramp.patience = 5;
   const test::TempDir tmp;
   ASSERT_TRUE(parse_task_config(through_run_json(config, tmp.path()), reread));
+  EXPECT_EQ(reread.ramp.start_s, 1.5);
+  EXPECT_EQ(reread.ramp.increment_mps, 0.03);
+  EXPECT_EQ(reread.ramp.increment_radps, 0.15);
+  EXPECT_EQ(reread.ramp.increment, 0.0);
+  EXPECT_FALSE(reread.ramp.normalised());
+  EXPECT_EQ(reread.ramp.hold_s, 5.0);
+  EXPECT_EQ(reread.ramp.measure_s, 2.5);
+  EXPECT_EQ(reread.ramp.max_levels, 12);
   EXPECT_EQ(reread.ramp.patience, 5);
-  EXPECT_EQ(reread.ramp.max_levels, config.ramp.max_levels);
-  EXPECT_EQ(reread.ramp.measure_s, config.ramp.measure_s);
+  // A normalised ramp (issue 32's) stays one.
+  config.ramp.increment = 0.15;
+  ASSERT_TRUE(parse_task_config(through_run_json(config, tmp.path()), reread));
+  EXPECT_EQ(reread.ramp.increment, 0.15);
+  EXPECT_TRUE(reread.ramp.normalised());
+}
+
+TEST(TaskConfig, AnIssue32RampFromAnOldRunJsonStillLoadsAsTheNormalisedRamp) {
+  // The ramp as issue 32's run.json files hold it: a normalised increment, no speeds.
+  json doc;
+  std::ifstream(kConfigs / "walk-ramp.json") >> doc;
+  doc["ramp"] = {{"start_s", 2.0},   {"increment", 0.1}, {"hold_s", 4.0},
+                 {"measure_s", 3.0}, {"max_levels", 10}, {"patience", 2}};
+  TaskConfig c;
+  ASSERT_TRUE(parse_task_config(doc, c));
+  EXPECT_TRUE(c.ramp.normalised());
+  EXPECT_EQ(c.ramp.increment, 0.1);
+  EXPECT_EQ(c.ramp.measure_s, 3.0);
+}
+
+TEST(TaskConfig, ABadRampSpeedIsNamed) {
+  json doc;
+  std::ifstream(kConfigs / "walk-ramp.json") >> doc;
+  TaskConfig c;
+  json bad = doc;
+  bad["ramp"]["increment_mps"] = 0.0;
+  Status s = parse_task_config(bad, c);
+  ASSERT_FALSE(s);
+  EXPECT_EQ(s.message(), "ramp.increment_mps: must be in (0, 1] m/s");
+  bad = doc;
+  bad["ramp"]["increment_radps"] = 6.0;
+  s = parse_task_config(bad, c);
+  ASSERT_FALSE(s);
+  EXPECT_EQ(s.message(), "ramp.increment_radps: must be in (0, 5] rad/s");
+  bad = doc;
+  bad["ramp"]["increment"] = -0.1;
+  s = parse_task_config(bad, c);
+  ASSERT_FALSE(s);
+  EXPECT_EQ(s.message(),
+            "ramp.increment: must be in [0, 1] (normalised command per level; 0: levels of "
+            "increment_mps and increment_radps)");
+  bad = doc;
+  bad["ramp"]["increment_mps"] = "fast";
+  s = parse_task_config(bad, c);
+  ASSERT_FALSE(s);
+  EXPECT_EQ(s.message(), "ramp.increment_mps: must be a number, got \"fast\"");
 }
 
 }  // namespace

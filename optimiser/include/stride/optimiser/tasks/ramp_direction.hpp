@@ -1,11 +1,13 @@
 // The speed ramp of one direction (task "walk-ramp", speed_ramp.hpp has the rules), apart from
-// the simulation: which level a moment belongs to, its command and measurement window, each
-// level's speed and straightness from three walking frames, and whether the direction goes on
-// (levels, patience, straightness). walk_ramp_task.cpp feeds it the simulated robot's frames.
+// the simulation: which level a moment belongs to, its speed, its command for the walk's
+// parameters and its measurement window, each level's speed and straightness from three walking
+// frames, and whether the direction goes on (levels, the walk's limits, patience, straightness).
+// walk_ramp_task.cpp feeds it the simulated robot's parameters and frames.
 #pragma once
 
 #include <array>
 
+#include "stride/firmware/walk/walk_parameters.hpp"
 #include "stride/optimiser/tasks/task_config.hpp"
 #include "stride/optimiser/tasks/walk_measures.hpp"
 
@@ -34,15 +36,22 @@ RampLevel measure_ramp_level(const PlanarPose& direction_start, const PlanarPose
 
 class RampDirection {
  public:
-  explicit RampDirection(const TaskConfig& config) : config_(config) {}
+  /// `axis`: the direction's normalised command (omni_command).
+  RampDirection(const TaskConfig& config, const std::array<double, 3>& axis)
+      : config_(config), axis_(axis) {}
   /// The level at `t` [s] from the episode's start: 0 before ramp.start_s, then 1, 2, ...
   int level_at(double t) const;
-  /// The command's share of full scale at `level`: min(1, level * increment).
-  double command_scale(int level) const;
+  /// The speed `level` asks for: level * increment_mps [m/s] for a translation, level *
+  /// increment_radps [rad/s] for a turn (a normalised ramp: its command's share, as below).
+  double level_speed(int level) const;
   /// Whether `level`'s measurement window (its last measure_s) has begun at `t`.
   bool window_begun(int level, double t) const;
-  /// `level` begins: the direction ends past max_levels.
-  void begin_level(int level);
+  /// `level` begins: its command's share of the axis (the walk command is the share times the
+  /// axis), the one with which the walk's parameters `walk` plan level_speed(level)
+  /// (ramp_command.hpp); in a normalised ramp min(1, level * increment). The direction ends past
+  /// max_levels, or when the walk's limits cannot command the level's speed
+  /// (beyond_walk_limits()); the share is then 0.
+  double begin_level(int level, const fw::walk::WalkParameters& walk);
   /// A level's figures: the direction ends if it was not straight, or after `patience` levels
   /// in a row no faster than the best; otherwise a faster level becomes the best.
   void end_level(int level, const RampLevel& figures);
@@ -52,13 +61,16 @@ class RampDirection {
   bool counted() const { return counted_; }
   /// The first level was already beyond the straightness limits.
   bool crooked_first() const { return crooked_first_; }
+  /// The direction ended at a level whose speed the walk's limits cannot command.
+  bool beyond_walk_limits() const { return beyond_walk_limits_; }
   /// The fastest straight level (zeros until one is counted).
   const RampLevel& best() const { return best_; }
 
  private:
   const TaskConfig& config_;
+  std::array<double, 3> axis_;
   int levels_without_gain_ = 0;
-  bool ended_ = false, counted_ = false, crooked_first_ = false;
+  bool ended_ = false, counted_ = false, crooked_first_ = false, beyond_walk_limits_ = false;
   RampLevel best_;
 };
 

@@ -22,6 +22,7 @@
 #include <nlohmann/json.hpp>
 
 #include "stride/firmware/controller.hpp"
+#include "stride/firmware/parameter_store.hpp"
 #include "stride/hal/sensor_frame.hpp"
 #include "stride/optimiser/tasks/episode_score.hpp"
 #include "stride/optimiser/tasks/task_config.hpp"
@@ -36,6 +37,10 @@ class TaskEpisode {
   virtual ~TaskEpisode() = default;
   /// Length, goal and stop rules of the episode (sim::run_episode).
   virtual sim::EpisodeOptions options() const = 0;
+  /// Once, at the first tick, after the genome is applied and before the first before_step: the
+  /// firmware's parameters as the episode runs with them (for a task whose requests depend on
+  /// them; outside the real-time rule).
+  virtual void parameters_applied(const fw::ParameterStore& /*params*/) {}
   /// Every tick, after the genome is applied and before Controller::step: the task's requests
   /// (real-time: no allocation, no I/O).
   virtual void before_step(const hal::SensorFrame& sensors, hal::Tick tick,
