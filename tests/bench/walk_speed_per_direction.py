@@ -1,13 +1,17 @@
 #!/usr/bin/env python3
-"""Walk speed per direction on each engine (issue 29 point 1): `stride sim walk` forward,
-backward, left, right and turning both ways, 20 s each, seeds 1-3; the speed of one run is
-the torso's displacement from 5 s to 20 s (x, y, or yaw unwrapped) divided by 15 s, and the
-table shows the median over the seeds, with the falls. Runs two simulations at a time under
-`nice`.
+"""Walk speed per direction on each engine and ground (issues 29 and 41): `stride sim walk`
+forward, backward, left, right and turning both ways, 20 s each, seeds 1-3; the speed of one
+run is the torso's displacement from 5 s to 20 s (x, y, or yaw unwrapped) divided by 15 s,
+and the table shows the median over the seeds, with the falls. Runs two simulations at a
+time under `nice`.
 
   python3 tests/bench/walk_speed_per_direction.py [--engines simbody,mujoco] [--seeds 1,2,3]
-      [--params FILE] [--stride build/release/bin/stride] [--json OUT] [-- extra sim options]
+      [--params FILE]... [--grounds turf,soft,hard] [--stride build/release/bin/stride]
+      [--json OUT] [-- extra sim options]
 
+--params may be given several times (one table row per file, engine and ground); "defaults"
+is the firmware without a parameter file. --grounds are `--contact` values: turf (the
+default world's), soft (deep turf), hard (carpet), seed (the thesis's 2 cm grass).
 Default parameters: tests/bench/params/balance-identified-wide.json (balance-identified.json
 with the issue's wider velocity limits) on the faithful world (--servo-law identified --imu
 cm730).
@@ -42,9 +46,10 @@ def yaw_of(q):
 def run_one(stride, params, engine, seed, command, coordinate, extra, t0=5.0, t1=20.0):
     with tempfile.TemporaryDirectory() as tmp:
         record = os.path.join(tmp, "trace.jsonl")
-        cmd = ["nice", stride, "sim", "walk", "--params", params, "--servo-law", "identified",
-               "--imu", "cm730", "--engine", engine, "--seed", str(seed), "--duration", str(t1),
-               "--json", "--record", record] + command + extra
+        cmd = ["nice", stride, "sim", "walk"] + ([] if params == "defaults" else
+                                                   ["--params", params])
+        cmd += ["--servo-law", "identified", "--imu", "cm730", "--engine", engine, "--seed",
+                str(seed), "--duration", str(t1), "--json", "--record", record] + command + extra
         out = subprocess.run(cmd, capture_output=True, text=True)
         if out.returncode not in (0, 1):
             raise RuntimeError(" ".join(cmd) + ": " + out.stderr.strip())
@@ -83,8 +88,10 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--engines", default="simbody,mujoco")
     ap.add_argument("--seeds", default="1,2,3")
-    ap.add_argument("--params", default=os.path.join(HERE, "params",
-                                                      "balance-identified-wide.json"))
+    ap.add_argument("--params", action="append",
+                    help="parameter file (repeatable; 'defaults': none)")
+    ap.add_argument("--grounds", default="",
+                    help="comma-separated --contact values (default: the world's own)")
     ap.add_argument("--stride", default=os.path.join(ROOT, "build", "release", "bin", "stride"))
     ap.add_argument("--json", help="write every run's result here")
     ap.add_argument("--jobs", type=int, default=2)
@@ -92,31 +99,39 @@ def main():
     args = ap.parse_args()
     engines = args.engines.split(",")
     seeds = [int(s) for s in args.seeds.split(",")]
+    files = args.params or [os.path.join(HERE, "params", "balance-identified-wide.json")]
+    grounds = args.grounds.split(",") if args.grounds else [""]
     jobs = {}
     with concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs) as pool:
-        for engine in engines:
-            for name, command, coordinate, _ in DIRECTIONS:
-                for seed in seeds:
-                    jobs[(engine, name, seed)] = pool.submit(
-                        run_one, args.stride, args.params, engine, seed, command, coordinate,
-                        args.extra)
+        for params in files:
+            for ground in grounds:
+                extra = (["--contact", ground] if ground else []) + args.extra
+                for engine in engines:
+                    for name, command, coordinate, _ in DIRECTIONS:
+                        for seed in seeds:
+                            jobs[(params, ground, engine, name, seed)] = pool.submit(
+                                run_one, args.stride, params, engine, seed, command, coordinate,
+                                extra)
     results = {k: v.result() for k, v in jobs.items()}
-    print("| engine | " + " | ".join(d[0] for d in DIRECTIONS) + " |")
-    print("|---|" + "---|" * len(DIRECTIONS))
-    for engine in engines:
-        cells = []
-        for name, _, _, sign in DIRECTIONS:
-            runs = [results[(engine, name, s)] for s in seeds]
-            speeds = [r["speed"] for r in runs if not math.isnan(r["speed"])]
-            falls = sum(r["fell"] for r in runs)
-            cell = "%.3f" % statistics.median(speeds) if speeds else "-"
-            if falls:
-                cell += ", falls %d/%d" % (falls, len(runs))
-            cells.append(cell)
-        print("| %s | %s |" % (engine, " | ".join(cells)))
+    print("| parameters | ground | engine | " + " | ".join(d[0] for d in DIRECTIONS) + " |")
+    print("|---|---|---|" + "---|" * len(DIRECTIONS))
+    for params in files:
+        for ground in grounds:
+            for engine in engines:
+                cells = []
+                for name, _, _, sign in DIRECTIONS:
+                    runs = [results[(params, ground, engine, name, s)] for s in seeds]
+                    speeds = [r["speed"] for r in runs if not math.isnan(r["speed"])]
+                    falls = sum(r["fell"] for r in runs)
+                    cell = "%.3f" % statistics.median(speeds) if speeds else "-"
+                    if falls:
+                        cell += ", falls %d/%d" % (falls, len(runs))
+                    cells.append(cell)
+                print("| %s | %s | %s | %s |" % (os.path.basename(params), ground or "world's",
+                                                 engine, " | ".join(cells)))
     if args.json:
         with open(args.json, "w") as f:
-            json.dump({"%s/%s/%d" % k: v for k, v in results.items()}, f, indent=1)
+            json.dump({"%s/%s/%s/%s/%d" % k: v for k, v in results.items()}, f, indent=1)
     return 0
 
 
