@@ -100,6 +100,8 @@ Status SimWorld::Impl::configure() {
     return Status::error("contact: thickness, damping and friction must be >= 0, stiffness > 0");
   if (!(o.randomise.contact_range >= 0.0 && o.randomise.contact_range <= kMaxContactRange))
     return Status::error("contact_range: must be in 0..1");
+  if (!(o.randomise.com_range >= 0.0 && o.randomise.com_range <= 0.05))
+    return Status::error("com_range: must be in 0..0.05 m");
   for (const TorsoPush& p : o.pushes)
     if (!(p.time_s >= 0.0) || !std::isfinite(p.time_s) || !std::isfinite(p.direction_rad) ||
         !(p.impulse_n_s >= 0.0) || !std::isfinite(p.impulse_n_s))
@@ -176,6 +178,12 @@ void SimWorld::Impl::draw_randomisation() {
     gyro_bias[k] = options.imu.gyro_bias[k] + options.imu.gyro_bias_std * rng.normal();
   // The ground: drawn (one more draw) only when its range is set (grounds.hpp).
   if (r.contact_range > 0.0) em.contact = draw_ground(options.contact, r.contact_range, rng);
+  // The trunk's centre of mass: two more draws, only when its range is set.
+  em.root_com_shift.setZero();
+  if (r.com_range > 0.0) {
+    em.root_com_shift.x() = r.com_range * rng.uniform(-1.0, 1.0);
+    em.root_com_shift.y() = r.com_range * rng.uniform(-1.0, 1.0);
+  }
 }
 
 void SimWorld::Impl::skip_reset_draws() {
@@ -433,6 +441,10 @@ std::int64_t SimWorld::period_count() const {
 const WorldOptions& SimWorld::options() const {
   return impl_->options;
 }
+Eigen::Vector3d SimWorld::trunk_com_shift() const {
+  return impl_->engine_model.root_com_shift;
+}
+
 const ContactOptions& SimWorld::ground() const {
   return impl_->engine_model.contact;
 }

@@ -135,6 +135,15 @@ const std::vector<WorldOptionInfo>& world_option_table() {
        {},
        0.0,
        kMaxContactRange},
+      {"com_range",
+       "m",
+       "0",
+       "trunk centre of mass moved at each reset, x and y uniform in +-range (make_variants.py: "
+       "0.01)",
+       V::kNumber,
+       {},
+       0.0,
+       0.05},
       {"latency_ticks",
        "",
        "the world file's, 0",
@@ -227,6 +236,7 @@ void set_number(WorldSpec& s, std::string_view key, double v) {
   if (key == "strength_range") s.randomise.strength_range = v;
   if (key == "latency_probability") s.randomise.latency_probability = v;
   if (key == "contact_range") s.randomise.contact_range = v;
+  if (key == "com_range") s.randomise.com_range = v;
   if (key == "latency_ticks") s.latency_ticks = static_cast<int>(v);
 }
 
@@ -331,6 +341,7 @@ bool WorldSpec::is_set(std::string_view key) const {
   if (key == "strength_range") return randomise.strength_range != 0.0;
   if (key == "latency_probability") return randomise.latency_probability != 0.0;
   if (key == "contact_range") return randomise.contact_range != 0.0;
+  if (key == "com_range") return randomise.com_range != 0.0;
   if (key == "latency_ticks") return latency_ticks.has_value();
   if (key == "push") return !pushes.empty();
   return false;

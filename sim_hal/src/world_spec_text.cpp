@@ -89,6 +89,7 @@ nlohmann::json to_json(const WorldSpec& s) {
   if (s.is_set("strength_range")) j["strength_range"] = s.randomise.strength_range;
   if (s.is_set("latency_probability")) j["latency_probability"] = s.randomise.latency_probability;
   if (s.is_set("contact_range")) j["contact_range"] = s.randomise.contact_range;
+  if (s.is_set("com_range")) j["com_range"] = s.randomise.com_range;
   if (s.latency_ticks) j["latency_ticks"] = *s.latency_ticks;
   if (!s.pushes.empty()) {
     nlohmann::json pushes = nlohmann::json::array();

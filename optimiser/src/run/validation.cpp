@@ -161,7 +161,8 @@ Status validation_worlds(const RobotTask& task, const ValidationOptions& options
   r.friction_range = widen(r.friction_range, 1.5 * TrialRandomisation{}.friction_range);
   r.mass_range = widen(r.mass_range, 1.5 * TrialRandomisation{}.mass_range);
   r.strength_range = widen(r.strength_range, 1.5 * TrialRandomisation{}.strength_range);
-  r.contact_range = widen(r.contact_range, 0.0);  // the run's ground range, if it had one
+  r.contact_range = widen(r.contact_range, 0.0);    // the run's ground range, if it had one
+  r.com_range = std::min(0.05, 1.5 * r.com_range);  // the run's robot variants, if it had them
   r.latency_probability = std::max(0.5, r.latency_probability);
   out.push_back(std::move(wider));
   ValidationWorld half{options.physics_step_ns > 0

@@ -33,6 +33,7 @@ json world_json(const ValidationWorld& w, const std::string& unavailable) {
             {"contact", sim::contact_kind_name(o.contact)},
             {"contact_range", o.randomise.contact_range},
             {"seeds", w.seeds}};
+  if (o.randomise.com_range > 0.0) j["com_range"] = o.randomise.com_range;
   if (!unavailable.empty()) j["unavailable"] = unavailable;
   return j;
 }

@@ -33,6 +33,7 @@ sim::WorldOptions world_for_trial(const TaskConfig& config, int world, std::uint
     spec.randomise.mass_range = config.randomisation.mass_range;
     spec.randomise.strength_range = config.randomisation.strength_range;
     spec.randomise.contact_range = config.randomisation.contact_range;
+    spec.randomise.com_range = config.randomisation.com_range;
   }
   sim::WorldOptions w = spec.to_options();
   const TaskType* type = find_task_type(config.task);

@@ -103,9 +103,10 @@ std::string option_text(const nlohmann::json& v) {
 }
 
 /// The world options a task's trials set (trial_seed, randomisation), not its world.
-constexpr const char* kTrialWorldOptions[] = {
-    "noise",        "seed", "friction_range", "mass_range", "strength_range", "latency_probability",
-    "contact_range"};
+constexpr const char* kTrialWorldOptions[] = {"noise",          "seed",
+                                              "friction_range", "mass_range",
+                                              "strength_range", "latency_probability",
+                                              "contact_range",  "com_range"};
 
 // The simulated world (TaskConfig::world): `world` is a named world ("faithful", "seed"), a
 // world file (its path or its object, with "format": "stride-world") or an object of the
@@ -389,7 +390,8 @@ Status parse_task_config(const nlohmann::json& doc, TaskConfig& out) {
     for (auto [name, target] : {std::pair{"friction_range", &c.randomisation.friction_range},
                                 {"mass_range", &c.randomisation.mass_range},
                                 {"strength_range", &c.randomisation.strength_range},
-                                {"contact_range", &c.randomisation.contact_range}}) {
+                                {"contact_range", &c.randomisation.contact_range},
+                                {"com_range", &c.randomisation.com_range}}) {
       if (!r.contains(name)) continue;
       if (!r.at(name).is_number())
         return Status::error(std::string("randomisation.") + name + ": must be a number");
@@ -489,6 +491,8 @@ nlohmann::json to_json(const TaskConfig& c) {
                         {"mass_range", c.randomisation.mass_range},
                         {"strength_range", c.randomisation.strength_range},
                         {"contact_range", c.randomisation.contact_range}}}};
+  // Only when set, so that the record of a run from before it stays equal.
+  if (c.randomisation.com_range != 0.0) j["randomisation"]["com_range"] = c.randomisation.com_range;
   nlohmann::json engines = nlohmann::json::array();
   for (sim::EngineKind e : c.engines) engines.push_back(sim::to_string(e));
   j["engines"] = engines;

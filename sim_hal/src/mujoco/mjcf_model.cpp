@@ -47,7 +47,8 @@ struct Writer {
     const LinkSpec& link = robot.links()[l];
     const double s = m.link_mass_scale[l];
     const Eigen::Matrix3d& i = link.inertia;
-    line(depth, "<inertial pos=\"" + vec(link.com) + "\" mass=\"" + num(s * link.mass) +
+    const Eigen::Vector3d com = l == 0 ? Eigen::Vector3d(link.com + m.root_com_shift) : link.com;
+    line(depth, "<inertial pos=\"" + vec(com) + "\" mass=\"" + num(s * link.mass) +
                     "\" fullinertia=\"" + num(s * i(0, 0)) + " " + num(s * i(1, 1)) + " " +
                     num(s * i(2, 2)) + " " + num(s * i(0, 1)) + " " + num(s * i(0, 2)) + " " +
                     num(s * i(1, 2)) + "\"/>");

@@ -134,7 +134,8 @@ Status SimbodyEngine::build(const EngineModel& model) {
       const LinkSpec& link = robot.links()[l];
       const Real scale = model.link_mass_scale.at(l);
       const Real mass = scale * link.mass;
-      const Vec3 com = to_vec3(link.com);
+      const Vec3 com =
+          to_vec3(l == 0 ? Eigen::Vector3d(link.com + model.root_com_shift) : link.com);
       link_mass_[l] = mass;
       link_com_[l] = com;
       SimTK::Mat33 inertia;

@@ -414,7 +414,7 @@ TEST(TaskConfig, AWorldObjectTakesTheTablesOptions) {
   EXPECT_EQ(error_of(d),
             "world.gravity: unknown world option (known: base, engine, physics_step_us, "
             "servo_law, imu, contact, friction, urdf, noise, seed, friction_range, mass_range, "
-            "strength_range, latency_probability, contact_range, latency_ticks, push)");
+            "strength_range, latency_probability, contact_range, com_range, latency_ticks, push)");
   d["world"] = {{"friction", 9}};
   EXPECT_EQ(error_of(d), "world.friction: must be in 0.05..3, got 9");
   d["world"] = {{"push", {"3,up,1"}}};

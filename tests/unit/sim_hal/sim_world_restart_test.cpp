@@ -22,6 +22,7 @@ WorldOptions randomised(EngineKind engine, std::uint64_t seed, bool chain_imu) {
   if (!chain_imu) o.imu.chain = ImuChain::ideal();  // the plain sampler draws its own noise
   o.randomise = {0.2, 0.05, 0.1, 0.5};
   o.randomise.contact_range = 0.5;  // the ground drawn too (one more draw)
+  o.randomise.com_range = 0.01;     // and the trunk's centre of mass (two more)
   return o;
 }
 

@@ -42,6 +42,8 @@ struct EngineModel {
   const RobotModel* robot = nullptr;
   /// Per link: its mass and inertia scale after randomisation (1 = the URDF's).
   std::vector<double> link_mass_scale;
+  /// The root link's (the trunk's) centre of mass moved by randomisation, in its frame [m].
+  Eigen::Vector3d root_com_shift = Eigen::Vector3d::Zero();
   /// Per joint: reflected rotor inertia (armature) about the joint axis [kg m^2].
   std::vector<double> joint_armature;
   /// Indices of the two feet in robot->links() (-1 if absent): their contacts are reported.

@@ -155,6 +155,9 @@ class SimWorld {
   /// The ground of this episode: options().contact, or the one drawn at the last reset when
   /// options().randomise.contact_range > 0 (grounds.hpp).
   const ContactOptions& ground() const;
+  /// How far the trunk's centre of mass was moved at the last reset, in the trunk's frame [m]
+  /// (zero unless options().randomise.com_range > 0).
+  Eigen::Vector3d trunk_com_shift() const;
   const RobotModel& model() const;
   double battery_voltage() const;
   /// Pose of every link of model() in the world frame (for drawings and recordings).

@@ -148,6 +148,10 @@ struct Randomisation {
   /// the contact's figures moved the fraction |u| of the way (on a log scale) from the world's
   /// ground towards the hard ground (u < 0) or the soft one (u > 0). 0: no draw at all.
   double contact_range = 0.0;
+  /// The trunk's centre of mass moved at each reset, x and y each uniform in +-range [m]
+  /// (sim_hal/models/make_variants.py's variants move it 1 cm): robots that differ from the
+  /// URDF as real ones do. 0: no draw at all.
+  double com_range = 0.0;
 };
 
 /// How one robot differs from the model (issue 30 point 3): what `stride calibrate` fits from

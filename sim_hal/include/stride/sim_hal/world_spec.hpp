@@ -55,7 +55,7 @@ struct WorldOptionInfo {
 
 /// Every option of a world, in the order the help lists them: base, engine, physics_step_us,
 /// servo_law, imu, contact, friction, urdf, noise, seed, friction_range, mass_range,
-/// strength_range, latency_probability, contact_range, latency_ticks, push.
+/// strength_range, latency_probability, contact_range, com_range, latency_ticks, push.
 const std::vector<WorldOptionInfo>& world_option_table();
 /// The option of `key`, or null.
 const WorldOptionInfo* find_world_option(std::string_view key);

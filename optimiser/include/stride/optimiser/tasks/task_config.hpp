@@ -44,6 +44,9 @@ struct TrialRandomisation {
   /// The ground drawn per trial between hard and soft (sim::Randomisation::contact_range);
   /// 0 (the default): every trial on the world's ground, drawing nothing.
   double contact_range = 0.0;
+  /// Robot variants per trial: the trunk's centre of mass moved up to +-com_range in x and y
+  /// [m] (sim::Randomisation::com_range); 0 (the default): none, drawing nothing.
+  double com_range = 0.0;
 };
 
 /// The segments of the omnidirectional walk task (walk-omni): after start_s of walking in
