@@ -11,17 +11,18 @@
 #include <system_error>
 #include <vector>
 
+#include "stride/calibration/calibration.hpp"
 #include "stride/core/atomic_file.hpp"
 #include "stride/core/cli_args.hpp"
 #include "stride/firmware/recorder/flight_log_reader.hpp"
 #include "stride/host_tools/command.hpp"
-#include "stride/sim_hal/calibration.hpp"
 #include "stride/sim_hal/sim_cli.hpp"
 
 namespace {
 
 using stride::Status;
 namespace sim = stride::sim;
+namespace calibration = stride::calibration;
 namespace fw = stride::fw;
 namespace core = stride::core;
 
@@ -65,7 +66,7 @@ int run_calibrate(int argc, char** argv) {
   if (Status s = args.parse(argc, argv); !s) return bad_input(s.message());
   if (args.has("help")) {
     std::string names;
-    for (const sim::CalibrationParameter& p : sim::calibration_parameters()) {
+    for (const calibration::CalibrationParameter& p : calibration::calibration_parameters()) {
       char line[160];
       std::snprintf(line, sizeof line, "  %-14s %-32s [%g, %g] %s\n", p.name.c_str(),
                     p.what.c_str(), p.lower, p.upper, p.unit.c_str());
@@ -92,8 +93,8 @@ int run_calibrate(int argc, char** argv) {
     return bad_input("--out: no such folder '" + out.parent_path().string() + "'");
   if (std::filesystem::is_directory(out, error)) return bad_input("--out: is a folder");
 
-  sim::CalibrationOptions options;
-  if (Status s = sim::parse_fit_names(args.get("fit"), options.fit); !s)
+  calibration::CalibrationOptions options;
+  if (Status s = calibration::parse_fit_names(args.get("fit"), options.fit); !s)
     return bad_input(s.message());
   if (Status s = args.get_double("window", options.replay.window_s); !s)
     return bad_input(s.message());
@@ -151,13 +152,14 @@ int run_calibrate(int argc, char** argv) {
   const bool fit_voltage =
       std::find(options.fit.begin(), options.fit.end(), "voltage") != options.fit.end();
   double volts = 0.0;
-  if (!fit_voltage && sim::logged_supply_voltage(log_ptrs, volts)) start.supply_voltage_v = volts;
+  if (!fit_voltage && calibration::logged_supply_voltage(log_ptrs, volts))
+    start.supply_voltage_v = volts;
   if (args.has("robot-mass")) {
     if (std::find(options.fit.begin(), options.fit.end(), "trunk_mass") != options.fit.end())
       return bad_input("--robot-mass: sets the trunk mass; do not also --fit trunk_mass");
     double kg = 0.0;
     if (Status s = args.get_double("robot-mass", kg); !s) return bad_input(s.message());
-    if (Status s = sim::trunk_scale_for_mass(world, kg, start.robot.trunk_mass_scale); !s)
+    if (Status s = calibration::trunk_scale_for_mass(world, kg, start.robot.trunk_mass_scale); !s)
       return bad_input(s.message());
   }
   options.progress_file = out;
@@ -180,8 +182,8 @@ int run_calibrate(int argc, char** argv) {
   std::fprintf(stderr, "supply %.2f V (%s), trunk mass x%.4f (%s)\n", start.supply_voltage_v,
                fit_voltage ? "fitted" : "from the logs", start.robot.trunk_mass_scale,
                args.has("robot-mass") ? "from --robot-mass" : "the start world's");
-  sim::CalibrationResult result;
-  const Status s = sim::calibrate(log_ptrs, world, start, options, result);
+  calibration::CalibrationResult result;
+  const Status s = calibration::calibrate(log_ptrs, world, start, options, result);
   std::fprintf(stderr, "\n");
   std::signal(SIGINT, SIG_DFL);
   if (!s) {
@@ -201,9 +203,9 @@ int run_calibrate(int argc, char** argv) {
   std::filesystem::remove(options.progress_file, error);
 
   std::printf("%-14s %10s %10s %12s  %s\n", "parameter", "start", "fitted", "uncertainty", "unit");
-  for (const sim::FittedValue& v : result.values) {
+  for (const calibration::FittedValue& v : result.values) {
     std::string unit;
-    for (const sim::CalibrationParameter& p : sim::calibration_parameters())
+    for (const calibration::CalibrationParameter& p : calibration::calibration_parameters())
       if (p.name == v.name) unit = p.unit;
     std::printf("%-14s %10.4g %10.4g %12.3g  %s\n", v.name.c_str(), v.start, v.value, v.uncertainty,
                 unit.c_str());

@@ -1,6 +1,7 @@
 // `stride replay LOG`: replays a flight log (stride-fw --record) against the simulated robot,
 // window by window, and reports how far the simulation is from what the robot sensed (table,
-// --json summary, --html page with the traces overlaid). The replay itself: log_replay.hpp.
+// --json summary, --html page with the traces overlaid). The replay itself: log_replay.hpp;
+// its report: stride/calibration/replay_report.hpp.
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -8,18 +9,19 @@
 #include <utility>
 #include <vector>
 
+#include "stride/calibration/replay_report.hpp"
 #include "stride/core/atomic_file.hpp"
 #include "stride/core/cli_args.hpp"
 #include "stride/firmware/recorder/flight_log_reader.hpp"
 #include "stride/host_tools/command.hpp"
 #include "stride/sim_hal/log_replay.hpp"
-#include "stride/sim_hal/log_replay_report.hpp"
 #include "stride/sim_hal/sim_cli.hpp"
 
 namespace {
 
 using stride::Status;
 namespace sim = stride::sim;
+namespace calibration = stride::calibration;
 namespace fw = stride::fw;
 namespace core = stride::core;
 
@@ -124,17 +126,17 @@ int run_replay(int argc, char** argv) {
       {"start", args.has("logged-speeds") ? "logged joint angles and speeds"
                                           : "logged joint angles, at rest"}};
   if (args.has("html")) {
-    const std::string page = sim::replay_html(result, "Stride replay: " + log_path, facts);
+    const std::string page = calibration::replay_html(result, "Stride replay: " + log_path, facts);
     if (Status s = core::write_file_atomically(args.get("html"), page); !s)
       return failure(s.message());
   }
   if (args.has("json")) {
-    std::printf("%s\n", sim::replay_summary_json(result, facts).dump().c_str());
+    std::printf("%s\n", calibration::replay_summary_json(result, facts).dump().c_str());
   } else {
     std::printf("%s: %zu windows of %.2f s in %s\n", log_path.c_str(), result.windows.size(),
                 static_cast<double>(result.window_ticks) * result.period_s,
                 facts[3].second.c_str());
-    std::printf("%s", sim::replay_table(result).c_str());
+    std::printf("%s", calibration::replay_table(result).c_str());
     if (result.ticks_not_replayed > 0)
       std::printf("%zu of %zu logged ticks not replayed (the tail shorter than a window, gaps)\n",
                   result.ticks_not_replayed, result.ticks_in_log);
