@@ -10,7 +10,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
 #include <map>
 #include <string>
 #include <vector>
@@ -19,6 +18,7 @@
 #include <nlohmann/json.hpp>
 
 #include "stride/core/cli_args.hpp"
+#include "stride/core/json_file.hpp"
 #include "stride/firmware/console/line_editor.hpp"
 #include "stride/host_tools/command.hpp"
 #include "stride/host_tools/console_client.hpp"
@@ -57,14 +57,8 @@ struct FlashFile {
 };
 
 Status read_flash_file(const std::string& path, FlashFile& out) {
-  std::ifstream in(path);
-  if (!in) return Status::error(path + ": cannot open for reading");
   nlohmann::json doc;
-  try {
-    in >> doc;
-  } catch (const nlohmann::json::exception& e) {
-    return Status::error(path + ": not valid JSON (" + e.what() + ")");
-  }
+  if (Status s = stride::core::read_json_file(path, doc); !s) return s;
   if (!doc.is_object()) return Status::error(path + ": expected a JSON object of parameters");
   out.line = "flash " + doc.dump();
   if (out.line.size() > kMaxConsoleLine) {

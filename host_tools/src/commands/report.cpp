@@ -6,13 +6,13 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <memory>
 #include <string>
 
 #include <nlohmann/json.hpp>
 
 #include "stride/core/cli_args.hpp"
+#include "stride/core/json_file.hpp"
 #include "stride/host_tools/command.hpp"
 #include "stride/optimiser/report/report_page.hpp"
 #include "stride/optimiser/report/run_data.hpp"
@@ -125,13 +125,12 @@ int run_report(int argc, char** argv) {
   }
   // validation.json (stride validate): shown when present and readable.
   nlohmann::json validation = nullptr;
-  if (std::ifstream in(dir / "validation.json"); in) {
-    validation = nlohmann::json::parse(in, nullptr, false);
-    if (validation.is_discarded() || !validation.is_object()) {
-      std::fprintf(stderr, "stride report: warning: %s is not a JSON object\n",
-                   (dir / "validation.json").c_str());
-      validation = nullptr;
-    }
+  stride::core::JsonFileError why = stride::core::JsonFileError::kNone;
+  const bool read = stride::core::read_json_file(dir / "validation.json", validation, &why).is_ok();
+  if ((read && !validation.is_object()) || why == stride::core::JsonFileError::kNotJson) {
+    std::fprintf(stderr, "stride report: warning: %s is not a JSON object\n",
+                 (dir / "validation.json").c_str());
+    validation = nullptr;
   }
   if (validation.is_object()) summary["validation"] = validation;
   if (args.has("json")) {

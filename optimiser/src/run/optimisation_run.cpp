@@ -5,12 +5,12 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <optional>
 #include <set>
 #include <sstream>
 
 #include "stride/core/atomic_file.hpp"
+#include "stride/core/json_file.hpp"
 #include "stride/optimiser/nsga2/indicators.hpp"
 #include "stride/optimiser/run/log_files.hpp"
 
@@ -168,17 +168,6 @@ Status rescore_front(const Problem& problem, Evaluator& evaluator,
   return core::write_file_atomically(path, doc.dump(1) + "\n");
 }
 
-Status read_json(const fs::path& path, json& out) {
-  std::ifstream in(path);
-  if (!in) return Status::error(path.string() + ": cannot be read");
-  try {
-    out = json::parse(in);
-  } catch (const json::exception& e) {
-    return Status::error(path.string() + ": not valid JSON (" + e.what() + ")");
-  }
-  return {};
-}
-
 }  // namespace
 
 json run_description(const Problem& problem, const RunConfig& config) {
@@ -221,7 +210,7 @@ Status parse_genome_json(const json& j, const char* field, Genome& g) {
 
 Status read_run_config(const fs::path& dir, RunConfig& config) {
   json j;
-  if (auto st = read_json(dir / "run.json", j); !st) return st;
+  if (auto st = core::read_json_file(dir / "run.json", j); !st) return st;
   try {
     if (j.at("format").get<std::string>() != kRunFormat) {
       return Status::error((dir / "run.json").string() + " is not a Stride run description");
@@ -300,7 +289,7 @@ Status run_optimisation(const Problem& problem, const RunConfig& config, Evaluat
   summary = RunSummary{};
   if (options.resume) {
     json existing;
-    if (auto st = read_json(run_path, existing); !st) return st;
+    if (auto st = core::read_json_file(run_path, existing); !st) return st;
     // A larger total of generations extends the run (written to run.json once restored).
     const int recorded_generations =
         existing.contains("settings") ? existing["settings"].value("generations", 0) : 0;
@@ -321,7 +310,7 @@ Status run_optimisation(const Problem& problem, const RunConfig& config, Evaluat
     json cp;
     const bool have_checkpoint = fs::exists(checkpoint_path);
     if (have_checkpoint) {
-      if (auto st = read_json(checkpoint_path, cp); !st) return st;
+      if (auto st = core::read_json_file(checkpoint_path, cp); !st) return st;
       try {
         evaluation_lines = cp.at("run").at("evaluation_lines").get<std::size_t>();
         generation_lines = cp.at("run").at("generation_lines").get<std::size_t>();

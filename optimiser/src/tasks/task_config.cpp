@@ -2,9 +2,9 @@
 #include "stride/optimiser/tasks/task_config.hpp"
 
 #include <cmath>
-#include <fstream>
 #include <system_error>
 
+#include "stride/core/json_file.hpp"
 #include "stride/optimiser/tasks/task_type.hpp"
 #include "stride/sim_hal/robot_model.hpp"
 #include "stride/sim_hal/world_spec.hpp"
@@ -107,6 +107,18 @@ constexpr const char* kTrialWorldOptions[] = {
     "noise",        "seed", "friction_range", "mass_range", "strength_range", "latency_probability",
     "contact_range"};
 
+/// A parameter file named by a config field (`params`, `starts[i]`); the error starts with the
+/// field.
+Status read_parameter_file(const std::string& file, const std::string& field, nlohmann::json& out) {
+  core::JsonFileError why = core::JsonFileError::kNone;
+  if (Status s = core::read_json_file(file, out, &why); !s) {
+    if (why == core::JsonFileError::kCannotOpen)
+      return Status::error(field + ": cannot open '" + file + "'");
+    return Status::error(field + ": " + s.message());
+  }
+  return {};
+}
+
 // The simulated world (TaskConfig::world): `world` is a named world ("faithful", "seed"), a
 // world file (its path or its object, with "format": "stride-world") or an object of the
 // world option table's fields (sim::read_world_spec), whose `engine` is the run's engine. The
@@ -173,10 +185,7 @@ Status parse_robot(const nlohmann::json& doc, TaskConfig& c) {
     nlohmann::json values = doc.at("params");
     if (values.is_string()) {
       const std::string file = values.get<std::string>();
-      std::ifstream in(file);
-      if (!in) return Status::error("params: cannot open '" + file + "'");
-      values = nlohmann::json::parse(in, nullptr, false);
-      if (values.is_discarded()) return Status::error("params: '" + file + "' is not valid JSON");
+      if (Status s = read_parameter_file(file, "params", values); !s) return s;
     }
     if (!values.is_object())
       return Status::error("params: must be a parameter file's path or an object {name: number}");
@@ -242,10 +251,7 @@ Status parse_starts(const nlohmann::json& doc, TaskConfig& c) {
     }
     if (values.is_string()) {
       const std::string file = values.get<std::string>();
-      std::ifstream in(file);
-      if (!in) return Status::error(field + ": cannot open '" + file + "'");
-      values = nlohmann::json::parse(in, nullptr, false);
-      if (values.is_discarded()) return Status::error(field + ": '" + file + "' is not valid JSON");
+      if (Status s = read_parameter_file(file, field, values); !s) return s;
     }
     if (!values.is_object())
       return Status::error(field +
@@ -427,10 +433,8 @@ Status parse_task_config(const nlohmann::json& doc, TaskConfig& out) {
 }
 
 Status load_task_config(const std::filesystem::path& path, TaskConfig& out) {
-  std::ifstream in(path);
-  if (!in) return Status::error(path.string() + ": cannot open");
-  nlohmann::json doc = nlohmann::json::parse(in, nullptr, false);
-  if (doc.is_discarded()) return Status::error(path.string() + ": not valid JSON");
+  nlohmann::json doc;
+  if (Status s = core::read_json_file(path, doc); !s) return s;
   // A relative robot description or parameter file is relative to the config file.
   const auto relative_to_config = [&path](nlohmann::json& object, const char* key) {
     if (!object.is_object() || !object.contains(key) || !object.at(key).is_string()) return;
