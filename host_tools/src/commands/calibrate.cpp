@@ -16,6 +16,7 @@
 #include "stride/core/cli_args.hpp"
 #include "stride/firmware/recorder/flight_log_reader.hpp"
 #include "stride/host_tools/command.hpp"
+#include "stride/host_tools/command_errors.hpp"
 #include "stride/sim_hal/sim_cli.hpp"
 
 namespace {
@@ -31,15 +32,7 @@ extern "C" void on_sigint(int) {
   g_stop.store(true);
 }
 
-int bad_input(const std::string& message) {
-  std::fprintf(stderr, "stride calibrate: %s\n", message.c_str());
-  return 2;
-}
-
-int failure(const std::string& message) {
-  std::fprintf(stderr, "stride calibrate: %s\n", message.c_str());
-  return 1;
-}
+const stride::tools::CommandErrors errors("calibrate");
 
 }  // namespace
 
@@ -63,7 +56,7 @@ int run_calibrate(int argc, char** argv) {
   args.option("robot-description", "the firmware's rigid-body model (must be the logs')", true,
               fw::RobotDescription::default_path().string());
   sim::declare_world_options(args);
-  if (Status s = args.parse(argc, argv); !s) return bad_input(s.message());
+  if (Status s = args.parse(argc, argv); !s) return errors.bad_input(s.message());
   if (args.has("help")) {
     std::string names;
     for (const calibration::CalibrationParameter& p : calibration::calibration_parameters()) {
@@ -84,37 +77,38 @@ int run_calibrate(int argc, char** argv) {
         names.c_str(), args.help().c_str());
     return 0;
   }
-  if (args.positional().empty()) return bad_input("expected at least one flight log");
-  if (!args.has("out")) return bad_input("--out: the world file to write is required");
-  if (!args.has("fit")) return bad_input("--fit: name the parameters to fit");
+  if (args.positional().empty()) return errors.bad_input("expected at least one flight log");
+  if (!args.has("out")) return errors.bad_input("--out: the world file to write is required");
+  if (!args.has("fit")) return errors.bad_input("--fit: name the parameters to fit");
   const std::filesystem::path out = args.get("out");
   std::error_code error;
   if (out.has_parent_path() && !std::filesystem::is_directory(out.parent_path(), error))
-    return bad_input("--out: no such folder '" + out.parent_path().string() + "'");
-  if (std::filesystem::is_directory(out, error)) return bad_input("--out: is a folder");
+    return errors.bad_input("--out: no such folder '" + out.parent_path().string() + "'");
+  if (std::filesystem::is_directory(out, error)) return errors.bad_input("--out: is a folder");
 
   calibration::CalibrationOptions options;
   if (Status s = calibration::parse_fit_names(args.get("fit"), options.fit); !s)
-    return bad_input(s.message());
+    return errors.bad_input(s.message());
   if (Status s = args.get_double("window", options.replay.window_s); !s)
-    return bad_input(s.message());
+    return errors.bad_input(s.message());
   std::int64_t jobs = 1, max_evals = 250, subsets = 3;
-  if (Status s = args.get_int("jobs", jobs); !s) return bad_input(s.message());
-  if (Status s = args.get_int("max-evals", max_evals); !s) return bad_input(s.message());
-  if (Status s = args.get_int("subsets", subsets); !s) return bad_input(s.message());
-  if (jobs < 1 || jobs > 256) return bad_input("--jobs: must be in 1..256");
-  if (max_evals < 1 || max_evals > 100000) return bad_input("--max-evals: must be in 1..100000");
+  if (Status s = args.get_int("jobs", jobs); !s) return errors.bad_input(s.message());
+  if (Status s = args.get_int("max-evals", max_evals); !s) return errors.bad_input(s.message());
+  if (Status s = args.get_int("subsets", subsets); !s) return errors.bad_input(s.message());
+  if (jobs < 1 || jobs > 256) return errors.bad_input("--jobs: must be in 1..256");
+  if (max_evals < 1 || max_evals > 100000)
+    return errors.bad_input("--max-evals: must be in 1..100000");
   if (subsets < 0 || subsets == 1 || subsets > 20)
-    return bad_input("--subsets: must be 0 or in 2..20");
+    return errors.bad_input("--subsets: must be 0 or in 2..20");
   options.replay.threads = static_cast<int>(jobs);
   options.max_evaluations = static_cast<int>(max_evals);
   options.subsets = static_cast<int>(subsets);
   if (args.has("push"))
-    return bad_input("--push: not available (the logged commands are replayed)");
+    return errors.bad_input("--push: not available (the logged commands are replayed)");
 
   // The replay world: noise off unless asked (the logged sensors carry the robot's noise).
   sim::WorldOptions world;
-  if (Status s = sim::read_world_options(args, world); !s) return bad_input(s.message());
+  if (Status s = sim::read_world_options(args, world); !s) return errors.bad_input(s.message());
   if (args.get_all("noise").empty()) world.imu.set_noise(false);
   sim::WorldFile start;
   start.base = world.servo.law == sim::ServoLaw::kSeed ? sim::WorldPreset::kSeed
@@ -122,32 +116,33 @@ int run_calibrate(int argc, char** argv) {
   const std::string world_arg = args.get("world", "faithful");
   if (sim::looks_like_world_file(world_arg))
     if (Status s = sim::load_world_file(world_arg, start); !s)
-      return bad_input("--world: " + s.message());
+      return errors.bad_input("--world: " + s.message());
 
   fw::ServoTable servos;
   if (Status s = fw::ServoTable::load(args.get("servo-table"), servos); !s)
-    return bad_input("--servo-table: " + s.message());
+    return errors.bad_input("--servo-table: " + s.message());
   fw::RobotDescription robot;
   if (Status s = fw::RobotDescription::load(args.get("robot-description"), servos, robot); !s)
-    return bad_input("--robot-description: " + s.message());
+    return errors.bad_input("--robot-description: " + s.message());
   std::vector<fw::FlightLog> logs(args.positional().size());
   std::vector<const fw::FlightLog*> log_ptrs;
   for (std::size_t i = 0; i < logs.size(); ++i) {
     const std::string& path = args.positional()[i];
-    if (Status s = fw::read_flight_log(path, logs[i]); !s) return bad_input(s.message());
+    if (Status s = fw::read_flight_log(path, logs[i]); !s) return errors.bad_input(s.message());
     if (Status s = sim::check_replayable(logs[i], servos, robot); !s)
-      return bad_input(path + ": " + s.message());
+      return errors.bad_input(path + ": " + s.message());
     if (Status s = sim::check_window(logs[i], options.replay.window_s); !s)
-      return bad_input(path + ": " + s.message());
+      return errors.bad_input(path + ": " + s.message());
     log_ptrs.push_back(&logs[i]);
   }
   std::size_t windows = 0;
   for (const fw::FlightLog* log : log_ptrs)
     windows += sim::count_windows(*log, options.replay.window_s);
   if (options.subsets > 0 && windows < static_cast<std::size_t>(options.subsets))
-    return bad_input("--subsets: " + std::to_string(options.subsets) + " subsets need at least " +
-                     std::to_string(options.subsets) + " windows; the logs have " +
-                     std::to_string(windows) + " of " + args.get("window") + " s");
+    return errors.bad_input("--subsets: " + std::to_string(options.subsets) +
+                            " subsets need at least " + std::to_string(options.subsets) +
+                            " windows; the logs have " + std::to_string(windows) + " of " +
+                            args.get("window") + " s");
   // Measured, not fitted (calibration.hpp): the supply from the logs, the trunk from the scale.
   const bool fit_voltage =
       std::find(options.fit.begin(), options.fit.end(), "voltage") != options.fit.end();
@@ -156,20 +151,20 @@ int run_calibrate(int argc, char** argv) {
     start.supply_voltage_v = volts;
   if (args.has("robot-mass")) {
     if (std::find(options.fit.begin(), options.fit.end(), "trunk_mass") != options.fit.end())
-      return bad_input("--robot-mass: sets the trunk mass; do not also --fit trunk_mass");
+      return errors.bad_input("--robot-mass: sets the trunk mass; do not also --fit trunk_mass");
     double kg = 0.0;
-    if (Status s = args.get_double("robot-mass", kg); !s) return bad_input(s.message());
+    if (Status s = args.get_double("robot-mass", kg); !s) return errors.bad_input(s.message());
     if (Status s = calibration::trunk_scale_for_mass(world, kg, start.robot.trunk_mass_scale); !s)
-      return bad_input(s.message());
+      return errors.bad_input(s.message());
   }
   options.progress_file = out;
   options.progress_file += ".progress.jsonl";
   options.resume = args.has("resume");
   if (!options.resume && std::filesystem::exists(options.progress_file, error))
-    return bad_input(options.progress_file.string() +
-                     " exists: a stopped run (--resume continues it) or remove it");
+    return errors.bad_input(options.progress_file.string() +
+                            " exists: a stopped run (--resume continues it) or remove it");
   if (options.resume && !std::filesystem::exists(options.progress_file, error))
-    return bad_input("--resume: no progress file " + options.progress_file.string());
+    return errors.bad_input("--resume: no progress file " + options.progress_file.string());
 
   options.stop = &g_stop;
   std::signal(SIGINT, on_sigint);
@@ -188,9 +183,9 @@ int run_calibrate(int argc, char** argv) {
   std::signal(SIGINT, SIG_DFL);
   if (!s) {
     if (g_stop.load())
-      return failure("interrupted; the evaluations so far are in " +
-                     options.progress_file.string() + " (--resume continues)");
-    return failure(s.message());
+      return errors.failure("interrupted; the evaluations so far are in " +
+                            options.progress_file.string() + " (--resume continues)");
+    return errors.failure(s.message());
   }
   nlohmann::json logs_json = nlohmann::json::array();
   for (const std::string& path : args.positional()) logs_json.push_back(path);
@@ -199,7 +194,7 @@ int run_calibrate(int argc, char** argv) {
   if (args.has("robot-mass"))
     result.world.calibration["robot_mass_kg"] = std::stod(args.get("robot-mass"));
   if (Status w = core::write_file_atomically(out, sim::to_json(result.world).dump(2) + "\n"); !w)
-    return failure(w.message());
+    return errors.failure(w.message());
   std::filesystem::remove(options.progress_file, error);
 
   std::printf("%-14s %10s %10s %12s  %s\n", "parameter", "start", "fitted", "uncertainty", "unit");

@@ -21,10 +21,13 @@
 #include "stride/core/json_file.hpp"
 #include "stride/firmware/console/line_editor.hpp"
 #include "stride/host_tools/command.hpp"
+#include "stride/host_tools/command_errors.hpp"
 #include "stride/host_tools/console_client.hpp"
 
 namespace stride::tools {
 namespace {
+
+const CommandErrors errors("console");
 
 constexpr const char* kUsage =
     "usage: stride console --port DEV [options] [COMMAND...]\n"
@@ -121,19 +124,13 @@ int interactive(ConsoleClient& client, int timeout_ms) {
     }
     ConsoleReply reply;
     if (Status s = client.command(line, reply, timeout_ms); !s) {
-      std::fprintf(stderr, "stride console: %s\n", s.message().c_str());
-      status = 1;
+      status = errors.failure(s.message());
       break;
     }
     print_reply(reply);
   }
   if (!history.empty()) (void)write_history(history.c_str());
   return status;
-}
-
-int fail(int code, const std::string& message) {
-  std::fprintf(stderr, "stride console: %s\n", message.c_str());
-  return code;
 }
 
 }  // namespace
@@ -146,18 +143,18 @@ int run_console(int argc, char** argv) {
       .option("verify", "after flash FILE, read every value back and report differences", false)
       .option("json", "print one JSON object with every command and reply", false)
       .option("help", "show this help", false);
-  if (Status s = args.parse(argc, argv); !s) return fail(2, s.message());
+  if (Status s = args.parse(argc, argv); !s) return errors.bad_input(s.message());
   if (args.has("help")) {
     std::printf("%s%s", kUsage, args.help().c_str());
     return 0;
   }
-  if (!args.has("port")) return fail(2, "missing --port DEV");
+  if (!args.has("port")) return errors.bad_input("missing --port DEV");
   std::int64_t baud = 0;
   double timeout_s = 0;
-  if (Status s = args.get_int("baud", baud); !s) return fail(2, s.message());
-  if (Status s = args.get_double("timeout", timeout_s); !s) return fail(2, s.message());
-  if (baud <= 0) return fail(2, "option --baud: must be positive");
-  if (timeout_s <= 0) return fail(2, "option --timeout: must be positive");
+  if (Status s = args.get_int("baud", baud); !s) return errors.bad_input(s.message());
+  if (Status s = args.get_double("timeout", timeout_s); !s) return errors.bad_input(s.message());
+  if (baud <= 0) return errors.bad_input("option --baud: must be positive");
+  if (timeout_s <= 0) return errors.bad_input("option --timeout: must be positive");
   const int timeout_ms = static_cast<int>(timeout_s * 1000);
 
   // Commands: each positional word is a line; `flash FILE` may also be two words.
@@ -177,18 +174,18 @@ int run_console(int argc, char** argv) {
   for (std::size_t i = 0; i < lines.size(); ++i) {
     if (lines[i].rfind("flash ", 0) == 0 && lines[i].find('{') == std::string::npos) {
       if (Status s = read_flash_file(lines[i].substr(6), flash_files[i]); !s) {
-        return fail(2, s.message());
+        return errors.bad_input(s.message());
       }
       is_flash[i] = true;
     }
   }
   if (args.has("verify") && std::find(is_flash.begin(), is_flash.end(), true) == is_flash.end()) {
-    return fail(2, "--verify needs a 'flash FILE' command");
+    return errors.bad_input("--verify needs a 'flash FILE' command");
   }
 
   ConsoleClient client;
   if (Status s = client.open(args.get("port"), static_cast<int>(baud)); !s) {
-    return fail(1, s.message());
+    return errors.failure(s.message());
   }
   if (lines.empty()) return interactive(client, timeout_ms);
 
@@ -198,7 +195,7 @@ int run_console(int argc, char** argv) {
   for (std::size_t i = 0; i < lines.size(); ++i) {
     const std::string& line = is_flash[i] ? flash_files[i].line : lines[i];
     ConsoleReply reply;
-    if (Status s = client.command(line, reply, timeout_ms); !s) return fail(1, s.message());
+    if (Status s = client.command(line, reply, timeout_ms); !s) return errors.failure(s.message());
     all_ok = all_ok && reply.ok();
     nlohmann::json entry = {{"command", lines[i]},
                             {"ok", reply.ok()},
@@ -208,7 +205,7 @@ int run_console(int argc, char** argv) {
     if (is_flash[i] && args.has("verify") && reply.ok()) {
       std::vector<std::string> differences;
       if (Status s = verify(client, flash_files[i], timeout_ms, differences); !s) {
-        return fail(1, s.message());
+        return errors.failure(s.message());
       }
       all_ok = all_ok && differences.empty();
       entry["verify"] = {{"checked", flash_files[i].values.size()}, {"differences", differences}};

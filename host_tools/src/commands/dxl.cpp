@@ -20,6 +20,7 @@
 #include "stride/hal/dynamixel/serial_port.hpp"
 #include "stride/hal/dynamixel/units.hpp"
 #include "stride/host_tools/command.hpp"
+#include "stride/host_tools/command_errors.hpp"
 
 namespace {
 
@@ -31,14 +32,7 @@ void on_dxl_signal(int) {
   g_dxl_stop.store(true);
 }
 
-int bad(const std::string& message) {
-  std::fprintf(stderr, "stride dxl: %s\n", message.c_str());
-  return 2;
-}
-int failed(const std::string& message) {
-  std::fprintf(stderr, "stride dxl: %s\n", message.c_str());
-  return 1;
-}
+const stride::tools::CommandErrors errors("dxl");
 
 bool parse_number(const std::string& text, long max, long& out) {
   if (text.empty()) return false;
@@ -162,7 +156,7 @@ int run_dxl(int argc, char** argv) {
       .option("max-id", "scan: highest ID to try", true, "253")
       .option("json", "print results as one JSON object", false)
       .option("help", "show this help", false);
-  if (Status s = args.parse(argc, argv); !s) return bad(s.message());
+  if (Status s = args.parse(argc, argv); !s) return errors.bad_input(s.message());
   if (args.has("help")) {
     std::printf(
         "usage: stride dxl --port DEV [options] COMMAND\n\n"
@@ -177,8 +171,8 @@ int run_dxl(int argc, char** argv) {
     return 0;
   }
   const auto& words = args.positional();
-  if (words.empty()) return bad("missing command (scan, ping, read, write, monitor)");
-  if (!args.has("port")) return bad("missing --port DEV");
+  if (words.empty()) return errors.bad_input("missing command (scan, ping, read, write, monitor)");
+  if (!args.has("port")) return errors.bad_input("missing --port DEV");
   std::int64_t baud = 0, protocol_number = 0, timeout_ms = 0, max_id = 0, interval_ms = 0,
                count = -1;
   for (const auto& [name, value] :
@@ -188,15 +182,17 @@ int run_dxl(int argc, char** argv) {
                                                           {"max-id", &max_id},
                                                           {"interval-ms", &interval_ms},
                                                           {"count", &count}}) {
-    if (Status s = args.get_int(name, *value); !s) return bad(s.message());
+    if (Status s = args.get_int(name, *value); !s) return errors.bad_input(s.message());
   }
   if (baud <= 0 || !dxl::SerialPort::is_standard_baud(static_cast<std::uint32_t>(baud))) {
-    return bad("option --baud: unsupported rate " + args.get("baud"));
+    return errors.bad_input("option --baud: unsupported rate " + args.get("baud"));
   }
-  if (protocol_number != 1 && protocol_number != 2) return bad("option --protocol: must be 1 or 2");
-  if (timeout_ms <= 0 || timeout_ms > 10000) return bad("option --timeout-ms: must be 1..10000");
-  if (max_id < 0 || max_id > 253) return bad("option --max-id: must be 0..253");
-  if (interval_ms < 0) return bad("option --interval-ms: must be >= 0");
+  if (protocol_number != 1 && protocol_number != 2)
+    return errors.bad_input("option --protocol: must be 1 or 2");
+  if (timeout_ms <= 0 || timeout_ms > 10000)
+    return errors.bad_input("option --timeout-ms: must be 1..10000");
+  if (max_id < 0 || max_id > 253) return errors.bad_input("option --max-id: must be 0..253");
+  if (interval_ms < 0) return errors.bad_input("option --interval-ms: must be >= 0");
   const std::string command = words[0];
   const bool json = args.has("json");
   auto id_arg = [&](std::size_t k, long& id) {
@@ -205,20 +201,21 @@ int run_dxl(int argc, char** argv) {
 
   if (command != "scan" && command != "ping" && command != "read" && command != "write" &&
       command != "monitor") {
-    return bad("unknown command '" + command + "' (scan, ping, read, write, monitor)");
+    return errors.bad_input("unknown command '" + command + "' (scan, ping, read, write, monitor)");
   }
   long id = 0;
   if ((command == "ping" || command == "read" || command == "write") && !id_arg(1, id)) {
-    return bad(command + ": missing or bad ID '" + (words.size() > 1 ? words[1] : "") + "'");
+    return errors.bad_input(command + ": missing or bad ID '" + (words.size() > 1 ? words[1] : "") +
+                            "'");
   }
   if ((command == "read" && words.size() < 3) || (command == "write" && words.size() < 4)) {
-    return bad(command + ": missing arguments (see --help)");
+    return errors.bad_input(command + ": missing arguments (see --help)");
   }
 
   std::unique_ptr<dxl::SerialPort> port;
   if (Status s = dxl::SerialPort::open(args.get("port"), static_cast<std::uint32_t>(baud), port);
       !s) {
-    return failed(s.message());
+    return errors.failure(s.message());
   }
   const auto protocol = protocol_number == 1 ? dxl::Protocol::kV1 : dxl::Protocol::kV2;
   Client client(std::move(port), protocol, timeout_ms * 1'000'000);
@@ -241,7 +238,7 @@ int run_dxl(int argc, char** argv) {
   }
   const auto dev = static_cast<std::uint8_t>(id);
   if (command == "ping") {
-    if (!client.ping(dev)) return failed("no reply from ID " + std::to_string(id));
+    if (!client.ping(dev)) return errors.failure("no reply from ID " + std::to_string(id));
     const auto model = client.model(dev);
     const std::string label = model ? model_label(*model, protocol) : "model unknown";
     if (json) {
@@ -257,15 +254,15 @@ int run_dxl(int argc, char** argv) {
     std::uint16_t address = 0;
     std::uint8_t size = 1;
     if (Status s = resolve_register(client, dev, words[2], address, size); !s)
-      return bad(s.message());
+      return errors.bad_input(s.message());
     if (command == "read") {
       long length = size;
       if (words.size() > 3 && !parse_number(words[3], 255, length)) {
-        return bad("read: bad length '" + words[3] + "'");
+        return errors.bad_input("read: bad length '" + words[3] + "'");
       }
       dxl::Packet reply;
       if (!client.read(dev, address, static_cast<std::uint16_t>(length), reply)) {
-        return failed("no valid reply from ID " + std::to_string(id));
+        return errors.failure("no valid reply from ID " + std::to_string(id));
       }
       std::uint32_t value = 0;
       for (std::size_t k = 0; k < reply.param_count && k < 4; ++k)
@@ -290,24 +287,24 @@ int run_dxl(int argc, char** argv) {
     }
     long value = 0;
     if (!parse_number(words[3], 0xFFFFFFFL, value))
-      return bad("write: bad value '" + words[3] + "'");
+      return errors.bad_input("write: bad value '" + words[3] + "'");
     std::int64_t forced = 0;
     if (args.has("size")) {
       if (Status s = args.get_int("size", forced); !s || forced < 1 || forced > 4) {
-        return bad("option --size: must be 1..4");
+        return errors.bad_input("option --size: must be 1..4");
       }
       size = static_cast<std::uint8_t>(forced);
     }
     if (size < 4 && static_cast<unsigned long>(value) >= (1UL << (8 * size))) {
-      return bad("write: value " + words[3] + " does not fit in " + std::to_string(size) +
-                 " byte(s)");
+      return errors.bad_input("write: value " + words[3] + " does not fit in " +
+                              std::to_string(size) + " byte(s)");
     }
     std::array<std::uint8_t, 4> data{};
     for (std::uint8_t k = 0; k < size; ++k) data[k] = static_cast<std::uint8_t>(value >> (8 * k));
     dxl::Packet reply;
     const bool answered = client.write(dev, address, std::span(data.data(), size), &reply);
     if (dev != dxl::kBroadcastId && answered && reply.error != 0) {
-      return failed("ID " + std::to_string(id) + " refused the write (error 0x" + [&] {
+      return errors.failure("ID " + std::to_string(id) + " refused the write (error 0x" + [&] {
         char b[8];
         std::snprintf(b, sizeof b, "%02x", reply.error);
         return std::string(b);
@@ -327,11 +324,12 @@ int run_dxl(int argc, char** argv) {
     return 0;
   }
   // monitor
-  if (protocol != dxl::Protocol::kV1) return bad("monitor: protocol 1.0 only");
+  if (protocol != dxl::Protocol::kV1) return errors.bad_input("monitor: protocol 1.0 only");
   std::vector<std::uint8_t> ids;
   for (std::size_t k = 1; k < words.size(); ++k) {
     long v = 0;
-    if (!parse_number(words[k], 253, v)) return bad("monitor: bad ID '" + words[k] + "'");
+    if (!parse_number(words[k], 253, v))
+      return errors.bad_input("monitor: bad ID '" + words[k] + "'");
     ids.push_back(static_cast<std::uint8_t>(v));
   }
   if (ids.empty()) {

@@ -19,6 +19,7 @@
 
 #include "stride/core/cli_args.hpp"
 #include "stride/host_tools/command.hpp"
+#include "stride/host_tools/command_errors.hpp"
 #include "stride/optimiser/nsga2/evaluator.hpp"
 #include "stride/optimiser/nsga2/mpi_evaluator.hpp"
 #include "stride/optimiser/problems/test_problems.hpp"
@@ -75,10 +76,7 @@ extern "C" void on_interrupt(int) {
   (void)!::write(STDERR_FILENO, later, sizeof later - 1);
 }
 
-int bad_input(const std::string& message) {
-  std::fprintf(stderr, "stride optimise: %s\n", message.c_str());
-  return 2;
-}
+const stride::tools::CommandErrors errors("optimise");
 
 std::string problem_list() {
   std::string names;
@@ -194,7 +192,7 @@ int run_optimise(int argc, char** argv) {
       .option("no-validate", "robot runs: skip `stride validate` at the end", false)
       .option("json", "print a JSON summary on stdout", false)
       .option("help", "show this help", false);
-  if (auto st = args.parse(argc, argv); !st) return bad_input(st.message());
+  if (auto st = args.parse(argc, argv); !st) return errors.bad_input(st.message());
   if (args.has("help")) {
     std::printf(
         "usage: stride optimise --problem NAME --out DIR [options]\n"
@@ -210,13 +208,13 @@ int run_optimise(int argc, char** argv) {
     return 0;
   }
   if (!args.positional().empty())
-    return bad_input("unexpected argument '" + args.positional()[0] + "'");
-  if (!args.has("out")) return bad_input("--out DIR is required");
+    return errors.bad_input("unexpected argument '" + args.positional()[0] + "'");
+  if (!args.has("out")) return errors.bad_input("--out DIR is required");
   const std::filesystem::path dir = args.get("out");
   const bool resume = args.has("resume");
   std::unique_ptr<opt::MpiSession> mpi;
   if (args.has("mpi")) {
-    if (!opt::mpi_available()) return bad_input("--mpi: this build of stride has no MPI");
+    if (!opt::mpi_available()) return errors.bad_input("--mpi: this build of stride has no MPI");
     mpi = std::make_unique<opt::MpiSession>(nullptr, nullptr);
   }
   const bool worker = mpi && mpi->rank() != 0;  // evaluates only; rank 0 owns the run directory
@@ -225,33 +223,34 @@ int run_optimise(int argc, char** argv) {
   std::unique_ptr<opt::Problem> problem;
   if (resume) {
     if (!std::filesystem::exists(dir / "run.json")) {
-      return bad_input("--resume: " + (dir / "run.json").string() + " does not exist");
+      return errors.bad_input("--resume: " + (dir / "run.json").string() + " does not exist");
     }
-    if (auto st = opt::read_run_config(dir, s.config); !st) return bad_input(st.message());
+    if (auto st = opt::read_run_config(dir, s.config); !st) return errors.bad_input(st.message());
     if (args.has("problem") && args.get("problem") != s.config.problem) {
-      return bad_input("--problem " + args.get("problem") + " differs from the run's " +
-                       s.config.problem);
+      return errors.bad_input("--problem " + args.get("problem") + " differs from the run's " +
+                              s.config.problem);
     }
     opt::TaskConfig task;
     const bool robot = opt::find_task_type(s.config.problem) != nullptr;
     if (robot) {
       if (auto st = opt::parse_task_config(s.config.task, task); !st)
-        return bad_input("run.json task: " + st.message());
+        return errors.bad_input("run.json task: " + st.message());
     } else if (auto st = make_problem(s.config.problem, problem); !st) {
-      return bad_input(st.message());
+      return errors.bad_input(st.message());
     }
     const opt::RunConfig recorded = s.config;
-    if (auto st = read_settings(args, 0, s); !st) return bad_input(st.message());
+    if (auto st = read_settings(args, 0, s); !st) return errors.bad_input(st.message());
     // --generations above the run's extends it; every other option must be the run's.
     if (s.config.settings.generations < recorded.settings.generations) {
-      return bad_input("--generations: " + std::to_string(s.config.settings.generations) +
-                       " is below the run's " + std::to_string(recorded.settings.generations) +
-                       " (--resume can only extend a run)");
+      return errors.bad_input("--generations: " + std::to_string(s.config.settings.generations) +
+                              " is below the run's " +
+                              std::to_string(recorded.settings.generations) +
+                              " (--resume can only extend a run)");
     }
     opt::Nsga2Settings same = s.config.settings;
     same.generations = recorded.settings.generations;
     if (!(same == recorded.settings)) {
-      return bad_input("--resume: the NSGA-II options given differ from the run's run.json");
+      return errors.bad_input("--resume: the NSGA-II options given differ from the run's run.json");
     }
     if (robot) {  // the task records its settings too: an extension changes both
       task.settings.generations = s.config.settings.generations;
@@ -260,72 +259,76 @@ int run_optimise(int argc, char** argv) {
       problem = std::make_unique<opt::RobotTask>(task);
     }
   } else if (args.has("config")) {
-    if (args.has("problem")) return bad_input("--problem and --config exclude each other");
+    if (args.has("problem")) return errors.bad_input("--problem and --config exclude each other");
     opt::TaskConfig task;
     if (auto st = opt::load_task_config(args.get("config"), task); !st)
-      return bad_input(st.message());
+      return errors.bad_input(st.message());
     if (args.has("trials")) {
       std::int64_t trials = 1;
-      if (auto st = read_int(args, "trials", 1, 1000, trials); !st) return bad_input(st.message());
+      if (auto st = read_int(args, "trials", 1, 1000, trials); !st)
+        return errors.bad_input(st.message());
       task.trials = static_cast<int>(trials);
     }
     if (args.has("aggregate")) {
       const std::string a = args.get("aggregate");
       if (a != "mean" && a != "worst")
-        return bad_input("--aggregate: must be mean or worst, got '" + a + "'");
+        return errors.bad_input("--aggregate: must be mean or worst, got '" + a + "'");
       task.aggregate = a == "mean" ? opt::Aggregate::kMean : opt::Aggregate::kWorst;
     }
     if (args.has("engine")) {
       std::vector<stride::sim::EngineKind> engines;
       if (auto st = stride::sim::read_engine_list(args, "engine", engines); !st)
-        return bad_input(st.message());
+        return errors.bad_input(st.message());
       task.engines = engines;
     }
     s.config.settings = task.settings;
-    if (auto st = read_settings(args, 0, s); !st) return bad_input(st.message());
+    if (auto st = read_settings(args, 0, s); !st) return errors.bad_input(st.message());
     task.settings = s.config.settings;
     auto robot_task = std::make_unique<opt::RobotTask>(task);
-    if (auto st = robot_task->check(); !st) return bad_input(st.message());
+    if (auto st = robot_task->check(); !st) return errors.bad_input(st.message());
     s.config.problem = task.task;
     s.config.start = robot_task->start_genome();
     if (auto st = robot_task->extra_start_genomes(s.config.extra_starts); !st)
-      return bad_input(st.message());
+      return errors.bad_input(st.message());
     s.config.task = opt::to_json(task);
     problem = std::move(robot_task);
     if (!worker && std::filesystem::exists(dir / "run.json")) {
-      return bad_input("--out " + dir.string() + " already holds a run (use --resume)");
+      return errors.bad_input("--out " + dir.string() + " already holds a run (use --resume)");
     }
   } else {
     if (!args.has("problem"))
-      return bad_input("--problem NAME or --config FILE is required (" + problem_list() + ")");
-    if (auto st = make_problem(args.get("problem"), problem); !st) return bad_input(st.message());
+      return errors.bad_input("--problem NAME or --config FILE is required (" + problem_list() +
+                              ")");
+    if (auto st = make_problem(args.get("problem"), problem); !st)
+      return errors.bad_input(st.message());
     s.config.problem = problem->name();
     if (auto st = read_settings(args, problem->shape().reals.size(), s); !st) {
-      return bad_input(st.message());
+      return errors.bad_input(st.message());
     }
     if (args.has("start")) {
       opt::Genome start;
-      if (auto st = parse_start(args.get("start"), start); !st) return bad_input(st.message());
+      if (auto st = parse_start(args.get("start"), start); !st)
+        return errors.bad_input(st.message());
       if (auto st = opt::validate_genome(problem->shape(), start); !st) {
-        return bad_input("--start: " + st.message());
+        return errors.bad_input("--start: " + st.message());
       }
       s.config.start = start;
     }
     if (!worker && std::filesystem::exists(dir / "run.json")) {
-      return bad_input("--out " + dir.string() + " already holds a run (use --resume)");
+      return errors.bad_input("--out " + dir.string() + " already holds a run (use --resume)");
     }
   }
   s.jobs = std::max<std::int64_t>(1, std::thread::hardware_concurrency());
   if (args.has("jobs")) {
-    if (auto st = read_int(args, "jobs", 1, 1024, s.jobs); !st) return bad_input(st.message());
+    if (auto st = read_int(args, "jobs", 1, 1024, s.jobs); !st)
+      return errors.bad_input(st.message());
   }
   if (auto st = read_int(args, "slow-eval-ms", 0, 60000, s.slow_ms); !st) {
-    return bad_input(st.message());
+    return errors.bad_input(st.message());
   }
   if (worker) {
     if (auto st = opt::run_mpi_worker(*problem); !st) {
-      std::fprintf(stderr, "stride optimise: rank %d: %s\n", mpi->rank(), st.message().c_str());
-      return 1;
+      return errors.failure("rank " + std::to_string(mpi->rank()) + ": " + st.message());
     }
     return 0;
   }
@@ -367,17 +370,14 @@ int run_optimise(int argc, char** argv) {
   sigaction(SIGTERM, &previous_term, nullptr);
   progress.finish();
   if (!run_status) {
-    std::fprintf(stderr, "stride optimise: %s\n", run_status.message().c_str());
-    return 1;
+    return errors.failure(run_status.message());
   }
   if (const auto* task = robot_task) {
     if (auto st = opt::write_front_files(dir, *task); !st) {
-      std::fprintf(stderr, "stride optimise: %s\n", st.message().c_str());
-      return 1;
+      return errors.failure(st.message());
     }
     if (auto st = opt::write_plots(dir); !st) {
-      std::fprintf(stderr, "stride optimise: %s\n", st.message().c_str());
-      return 1;
+      return errors.failure(st.message());
     }
     std::fprintf(stderr, "plots: %s, %s; front parameter files: %s\n",
                  (dir / "pareto_by_generation.svg").c_str(), (dir / "hypervolume.svg").c_str(),
@@ -397,8 +397,7 @@ int run_optimise(int argc, char** argv) {
       Status done = opt::run_validation(subject, v, result);
       if (done) done = opt::write_validation_file(dir, result);
       if (!done) {
-        std::fprintf(stderr, "stride optimise: validation: %s\n", done.message().c_str());
-        return 1;
+        return errors.failure("validation: " + done.message());
       }
       std::fprintf(stderr, "%svalidation: %s\n", opt::validation_text(result).c_str(),
                    (dir / "validation.json").c_str());

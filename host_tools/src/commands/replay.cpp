@@ -14,6 +14,7 @@
 #include "stride/core/cli_args.hpp"
 #include "stride/firmware/recorder/flight_log_reader.hpp"
 #include "stride/host_tools/command.hpp"
+#include "stride/host_tools/command_errors.hpp"
 #include "stride/sim_hal/log_replay.hpp"
 #include "stride/sim_hal/sim_cli.hpp"
 
@@ -25,15 +26,7 @@ namespace calibration = stride::calibration;
 namespace fw = stride::fw;
 namespace core = stride::core;
 
-int bad_input(const std::string& message) {
-  std::fprintf(stderr, "stride replay: %s\n", message.c_str());
-  return 2;
-}
-
-int failure(const std::string& message) {
-  std::fprintf(stderr, "stride replay: %s\n", message.c_str());
-  return 1;
-}
+const stride::tools::CommandErrors errors("replay");
 
 /// An output path whose folder does not exist is bad input, found before the replay runs.
 Status check_output_path(const std::string& option, const std::string& path) {
@@ -67,7 +60,7 @@ int run_replay(int argc, char** argv) {
               "robot's weight)",
               false);
   sim::declare_world_options(args);
-  if (Status s = args.parse(argc, argv); !s) return bad_input(s.message());
+  if (Status s = args.parse(argc, argv); !s) return errors.bad_input(s.message());
   if (args.has("help")) {
     std::printf(
         "usage: stride replay LOG [world options] [--window S] [--html FILE] [--json]\n\n"
@@ -79,32 +72,34 @@ int run_replay(int argc, char** argv) {
     return 0;
   }
   if (args.positional().size() != 1)
-    return bad_input("expected one flight log (stride replay LOG)");
+    return errors.bad_input("expected one flight log (stride replay LOG)");
   const std::string log_path = args.positional()[0];
   double window_s = 0.0;
-  if (Status s = args.get_double("window", window_s); !s) return bad_input(s.message());
+  if (Status s = args.get_double("window", window_s); !s) return errors.bad_input(s.message());
   if (!(window_s > 0.0) || window_s > 1e6)
-    return bad_input("--window: must be a positive number of seconds, got " + args.get("window"));
+    return errors.bad_input("--window: must be a positive number of seconds, got " +
+                            args.get("window"));
   if (args.has("push"))
-    return bad_input("--push: not available in replay (the logged commands are replayed)");
+    return errors.bad_input("--push: not available in replay (the logged commands are replayed)");
   sim::WorldOptions world;
-  if (Status s = sim::read_world_options(args, world); !s) return bad_input(s.message());
+  if (Status s = sim::read_world_options(args, world); !s) return errors.bad_input(s.message());
   if (args.has("html"))
-    if (Status s = check_output_path("html", args.get("html")); !s) return bad_input(s.message());
+    if (Status s = check_output_path("html", args.get("html")); !s)
+      return errors.bad_input(s.message());
 
   // The firmware files the log must have been recorded with.
   fw::ServoTable servos;
   if (Status s = fw::ServoTable::load(args.get("servo-table"), servos); !s)
-    return bad_input("--servo-table: " + s.message());
+    return errors.bad_input("--servo-table: " + s.message());
   fw::RobotDescription robot;
   if (Status s = fw::RobotDescription::load(args.get("robot-description"), servos, robot); !s)
-    return bad_input("--robot-description: " + s.message());
+    return errors.bad_input("--robot-description: " + s.message());
 
   fw::FlightLog log;
-  if (Status s = fw::read_flight_log(log_path, log); !s) return bad_input(s.message());
+  if (Status s = fw::read_flight_log(log_path, log); !s) return errors.bad_input(s.message());
   if (Status s = sim::check_replayable(log, servos, robot, args.has("allow-truncated")); !s)
-    return bad_input(log_path + ": " + s.message());
-  if (Status s = sim::check_window(log, window_s); !s) return bad_input(s.message());
+    return errors.bad_input(log_path + ": " + s.message());
+  if (Status s = sim::check_window(log, window_s); !s) return errors.bad_input(s.message());
 
   sim::ReplayOptions options;
   options.window_s = window_s;
@@ -113,7 +108,7 @@ int run_replay(int argc, char** argv) {
   options.sink_into_grass = !args.has("no-sink");
   sim::ReplayResult result;
   if (Status s = sim::replay_flight_log(log, world, options, result); !s)
-    return failure(s.message());
+    return errors.failure(s.message());
 
   nlohmann::json firmware = log.header.value("firmware", nlohmann::json::object());
   if (!firmware.is_object()) firmware = nlohmann::json::object();
@@ -128,7 +123,7 @@ int run_replay(int argc, char** argv) {
   if (args.has("html")) {
     const std::string page = calibration::replay_html(result, "Stride replay: " + log_path, facts);
     if (Status s = core::write_file_atomically(args.get("html"), page); !s)
-      return failure(s.message());
+      return errors.failure(s.message());
   }
   if (args.has("json")) {
     std::printf("%s\n", calibration::replay_summary_json(result, facts).dump().c_str());

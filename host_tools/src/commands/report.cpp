@@ -14,6 +14,7 @@
 #include "stride/core/cli_args.hpp"
 #include "stride/core/json_file.hpp"
 #include "stride/host_tools/command.hpp"
+#include "stride/host_tools/command_errors.hpp"
 #include "stride/optimiser/report/report_page.hpp"
 #include "stride/optimiser/report/run_data.hpp"
 #include "stride/optimiser/report/run_plots.hpp"
@@ -25,15 +26,7 @@
 
 namespace {
 
-int bad_input(const std::string& message) {
-  std::fprintf(stderr, "stride report: %s\n", message.c_str());
-  return 2;
-}
-
-int failure(const std::string& message) {
-  std::fprintf(stderr, "stride report: %s\n", message.c_str());
-  return 1;
-}
+const stride::tools::CommandErrors errors("report");
 
 void print_member(const std::string& label, const nlohmann::json& m, const nlohmann::json& ind_o,
                   bool kick) {
@@ -57,7 +50,7 @@ int run_report(int argc, char** argv) {
   stride::core::CliArgs args;
   args.option("json", "print the summary as one JSON object", false)
       .option("help", "show this help", false);
-  if (auto st = args.parse(argc, argv); !st) return bad_input(st.message());
+  if (auto st = args.parse(argc, argv); !st) return errors.bad_input(st.message());
   if (args.has("help")) {
     std::printf(
         "usage: stride report DIR [--json]\nRebuilds DIR/pareto_by_generation.svg, "
@@ -74,37 +67,38 @@ int run_report(int argc, char** argv) {
         args.help().c_str());
     return 0;
   }
-  if (args.positional().size() != 1) return bad_input("expected one run directory");
+  if (args.positional().size() != 1) return errors.bad_input("expected one run directory");
   const std::filesystem::path dir = args.positional()[0];
   if (!std::filesystem::exists(dir / "run.json"))
-    return bad_input((dir / "run.json").string() + " does not exist");
+    return errors.bad_input((dir / "run.json").string() + " does not exist");
   stride::opt::RunConfig config;
-  if (auto st = stride::opt::read_run_config(dir, config); !st) return bad_input(st.message());
+  if (auto st = stride::opt::read_run_config(dir, config); !st)
+    return errors.bad_input(st.message());
   const stride::opt::TaskType* type = stride::opt::find_task_type(config.problem);
   if (type == nullptr)
-    return bad_input(dir.string() + " is a '" + config.problem + "' run, not a " +
-                     stride::opt::task_type_list() + " task");
+    return errors.bad_input(dir.string() + " is a '" + config.problem + "' run, not a " +
+                            stride::opt::task_type_list() + " task");
   stride::opt::TaskConfig task;
   if (auto st = stride::opt::parse_task_config(config.task, task); !st)
-    return bad_input("run.json task: " + st.message());
+    return errors.bad_input("run.json task: " + st.message());
   const stride::opt::RobotTask robot_task(task);
   // What is missing is said once, on one line, and on the page; only an unreadable run.json
   // or an unwritable file stops the report.
   stride::opt::report::RunData before;
   if (auto st = stride::opt::report::load_run_data(dir, before); !st)
-    return bad_input(st.message());
+    return errors.bad_input(st.message());
   stride::opt::report::ReportOutcome page;
   if (!before.front.empty()) {
     for (const std::string& w : before.warnings)
       if (w.rfind("front/", 0) == 0) page.warnings.push_back(w + "; rewritten from pareto.csv");
     if (auto st = stride::opt::write_front_files(dir, robot_task); !st)
-      return failure(st.message());
+      return errors.failure(st.message());
   }
-  if (auto st = stride::opt::write_plots(dir); !st) return failure(st.message());
+  if (auto st = stride::opt::write_plots(dir); !st) return errors.failure(st.message());
   nlohmann::json summary;
-  if (auto st = stride::opt::summarise_run(dir, summary); !st) return failure(st.message());
+  if (auto st = stride::opt::summarise_run(dir, summary); !st) return errors.failure(st.message());
   if (auto st = stride::opt::report::write_report_html(dir, robot_task, page); !st)
-    return failure(st.message());
+    return errors.failure(st.message());
   summary["warnings"] = page.warnings;
   summary["plots"] = {(dir / "pareto_by_generation.svg").string(),
                       (dir / "hypervolume.svg").string()};
@@ -113,13 +107,12 @@ int run_report(int argc, char** argv) {
   if (!page.warnings.empty()) {
     std::string line;
     for (const auto& w : page.warnings) line += (line.empty() ? "" : "; ") + w;
-    std::fprintf(stderr, "stride report: warning: %s (see %s)\n", line.c_str(), page.file.c_str());
+    errors.warning(line + " (see " + page.file.string() + ")");
   }
   std::vector<stride::opt::DirectionSpeeds> directions;
   if (type->measures_directions()) {
     if (auto st = stride::opt::run_direction_table(dir, robot_task, summary, directions); !st) {
-      std::fprintf(stderr, "stride report: %s\n", st.message().c_str());
-      return 1;
+      return errors.failure(st.message());
     }
     summary["directions"] = stride::opt::direction_table_json(directions);
   }
@@ -128,8 +121,7 @@ int run_report(int argc, char** argv) {
   stride::core::JsonFileError why = stride::core::JsonFileError::kNone;
   const bool read = stride::core::read_json_file(dir / "validation.json", validation, &why).is_ok();
   if ((read && !validation.is_object()) || why == stride::core::JsonFileError::kNotJson) {
-    std::fprintf(stderr, "stride report: warning: %s is not a JSON object\n",
-                 (dir / "validation.json").c_str());
+    errors.warning((dir / "validation.json").string() + " is not a JSON object");
     validation = nullptr;
   }
   if (validation.is_object()) summary["validation"] = validation;

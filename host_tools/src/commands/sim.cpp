@@ -1,7 +1,8 @@
 // `stride sim stand|walk|kick|getup`: one simulated episode of the firmware against the simulated
-// world, with the metrics of docs/command-line.md (--json), a trajectory recording, pose pictures and a replay
-// page (--html, the replay of report.html for one episode). getup starts lying still and times
-// the firmware's get-up; stand and walk can go on through a get-up after a fall (--after-fall).
+// world, with the metrics of docs/command-line.md (--json), a trajectory recording, pose pictures
+// and a replay page (--html, the replay of report.html for one episode). getup starts lying still
+// and times the firmware's get-up; stand and walk can go on through a get-up after a fall
+// (--after-fall).
 #include <algorithm>
 #include <cstdio>
 #include <optional>
@@ -14,6 +15,7 @@
 #include "stride/firmware/firmware.hpp"
 #include "stride/firmware/motion_request.hpp"
 #include "stride/host_tools/command.hpp"
+#include "stride/host_tools/command_errors.hpp"
 #include "stride/optimiser/report/report_page.hpp"
 #include "stride/optimiser/report/run_plots.hpp"
 #include "stride/sim_hal/episode.hpp"
@@ -31,10 +33,7 @@ using stride::Status;
 namespace sim = stride::sim;
 namespace hal = stride::hal;
 
-int bad_input(const std::string& message) {
-  std::fprintf(stderr, "stride sim: %s\n", message.c_str());
-  return 2;
-}
+const stride::tools::CommandErrors errors("sim");
 
 Status parse_times(const std::string& text, std::vector<double>& out) {
   std::stringstream in(text);
@@ -135,8 +134,7 @@ Status write_html(const stride::core::CliArgs& args, const std::string& motion,
   Status written =
       report::write_episode_html(args.get("html"), "Stride sim " + motion, facts,
                                  robot.world().model(), episode, scene, times, &warnings);
-  for (const std::string& w : warnings)
-    std::fprintf(stderr, "stride sim: warning: %s (see %s)\n", w.c_str(), args.get("html").c_str());
+  for (const std::string& w : warnings) errors.warning(w + " (see " + args.get("html") + ")");
   return written;
 }
 
@@ -174,7 +172,7 @@ int run_sim(int argc, char** argv) {
   args.option("html", "write a self-contained replay page (accelerometer, poses, animation)", true);
   args.option("json", "print the result as one JSON object", false);
   sim::declare_world_options(args);
-  if (Status s = args.parse(argc, argv); !s) return bad_input(s.message());
+  if (Status s = args.parse(argc, argv); !s) return errors.bad_input(s.message());
   if (args.has("help")) {
     std::printf(
         "usage: stride sim stand|walk|kick [options] [--after-fall getup (stand, walk)]\n"
@@ -198,24 +196,26 @@ int run_sim(int argc, char** argv) {
     return 0;
   }
   if (args.positional().size() != 1)
-    return bad_input("expected one motion: stand, walk, kick or getup");
+    return errors.bad_input("expected one motion: stand, walk, kick or getup");
   const std::string motion = args.positional()[0];
   if (motion != "stand" && motion != "walk" && motion != "kick" && motion != "getup")
-    return bad_input("unknown motion '" + motion + "' (expected stand, walk, kick or getup)");
+    return errors.bad_input("unknown motion '" + motion +
+                            "' (expected stand, walk, kick or getup)");
   const bool getup = motion == "getup";
   const std::string lying = args.get("lying");
   if (args.has("lying") && !getup)
-    return bad_input("--lying: only with getup (stride sim getup --lying front|back), not " +
-                     motion);
-  if (getup && !args.has("lying")) return bad_input("--lying: getup needs a side, front or back");
+    return errors.bad_input("--lying: only with getup (stride sim getup --lying front|back), not " +
+                            motion);
+  if (getup && !args.has("lying"))
+    return errors.bad_input("--lying: getup needs a side, front or back");
   if (getup && lying != "front" && lying != "back")
-    return bad_input("--lying: unknown side '" + lying + "' (expected front or back)");
+    return errors.bad_input("--lying: unknown side '" + lying + "' (expected front or back)");
   if (args.has("after-fall") && args.get("after-fall") != "getup")
-    return bad_input("--after-fall: unknown value '" + args.get("after-fall") +
-                     "' (expected getup)");
+    return errors.bad_input("--after-fall: unknown value '" + args.get("after-fall") +
+                            "' (expected getup)");
   if (args.has("after-fall") && motion != "stand" && motion != "walk")
-    return bad_input("--after-fall: only with stand or walk, not " + motion +
-                     (getup ? " (it starts lying and always gets up)" : ""));
+    return errors.bad_input("--after-fall: only with stand or walk, not " + motion +
+                            (getup ? " (it starts lying and always gets up)" : ""));
   const bool watch_get_up = getup || args.has("after-fall");
   // Default lengths: 10 s; lying, the 20 s the rules give a fallen robot; after a fall, 10 s
   // and those 20 s.
@@ -227,37 +227,38 @@ int run_sim(int argc, char** argv) {
                            {"vy", &vy},
                            {"vth", &vth},
                            {"metrics-from", &metrics_from}})
-    if (Status s = args.get_double(name, *out); !s) return bad_input(s.message());
+    if (Status s = args.get_double(name, *out); !s) return errors.bad_input(s.message());
   if (!(duration > 0.0) || duration > 3600.0)
-    return bad_input("--duration: must be in (0, 3600] s, got " + args.get("duration"));
+    return errors.bad_input("--duration: must be in (0, 3600] s, got " + args.get("duration"));
   if (args.has("metrics-from") && !(metrics_from >= 0.0 && metrics_from < duration))
-    return bad_input("--metrics-from: must be in [0, " + duration_text + ") s, got " +
-                     args.get("metrics-from"));
+    return errors.bad_input("--metrics-from: must be in [0, " + duration_text + ") s, got " +
+                            args.get("metrics-from"));
   std::vector<double> snapshot_times;
   if (Status s = parse_times(args.get("snapshot-times"), snapshot_times); !s)
-    return bad_input(s.message());
+    return errors.bad_input(s.message());
   // The pushes must fall within the episode (read_world_options takes them below).
   for (const std::string& text : args.get_all("push")) {
     sim::TorsoPush push;
-    if (Status s = sim::parse_push(text, duration, push); !s) return bad_input(s.message());
+    if (Status s = sim::parse_push(text, duration, push); !s) return errors.bad_input(s.message());
   }
   sim::WorldOptions world_options;
-  if (Status s = sim::read_world_options(args, world_options); !s) return bad_input(s.message());
+  if (Status s = sim::read_world_options(args, world_options); !s)
+    return errors.bad_input(s.message());
   if (motion == "walk")
     for (double v : {vx, vy, vth})
-      if (!(v >= -1.0 && v <= 1.0)) return bad_input("--vx/--vy/--vth: must be in [-1, 1]");
+      if (!(v >= -1.0 && v <= 1.0)) return errors.bad_input("--vx/--vy/--vth: must be in [-1, 1]");
 
   // The firmware exactly as stride-fw builds it (parameters, servo table, engines).
   stride::fw::FirmwareOptions fw_options;
   if (args.has("params")) fw_options.params_file = args.get("params");
   std::unique_ptr<stride::fw::Firmware> firmware;
   if (Status s = stride::fw::Firmware::create(fw_options, firmware); !s)
-    return bad_input(s.message());
+    return errors.bad_input(s.message());
   world_options.control_period_ns = firmware->period_ns();
   if (Status s = sim::check_physics_step(world_options.physics_step_ns, firmware->period_ns(),
                                          "--physics-step-us");
       !s)
-    return bad_input(s.message());
+    return errors.bad_input(s.message());
 
   sim::TrajectoryRecorder recorder;
   sim::EpisodeOptions episode;
@@ -277,26 +278,24 @@ int run_sim(int argc, char** argv) {
     sim::KickEpisodeOptions kick;
     kick.script = args.get("script");
     if (firmware->params().list("script." + kick.script + ".frame").empty())
-      return bad_input("--script: no script '" + kick.script + "' in the firmware's scripts");
+      return errors.bad_input("--script: no script '" + kick.script +
+                              "' in the firmware's scripts");
     kick.duration_s = duration;
     if (kick.script == "kick_left") kick.ball_position.y() = -kick.ball_position.y();
     kick.firmware = fw_options;
     kick.episode = episode;
     if (Status s = sim::run_kick_episode(world_options, kick, result, &robot_ptr); !s) {
-      std::fprintf(stderr, "stride sim: %s\n", s.message().c_str());
-      return 1;
+      return errors.failure(s.message());
     }
   } else {
     std::unique_ptr<sim::SimWorld> world;
     if (Status s = sim::SimWorld::create(world_options, world); !s) {
-      std::fprintf(stderr, "stride sim: %s\n", s.message().c_str());
-      return 1;
+      return errors.failure(s.message());
     }
     // getup: lying still on the side asked for (the optimiser's get-up task starts there too).
     if (getup) {
       if (Status s = world->reset(sim::lying_reset_spec(lying == "front")); !s) {
-        std::fprintf(stderr, "stride sim: %s\n", s.message().c_str());
-        return 1;
+        return errors.failure(s.message());
       }
     }
     robot_ptr = std::make_unique<sim::SimRobot>(std::move(world));
@@ -310,8 +309,7 @@ int run_sim(int argc, char** argv) {
       robot.read(probe);
       (void)controller.step(probe, 0);
       if (controller.motion().refused_requests() > 0) {
-        std::fprintf(stderr, "stride sim: walk engine not available\n");
-        return 1;
+        return errors.failure("walk engine not available");
       }
     }
     // A get-up is followed tick by tick (it only reads the world: the episode is the same).
@@ -347,8 +345,7 @@ int run_sim(int argc, char** argv) {
 
   if (args.has("record")) {
     if (Status s = recorder.save(args.get("record")); !s) {
-      std::fprintf(stderr, "stride sim: %s\n", s.message().c_str());
-      return 1;
+      return errors.failure(s.message());
     }
   }
   if (args.has("snapshot")) {
@@ -356,16 +353,14 @@ int run_sim(int argc, char** argv) {
         robot.world().model(), result.snapshots, robot.world().ground().grass_thickness_m,
         world_options.ball.present ? world_options.ball.radius_m : 0.0);
     if (Status s = stride::core::write_file_atomically(args.get("snapshot"), svg); !s) {
-      std::fprintf(stderr, "stride sim: %s\n", s.message().c_str());
-      return 1;
+      return errors.failure(s.message());
     }
   }
   if (args.has("html")) {
     if (Status s = write_html(args, motion, duration_text, world_options, robot, result, get_up,
                               capturer.finish());
         !s) {
-      std::fprintf(stderr, "stride sim: %s\n", s.message().c_str());
-      return 1;
+      return errors.failure(s.message());
     }
   }
   if (args.has("json")) {
@@ -394,8 +389,7 @@ int run_sim(int argc, char** argv) {
                 sim::hash_hex(result.state_hash).c_str());
   }
   if (result.status != sim::WorldStatus::kRunning) {
-    std::fprintf(stderr, "stride sim: episode ended: %s\n", result.failure_reason.c_str());
-    return 1;
+    return errors.failure("episode ended: " + result.failure_reason);
   }
   return 0;
 }

@@ -20,6 +20,7 @@
 #include "stride/hal/dynamixel/virtual_bus.hpp"
 #include "stride/hal/dynamixel/virtual_bus_v2.hpp"
 #include "stride/host_tools/command.hpp"
+#include "stride/host_tools/command_errors.hpp"
 #include "stride/sim_hal/episode.hpp"
 #include "stride/sim_hal/sim_bus_physics.hpp"
 #include "stride/sim_hal/sim_cli.hpp"
@@ -32,10 +33,7 @@ void on_vbus_signal(int) {
   g_vbus_stop.store(true);
 }
 
-int bad(const std::string& message) {
-  std::fprintf(stderr, "stride vbus: %s\n", message.c_str());
-  return 2;
-}
+const stride::tools::CommandErrors errors("vbus");
 
 int run_vbus(int argc, char** argv) {
   using namespace stride;
@@ -47,7 +45,7 @@ int run_vbus(int argc, char** argv) {
     const std::string word = argv[i];
     std::string value;
     if (word == "--fault") {
-      if (i + 1 >= argc) return bad("option --fault needs a value");
+      if (i + 1 >= argc) return errors.bad_input("option --fault needs a value");
       value = argv[++i];
     } else if (word.rfind("--fault=", 0) == 0) {
       value = word.substr(8);
@@ -92,7 +90,7 @@ int run_vbus(int argc, char** argv) {
       .option("help", "show this help", false);
   sim::declare_world_options(args);
   if (Status s = args.parse(static_cast<int>(rest.size()), rest.data()); !s)
-    return bad(s.message());
+    return errors.bad_input(s.message());
   if (args.has("help")) {
     std::printf(
         "usage: stride vbus --link PATH [--fault KIND:VALUE]... [--lockstep] [--json]\n\n"
@@ -104,23 +102,25 @@ int run_vbus(int argc, char** argv) {
         args.help().c_str());
     return 0;
   }
-  if (!args.has("link")) return bad("missing --link PATH");
+  if (!args.has("link")) return errors.bad_input("missing --link PATH");
   dxl::VirtualBus::Options options;
   for (const auto& f : faults) {
-    if (Status s = options.faults.add(f); !s) return bad(s.message());
+    if (Status s = options.faults.add(f); !s) return errors.bad_input(s.message());
   }
   double period_ms = 10.0;
-  if (Status s = args.get_double("period-ms", period_ms); !s) return bad(s.message());
+  if (Status s = args.get_double("period-ms", period_ms); !s) return errors.bad_input(s.message());
   if (!(period_ms > 0.0 && period_ms <= 1000.0))
-    return bad("option --period-ms: must be in (0, 1000]");
+    return errors.bad_input("option --period-ms: must be in (0, 1000]");
   std::int64_t protocol = 1;
-  if (Status s = args.get_int("protocol", protocol); !s) return bad(s.message());
-  if (protocol != 1 && protocol != 2) return bad("option --protocol: must be 1 or 2");
+  if (Status s = args.get_int("protocol", protocol); !s) return errors.bad_input(s.message());
+  if (protocol != 1 && protocol != 2) return errors.bad_input("option --protocol: must be 1 or 2");
   fw::ServoTable table;
-  if (Status s = fw::ServoTable::load(args.get("servo-table"), table); !s) return bad(s.message());
+  if (Status s = fw::ServoTable::load(args.get("servo-table"), table); !s)
+    return errors.bad_input(s.message());
   options.calibration = fw::servo_calibrations(table);
   const bool use_sim = args.has("sim");
-  if (use_sim && protocol != 1) return bad("option --sim: needs --protocol 1 (the CM730's IMU)");
+  if (use_sim && protocol != 1)
+    return errors.bad_input("option --sim: needs --protocol 1 (the CM730's IMU)");
   options.lockstep = args.has("lockstep") || use_sim;
   options.period_ns = static_cast<std::int64_t>(period_ms * 1e6);
   dxl::FirstOrderPhysics::Options physics;
@@ -131,12 +131,12 @@ int run_vbus(int argc, char** argv) {
   sim::SimBusPhysics* sim_physics = nullptr;
   if (use_sim) {
     sim::WorldOptions world_options;
-    if (Status s = sim::read_world_options(args, world_options); !s) return bad(s.message());
+    if (Status s = sim::read_world_options(args, world_options); !s)
+      return errors.bad_input(s.message());
     world_options.control_period_ns = options.period_ns;
     std::unique_ptr<sim::SimWorld> world;
     if (Status s = sim::SimWorld::create(world_options, world); !s) {
-      std::fprintf(stderr, "stride vbus: %s\n", s.message().c_str());
-      return 1;
+      return errors.failure(s.message());
     }
     auto backed = std::make_unique<sim::SimBusPhysics>(std::move(world));
     sim_physics = backed.get();
@@ -163,17 +163,16 @@ int run_vbus(int argc, char** argv) {
 
   std::unique_ptr<dxl::PtyBusServer> server;
   if (Status s = dxl::PtyBusServer::create(args.get("link"), server); !s) {
-    std::fprintf(stderr, "stride vbus: %s\n", s.message().c_str());
-    return 1;
+    return errors.failure(s.message());
   }
   if (!args.has("no-rt")) {
     sched_param param{};
     param.sched_priority = 85;
     if (sched_setscheduler(0, SCHED_FIFO, &param) != 0) {
-      std::fprintf(stderr, "stride vbus: warning: SCHED_FIFO refused (%s)\n", std::strerror(errno));
+      errors.warning(std::string("SCHED_FIFO refused (") + std::strerror(errno) + ")");
     }
     if (mlockall(MCL_CURRENT | MCL_FUTURE) != 0) {
-      std::fprintf(stderr, "stride vbus: warning: mlockall refused (%s)\n", std::strerror(errno));
+      errors.warning(std::string("mlockall refused (") + std::strerror(errno) + ")");
     }
   }
   struct sigaction action {};
@@ -220,8 +219,7 @@ int run_vbus(int argc, char** argv) {
     std::fflush(stdout);
   }
   if (!served) {
-    std::fprintf(stderr, "stride vbus: %s\n", served.message().c_str());
-    return 1;
+    return errors.failure(served.message());
   }
   return 0;
 }
