@@ -133,19 +133,27 @@ int interactive(ConsoleClient& client, int timeout_ms) {
   return status;
 }
 
-}  // namespace
-
-int run_console(int argc, char** argv) {
-  core::CliArgs args;
+void declare_options(core::CliArgs& args) {
   args.option("port", "serial device or pseudo-terminal of the console")
       .option("baud", "baud rate", true, "115200")
       .option("timeout", "seconds to wait for each reply", true, "5")
       .option("verify", "after flash FILE, read every value back and report differences", false)
       .option("json", "print one JSON object with every command and reply", false)
       .option("help", "show this help", false);
+}
+
+void print_help(const core::CliArgs& args) {
+  std::printf("%s%s", kUsage, args.help().c_str());
+}
+
+}  // namespace
+
+int run_console(int argc, char** argv) {
+  core::CliArgs args;
+  declare_options(args);
   if (Status s = args.parse(argc, argv); !s) return errors.bad_input(s.message());
   if (args.has("help")) {
-    std::printf("%s%s", kUsage, args.help().c_str());
+    print_help(args);
     return 0;
   }
   if (!args.has("port")) return errors.bad_input("missing --port DEV");

@@ -39,10 +39,7 @@ Status check_output_path(const std::string& option, const std::string& path) {
   return Status::ok();
 }
 
-}  // namespace
-
-int run_replay(int argc, char** argv) {
-  core::CliArgs args;
+void declare_options(core::CliArgs& args) {
   args.option("help", "show this help", false);
   args.option("window", "window length [s]: the robot is placed in the logged state at each start",
               true, "2");
@@ -60,15 +57,26 @@ int run_replay(int argc, char** argv) {
               "robot's weight)",
               false);
   sim::declare_world_options(args);
+}
+
+void print_help(const core::CliArgs& args) {
+  std::printf(
+      "usage: stride replay LOG [world options] [--window S] [--html FILE] [--json]\n\n"
+      "Replays a flight log (stride-fw --record) against the simulated robot: for each window\n"
+      "of S seconds the robot is placed in the logged state (joint angles, trunk attitude from\n"
+      "the IMU, feet on the ground) and fed the logged commands; prints the RMS errors of the\n"
+      "simulated sensors against the logged ones (firmware/src/recorder/FLIGHT_LOG.md).\n\n%s",
+      args.help().c_str());
+}
+
+}  // namespace
+
+int run_replay(int argc, char** argv) {
+  core::CliArgs args;
+  declare_options(args);
   if (Status s = args.parse(argc, argv); !s) return errors.bad_input(s.message());
   if (args.has("help")) {
-    std::printf(
-        "usage: stride replay LOG [world options] [--window S] [--html FILE] [--json]\n\n"
-        "Replays a flight log (stride-fw --record) against the simulated robot: for each window\n"
-        "of S seconds the robot is placed in the logged state (joint angles, trunk attitude from\n"
-        "the IMU, feet on the ground) and fed the logged commands; prints the RMS errors of the\n"
-        "simulated sensors against the logged ones (firmware/src/recorder/FLIGHT_LOG.md).\n\n%s",
-        args.help().c_str());
+    print_help(args);
     return 0;
   }
   if (args.positional().size() != 1)

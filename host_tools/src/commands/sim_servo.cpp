@@ -18,11 +18,7 @@ namespace sim = stride::sim;
 
 const stride::tools::CommandErrors errors("sim servo");
 
-}  // namespace
-
-/// argv starts at "servo".
-int run_sim_servo(int argc, char** argv) {
-  stride::core::CliArgs args;
+void declare_options(stride::core::CliArgs& args) {
   args.option("help", "show this help", false);
   args.option("model", "servo: mx64 or mx106", true, "mx106");
   args.option("experiment", "no-load, blocked or pendulum", true, "no-load");
@@ -36,16 +32,28 @@ int run_sim_servo(int argc, char** argv) {
               true, "sin-time-square");
   args.option("duration", "no-load and pendulum: run length [s]", true, "6");
   args.option("json", "print the result as one JSON object", false);
+}
+
+void print_help(const stride::core::CliArgs& args) {
+  std::printf(
+      "usage: stride sim servo --model mx64|mx106 --experiment no-load|blocked|pendulum "
+      "[options]\n\n"
+      "no-load: output free, goal far away; prints the steady speed (speed_rad_s).\n"
+      "blocked: output held still, goal --error-deg away; prints duty and torque_nm.\n"
+      "pendulum: a point mass on an arm swinging under gravity on a BAM trajectory;\n"
+      "          --json prints the trace (t, goal, position, speed, torque).\n\n%s",
+      args.help().c_str());
+}
+
+}  // namespace
+
+/// argv starts at "servo".
+int run_sim_servo(int argc, char** argv) {
+  stride::core::CliArgs args;
+  declare_options(args);
   if (Status s = args.parse(argc, argv); !s) return errors.bad_input(s.message());
   if (args.has("help")) {
-    std::printf(
-        "usage: stride sim servo --model mx64|mx106 --experiment no-load|blocked|pendulum "
-        "[options]\n\n"
-        "no-load: output free, goal far away; prints the steady speed (speed_rad_s).\n"
-        "blocked: output held still, goal --error-deg away; prints duty and torque_nm.\n"
-        "pendulum: a point mass on an arm swinging under gravity on a BAM trajectory;\n"
-        "          --json prints the trace (t, goal, position, speed, torque).\n\n%s",
-        args.help().c_str());
+    print_help(args);
     return 0;
   }
   if (!args.positional().empty())

@@ -27,10 +27,7 @@ using stride::Status;
 
 const stride::tools::CommandErrors errors("validate");
 
-}  // namespace
-
-int run_validate(int argc, char** argv) {
-  stride::core::CliArgs args;
+void declare_options(stride::core::CliArgs& args) {
   args.option("engine",
               "engine of the other-engine worlds, repeatable: simbody|mujoco "
               "(default: every engine the run did not use)")
@@ -41,24 +38,35 @@ int run_validate(int argc, char** argv) {
       .option("jobs", "episodes in parallel (default: all cores)")
       .option("json", "print the result as one JSON object", false)
       .option("help", "show this help", false);
+}
+
+void print_help(const stride::core::CliArgs& args) {
+  std::printf(
+      "usage: stride validate RUN [--member ROW]... [--engine E]... [--seeds N]\n"
+      "       [--physics-step-us US] [--jobs N] [--json]\n"
+      "Re-scores Ind_O and the picks of the robot run in RUN (fastest, most stable, knee;\n"
+      "kick: least sway, longest kick; --member: any other front member) on worlds the run never "
+      "saw, each with N fresh seeds\n"
+      "and IMU noise on: the other engine(s), fresh seeds, wider randomisation (1.5x the\n"
+      "run's friction, mass and strength ranges, at least 0.3 / 0.075 / 0.15, one tick of\n"
+      "latency in half of the worlds), half the physics step, and the soft and the hard\n"
+      "ground (deep turf, studs sinking 4 mm; carpet, 0.4 mm). Per individual and world:\n"
+      "reached fraction, falls, median objectives, the gate (>= 80 %% of the seeds reached\n"
+      "without a fall, median within 25 %% of its own value in the run) and the gain kept\n"
+      "against Ind_O; then the same in words: where each holds (passes the gate), why it\n"
+      "fails elsewhere, the pick that holds in most worlds. Writes RUN/validation.json;\n"
+      "`stride report RUN` shows it.\n\n%s",
+      args.help().c_str());
+}
+
+}  // namespace
+
+int run_validate(int argc, char** argv) {
+  stride::core::CliArgs args;
+  declare_options(args);
   if (auto st = args.parse(argc, argv); !st) return errors.bad_input(st.message());
   if (args.has("help")) {
-    std::printf(
-        "usage: stride validate RUN [--member ROW]... [--engine E]... [--seeds N]\n"
-        "       [--physics-step-us US] [--jobs N] [--json]\n"
-        "Re-scores Ind_O and the picks of the robot run in RUN (fastest, most stable, knee;\n"
-        "kick: least sway, longest kick; --member: any other front member) on worlds the run never "
-        "saw, each with N fresh seeds\n"
-        "and IMU noise on: the other engine(s), fresh seeds, wider randomisation (1.5x the\n"
-        "run's friction, mass and strength ranges, at least 0.3 / 0.075 / 0.15, one tick of\n"
-        "latency in half of the worlds), half the physics step, and the soft and the hard\n"
-        "ground (deep turf, studs sinking 4 mm; carpet, 0.4 mm). Per individual and world:\n"
-        "reached fraction, falls, median objectives, the gate (>= 80 %% of the seeds reached\n"
-        "without a fall, median within 25 %% of its own value in the run) and the gain kept\n"
-        "against Ind_O; then the same in words: where each holds (passes the gate), why it\n"
-        "fails elsewhere, the pick that holds in most worlds. Writes RUN/validation.json;\n"
-        "`stride report RUN` shows it.\n\n%s",
-        args.help().c_str());
+    print_help(args);
     return 0;
   }
   if (args.positional().size() != 1) return errors.bad_input("expected one run directory");
