@@ -142,6 +142,19 @@ void declare_options(core::CliArgs& args) {
       .option("help", "show this help", false);
 }
 
+/// The command lines: each positional word is a line; `flash FILE` may also be two words.
+std::vector<std::string> command_lines(const std::vector<std::string>& words) {
+  std::vector<std::string> lines;
+  for (std::size_t i = 0; i < words.size(); ++i) {
+    if (words[i] == "flash" && i + 1 < words.size()) {
+      lines.push_back("flash " + words[++i]);
+    } else {
+      lines.push_back(words[i]);
+    }
+  }
+  return lines;
+}
+
 void print_help(const core::CliArgs& args) {
   std::printf("%s%s", kUsage, args.help().c_str());
 }
@@ -165,16 +178,7 @@ int run_console(int argc, char** argv) {
   if (timeout_s <= 0) return errors.bad_input("option --timeout: must be positive");
   const int timeout_ms = static_cast<int>(timeout_s * 1000);
 
-  // Commands: each positional word is a line; `flash FILE` may also be two words.
-  std::vector<std::string> lines;
-  const auto& words = args.positional();
-  for (std::size_t i = 0; i < words.size(); ++i) {
-    if (words[i] == "flash" && i + 1 < words.size()) {
-      lines.push_back("flash " + words[++i]);
-    } else {
-      lines.push_back(words[i]);
-    }
-  }
+  const std::vector<std::string> lines = command_lines(args.positional());
   // Expand flash FILE into the one-line JSON now, so a bad file is a usage error (exit 2)
   // before anything reaches the robot.
   std::vector<FlashFile> flash_files(lines.size());

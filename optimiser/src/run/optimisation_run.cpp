@@ -395,6 +395,19 @@ GenerationRecord current_record(const Problem& problem, const Nsga2& engine,
   return record;
 }
 
+/// The best value of each objective over the population's feasible, unfailed members (empty if
+/// there are none).
+std::vector<double> best_objectives(const std::vector<Individual>& population) {
+  std::vector<double> best;
+  for (const Individual& ind : population) {
+    if (ind.result.failed || ind.result.violation > 0.0) continue;
+    if (best.empty()) best = ind.result.objectives;
+    for (std::size_t m = 0; m < best.size(); ++m)
+      best[m] = std::min(best[m], ind.result.objectives[m]);
+  }
+  return best;
+}
+
 }  // namespace
 
 Status run_optimisation(const Problem& problem, const RunConfig& config, Evaluator& evaluator,
@@ -454,12 +467,7 @@ Status run_optimisation(const Problem& problem, const RunConfig& config, Evaluat
     if (auto st = write_checkpoint(); !st) return st;
     summary.last = record;
     summary.pareto_size = rows;
-    for (const Individual& ind : engine->population()) {
-      if (ind.result.failed || ind.result.violation > 0.0) continue;
-      if (record.best_objectives.empty()) record.best_objectives = ind.result.objectives;
-      for (std::size_t m = 0; m < record.best_objectives.size(); ++m)
-        record.best_objectives[m] = std::min(record.best_objectives[m], ind.result.objectives[m]);
-    }
+    record.best_objectives = best_objectives(engine->population());
     summary.last = record;
     if (options.on_generation) options.on_generation(record);
     if (options.stop != nullptr && options.stop->load() && !engine->finished()) {
