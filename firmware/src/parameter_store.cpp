@@ -3,13 +3,13 @@
 
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <sstream>
 #include <stdexcept>
 
 #include <nlohmann/json.hpp>
 
 #include "stride/core/atomic_file.hpp"
+#include "stride/core/json_file.hpp"
 
 namespace stride::fw {
 
@@ -238,14 +238,8 @@ Status ParameterStore::parse_json(const nlohmann::json& doc, std::vector<ParamWr
 
 Status ParameterStore::parse_json_file(const std::filesystem::path& path,
                                        std::vector<ParamWrite>& out) const {
-  std::ifstream in(path);
-  if (!in) return Status::error(path.string() + ": cannot open for reading");
   nlohmann::json doc;
-  try {
-    in >> doc;
-  } catch (const nlohmann::json::exception& e) {
-    return Status::error(path.string() + ": not valid JSON (" + e.what() + ")");
-  }
+  if (Status s = core::read_json_file(path, doc); !s) return s;
   return parse_json(doc, out, path.string());
 }
 

@@ -2,12 +2,13 @@
 #include "stride/firmware/servo_table.hpp"
 
 #include <cmath>
-#include <fstream>
 #include <numbers>
 #include <set>
 #include <stdexcept>
 
 #include <nlohmann/json.hpp>
+
+#include "stride/core/json_file.hpp"
 
 #include "stride/firmware/firmware.hpp"         // data_dir
 #include "stride/firmware/parameter_store.hpp"  // format_number
@@ -38,14 +39,8 @@ Status read_number(const nlohmann::json& servo, const std::string& where, const 
 
 Status ServoTable::load(const std::filesystem::path& path, ServoTable& out) {
   const std::string file = path.string();
-  std::ifstream in(path);
-  if (!in) return Status::error(file + ": cannot open for reading");
   nlohmann::json doc;
-  try {
-    in >> doc;
-  } catch (const nlohmann::json::exception& e) {
-    return Status::error(file + ": not valid JSON (" + e.what() + ")");
-  }
+  if (Status s = core::read_json_file(path, doc); !s) return s;
   if (!doc.is_object() || !doc.contains("servos") || !doc["servos"].is_array()) {
     return Status::error(file + ": servos: missing or not an array");
   }

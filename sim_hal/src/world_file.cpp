@@ -1,10 +1,10 @@
 // World files (world_file.hpp): reading with one-line errors naming the field, writing.
 #include "stride/sim_hal/world_file.hpp"
 
+#include "stride/core/json_file.hpp"
 #include "stride/sim_hal/world_spec.hpp"
 
 #include <cmath>
-#include <fstream>
 #include <initializer_list>
 #include <sstream>
 
@@ -147,14 +147,8 @@ Status parse_world_file(const json& doc, WorldFile& out) {
 }
 
 Status load_world_file(const std::filesystem::path& path, WorldFile& out) {
-  std::ifstream in(path);
-  if (!in) return Status::error(path.string() + ": cannot open the world file");
   json doc;
-  try {
-    doc = json::parse(in);
-  } catch (const json::exception& e) {
-    return Status::error(path.string() + ": not JSON (" + std::string(e.what()) + ")");
-  }
+  if (Status s = core::read_json_file(path, doc); !s) return s;
   if (Status s = parse_world_file(doc, out); !s)
     return Status::error(path.string() + ": " + s.message());
   return Status::ok();

@@ -1,13 +1,14 @@
 // Script JSON loading and validation (format: firmware/scripts/README.md).
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <set>
 
 #include <nlohmann/json.hpp>
 
 #include "stride/firmware/parameter_store.hpp"  // format_number
 #include "stride/firmware/script/script.hpp"
+
+#include "stride/core/json_file.hpp"
 
 #ifndef STRIDE_FIRMWARE_DATA_DIR
 #define STRIDE_FIRMWARE_DATA_DIR "."
@@ -167,14 +168,8 @@ Status parse_script(const nlohmann::json& doc, std::string_view origin, const Se
 
 Status load_script_file(const std::filesystem::path& path, const ServoTable& servos, Script& out) {
   const std::string file = path.string();
-  std::ifstream in(path);
-  if (!in) return Status::error(file + ": cannot open for reading");
   nlohmann::json doc;
-  try {
-    in >> doc;
-  } catch (const nlohmann::json::exception& e) {
-    return Status::error(file + ": not valid JSON (" + e.what() + ")");
-  }
+  if (Status s = core::read_json_file(path, doc); !s) return s;
   return parse_script(doc, file, servos, out);
 }
 

@@ -11,17 +11,19 @@
 #include <system_error>
 #include <vector>
 
+#include "stride/calibration/calibration.hpp"
 #include "stride/core/atomic_file.hpp"
 #include "stride/core/cli_args.hpp"
 #include "stride/firmware/recorder/flight_log_reader.hpp"
 #include "stride/host_tools/command.hpp"
-#include "stride/sim_hal/calibration.hpp"
+#include "stride/host_tools/command_errors.hpp"
 #include "stride/sim_hal/sim_cli.hpp"
 
 namespace {
 
 using stride::Status;
 namespace sim = stride::sim;
+namespace calibration = stride::calibration;
 namespace fw = stride::fw;
 namespace core = stride::core;
 
@@ -30,20 +32,9 @@ extern "C" void on_sigint(int) {
   g_stop.store(true);
 }
 
-int bad_input(const std::string& message) {
-  std::fprintf(stderr, "stride calibrate: %s\n", message.c_str());
-  return 2;
-}
+const stride::tools::CommandErrors errors("calibrate");
 
-int failure(const std::string& message) {
-  std::fprintf(stderr, "stride calibrate: %s\n", message.c_str());
-  return 1;
-}
-
-}  // namespace
-
-int run_calibrate(int argc, char** argv) {
-  core::CliArgs args;
+void declare_options(core::CliArgs& args) {
   args.option("help", "show this help", false);
   args.option("fit", "parameters to fit, comma-separated (see below)", true);
   args.option("out", "the world file to write (required)", true);
@@ -62,148 +53,141 @@ int run_calibrate(int argc, char** argv) {
   args.option("robot-description", "the firmware's rigid-body model (must be the logs')", true,
               fw::RobotDescription::default_path().string());
   sim::declare_world_options(args);
-  if (Status s = args.parse(argc, argv); !s) return bad_input(s.message());
-  if (args.has("help")) {
-    std::string names;
-    for (const sim::CalibrationParameter& p : sim::calibration_parameters()) {
-      char line[160];
-      std::snprintf(line, sizeof line, "  %-14s %-32s [%g, %g] %s\n", p.name.c_str(),
-                    p.what.c_str(), p.lower, p.upper, p.unit.c_str());
-      names += line;
-    }
-    std::printf(
-        "usage: stride calibrate LOG... --fit NAME[,NAME...] --out WORLD.json [world options]\n\n"
-        "Fits the simulated robot to flight logs (stride-fw --record; the identification\n"
-        "routine of firmware/scripts/IDENTIFICATION.md): minimises the replay error (stride\n"
-        "replay) over every window of every log, prints each fitted value with an uncertainty\n"
-        "from re-fits on subsets of the windows, and writes a world file for --world and task\n"
-        "configs. The world options give the world the logs are replayed in (default: the\n"
-        "faithful world, noise off); a world file there is the start of the fit.\n\n"
-        "Parameters (--fit; gyro_bias and accel_bias name three axes, all every one):\n%s\n%s",
-        names.c_str(), args.help().c_str());
-    return 0;
+}
+
+void print_help(const core::CliArgs& args) {
+  std::string names;
+  for (const calibration::CalibrationParameter& p : calibration::calibration_parameters()) {
+    char line[160];
+    std::snprintf(line, sizeof line, "  %-14s %-32s [%g, %g] %s\n", p.name.c_str(), p.what.c_str(),
+                  p.lower, p.upper, p.unit.c_str());
+    names += line;
   }
-  if (args.positional().empty()) return bad_input("expected at least one flight log");
-  if (!args.has("out")) return bad_input("--out: the world file to write is required");
-  if (!args.has("fit")) return bad_input("--fit: name the parameters to fit");
-  const std::filesystem::path out = args.get("out");
+  std::printf(
+      "usage: stride calibrate LOG... --fit NAME[,NAME...] --out WORLD.json [world options]\n\n"
+      "Fits the simulated robot to flight logs (stride-fw --record; the identification\n"
+      "routine of firmware/scripts/IDENTIFICATION.md): minimises the replay error (stride\n"
+      "replay) over every window of every log, prints each fitted value with an uncertainty\n"
+      "from re-fits on subsets of the windows, and writes a world file for --world and task\n"
+      "configs. The world options give the world the logs are replayed in (default: the\n"
+      "faithful world, noise off); a world file there is the start of the fit.\n\n"
+      "Parameters (--fit; gyro_bias and accel_bias name three axes, all every one):\n%s\n%s",
+      names.c_str(), args.help().c_str());
+}
+
+/// The logs, --out and --fit are required; --out must be a file in an existing folder.
+Status read_out(const core::CliArgs& args, std::filesystem::path& out) {
+  if (args.positional().empty()) return Status::error("expected at least one flight log");
+  if (!args.has("out")) return Status::error("--out: the world file to write is required");
+  if (!args.has("fit")) return Status::error("--fit: name the parameters to fit");
+  out = args.get("out");
   std::error_code error;
   if (out.has_parent_path() && !std::filesystem::is_directory(out.parent_path(), error))
-    return bad_input("--out: no such folder '" + out.parent_path().string() + "'");
-  if (std::filesystem::is_directory(out, error)) return bad_input("--out: is a folder");
+    return Status::error("--out: no such folder '" + out.parent_path().string() + "'");
+  if (std::filesystem::is_directory(out, error)) return Status::error("--out: is a folder");
+  return {};
+}
 
-  sim::CalibrationOptions options;
-  if (Status s = sim::parse_fit_names(args.get("fit"), options.fit); !s)
-    return bad_input(s.message());
-  if (Status s = args.get_double("window", options.replay.window_s); !s)
-    return bad_input(s.message());
+/// --fit, --window, --jobs, --max-evals and --subsets into the fit's options.
+Status read_fit_options(const core::CliArgs& args, calibration::CalibrationOptions& options) {
+  if (Status s = calibration::parse_fit_names(args.get("fit"), options.fit); !s) return s;
+  if (Status s = args.get_double("window", options.replay.window_s); !s) return s;
   std::int64_t jobs = 1, max_evals = 250, subsets = 3;
-  if (Status s = args.get_int("jobs", jobs); !s) return bad_input(s.message());
-  if (Status s = args.get_int("max-evals", max_evals); !s) return bad_input(s.message());
-  if (Status s = args.get_int("subsets", subsets); !s) return bad_input(s.message());
-  if (jobs < 1 || jobs > 256) return bad_input("--jobs: must be in 1..256");
-  if (max_evals < 1 || max_evals > 100000) return bad_input("--max-evals: must be in 1..100000");
+  if (Status s = args.get_int("jobs", jobs); !s) return s;
+  if (Status s = args.get_int("max-evals", max_evals); !s) return s;
+  if (Status s = args.get_int("subsets", subsets); !s) return s;
+  if (jobs < 1 || jobs > 256) return Status::error("--jobs: must be in 1..256");
+  if (max_evals < 1 || max_evals > 100000)
+    return Status::error("--max-evals: must be in 1..100000");
   if (subsets < 0 || subsets == 1 || subsets > 20)
-    return bad_input("--subsets: must be 0 or in 2..20");
+    return Status::error("--subsets: must be 0 or in 2..20");
   options.replay.threads = static_cast<int>(jobs);
   options.max_evaluations = static_cast<int>(max_evals);
   options.subsets = static_cast<int>(subsets);
   if (args.has("push"))
-    return bad_input("--push: not available (the logged commands are replayed)");
+    return Status::error("--push: not available (the logged commands are replayed)");
+  return {};
+}
 
-  // The replay world: noise off unless asked (the logged sensors carry the robot's noise).
-  sim::WorldOptions world;
-  if (Status s = sim::read_world_options(args, world); !s) return bad_input(s.message());
+/// The replay world (noise off unless asked: the logged sensors carry the robot's noise) and
+/// the fit's start: the world file given with --world, else the world's preset.
+Status read_world(const core::CliArgs& args, sim::WorldOptions& world, sim::WorldFile& start) {
+  if (Status s = sim::read_world_options(args, world); !s) return s;
   if (args.get_all("noise").empty()) world.imu.set_noise(false);
-  sim::WorldFile start;
   start.base = world.servo.law == sim::ServoLaw::kSeed ? sim::WorldPreset::kSeed
                                                        : sim::WorldPreset::kFaithful;
   const std::string world_arg = args.get("world", "faithful");
   if (sim::looks_like_world_file(world_arg))
     if (Status s = sim::load_world_file(world_arg, start); !s)
-      return bad_input("--world: " + s.message());
+      return Status::error("--world: " + s.message());
+  return {};
+}
 
+/// Reads every log and checks that it replays on this firmware's servo table and robot
+/// description with at least one window of `window_s`.
+Status read_logs(const core::CliArgs& args, double window_s, std::vector<fw::FlightLog>& logs) {
   fw::ServoTable servos;
   if (Status s = fw::ServoTable::load(args.get("servo-table"), servos); !s)
-    return bad_input("--servo-table: " + s.message());
+    return Status::error("--servo-table: " + s.message());
   fw::RobotDescription robot;
   if (Status s = fw::RobotDescription::load(args.get("robot-description"), servos, robot); !s)
-    return bad_input("--robot-description: " + s.message());
-  std::vector<fw::FlightLog> logs(args.positional().size());
-  std::vector<const fw::FlightLog*> log_ptrs;
+    return Status::error("--robot-description: " + s.message());
+  logs.resize(args.positional().size());
   for (std::size_t i = 0; i < logs.size(); ++i) {
     const std::string& path = args.positional()[i];
-    if (Status s = fw::read_flight_log(path, logs[i]); !s) return bad_input(s.message());
+    if (Status s = fw::read_flight_log(path, logs[i]); !s) return s;
     if (Status s = sim::check_replayable(logs[i], servos, robot); !s)
-      return bad_input(path + ": " + s.message());
-    if (Status s = sim::check_window(logs[i], options.replay.window_s); !s)
-      return bad_input(path + ": " + s.message());
-    log_ptrs.push_back(&logs[i]);
+      return Status::error(path + ": " + s.message());
+    if (Status s = sim::check_window(logs[i], window_s); !s)
+      return Status::error(path + ": " + s.message());
   }
-  std::size_t windows = 0;
-  for (const fw::FlightLog* log : log_ptrs)
-    windows += sim::count_windows(*log, options.replay.window_s);
-  if (options.subsets > 0 && windows < static_cast<std::size_t>(options.subsets))
-    return bad_input("--subsets: " + std::to_string(options.subsets) + " subsets need at least " +
-                     std::to_string(options.subsets) + " windows; the logs have " +
-                     std::to_string(windows) + " of " + args.get("window") + " s");
-  // Measured, not fitted (calibration.hpp): the supply from the logs, the trunk from the scale.
-  const bool fit_voltage =
-      std::find(options.fit.begin(), options.fit.end(), "voltage") != options.fit.end();
+  return {};
+}
+
+/// Measured, not fitted (calibration.hpp): the supply from the logs unless --fit voltage, the
+/// trunk from --robot-mass.
+Status set_measured_values(const core::CliArgs& args,
+                           const calibration::CalibrationOptions& options,
+                           const std::vector<const fw::FlightLog*>& logs,
+                           const sim::WorldOptions& world, sim::WorldFile& start) {
+  const auto fitted = [&options](const char* name) {
+    return std::find(options.fit.begin(), options.fit.end(), name) != options.fit.end();
+  };
   double volts = 0.0;
-  if (!fit_voltage && sim::logged_supply_voltage(log_ptrs, volts)) start.supply_voltage_v = volts;
+  if (!fitted("voltage") && calibration::logged_supply_voltage(logs, volts))
+    start.supply_voltage_v = volts;
   if (args.has("robot-mass")) {
-    if (std::find(options.fit.begin(), options.fit.end(), "trunk_mass") != options.fit.end())
-      return bad_input("--robot-mass: sets the trunk mass; do not also --fit trunk_mass");
+    if (fitted("trunk_mass"))
+      return Status::error("--robot-mass: sets the trunk mass; do not also --fit trunk_mass");
     double kg = 0.0;
-    if (Status s = args.get_double("robot-mass", kg); !s) return bad_input(s.message());
-    if (Status s = sim::trunk_scale_for_mass(world, kg, start.robot.trunk_mass_scale); !s)
-      return bad_input(s.message());
+    if (Status s = args.get_double("robot-mass", kg); !s) return s;
+    if (Status s = calibration::trunk_scale_for_mass(world, kg, start.robot.trunk_mass_scale); !s)
+      return s;
   }
+  return {};
+}
+
+/// OUT.progress.jsonl: absent for a new fit, present for --resume.
+Status set_progress_file(const core::CliArgs& args, const std::filesystem::path& out,
+                         calibration::CalibrationOptions& options) {
+  std::error_code error;
   options.progress_file = out;
   options.progress_file += ".progress.jsonl";
   options.resume = args.has("resume");
   if (!options.resume && std::filesystem::exists(options.progress_file, error))
-    return bad_input(options.progress_file.string() +
-                     " exists: a stopped run (--resume continues it) or remove it");
+    return Status::error(options.progress_file.string() +
+                         " exists: a stopped run (--resume continues it) or remove it");
   if (options.resume && !std::filesystem::exists(options.progress_file, error))
-    return bad_input("--resume: no progress file " + options.progress_file.string());
+    return Status::error("--resume: no progress file " + options.progress_file.string());
+  return {};
+}
 
-  options.stop = &g_stop;
-  std::signal(SIGINT, on_sigint);
-  options.on_evaluation = [](const std::string& fit, int n, double j, double best) {
-    std::fprintf(stderr, "\r%-9s evaluation %4d  J %10.4f  best %10.4f", fit.c_str(), n, j, best);
-    std::fflush(stderr);
-  };
-  std::fprintf(stderr, "stride calibrate: %zu log(s), fitting %s in %s\n", logs.size(),
-               args.get("fit").c_str(), sim::describe_world(world).c_str());
-  std::fprintf(stderr, "supply %.2f V (%s), trunk mass x%.4f (%s)\n", start.supply_voltage_v,
-               fit_voltage ? "fitted" : "from the logs", start.robot.trunk_mass_scale,
-               args.has("robot-mass") ? "from --robot-mass" : "the start world's");
-  sim::CalibrationResult result;
-  const Status s = sim::calibrate(log_ptrs, world, start, options, result);
-  std::fprintf(stderr, "\n");
-  std::signal(SIGINT, SIG_DFL);
-  if (!s) {
-    if (g_stop.load())
-      return failure("interrupted; the evaluations so far are in " +
-                     options.progress_file.string() + " (--resume continues)");
-    return failure(s.message());
-  }
-  nlohmann::json logs_json = nlohmann::json::array();
-  for (const std::string& path : args.positional()) logs_json.push_back(path);
-  result.world.calibration["logs"] = logs_json;
-  result.world.calibration["supply_voltage_from"] = fit_voltage ? "fit" : "logs";
-  if (args.has("robot-mass"))
-    result.world.calibration["robot_mass_kg"] = std::stod(args.get("robot-mass"));
-  if (Status w = core::write_file_atomically(out, sim::to_json(result.world).dump(2) + "\n"); !w)
-    return failure(w.message());
-  std::filesystem::remove(options.progress_file, error);
-
+/// Each fitted value with its start and uncertainty, then the objective and the errors.
+void print_fit(const calibration::CalibrationResult& result, const std::filesystem::path& out) {
   std::printf("%-14s %10s %10s %12s  %s\n", "parameter", "start", "fitted", "uncertainty", "unit");
-  for (const sim::FittedValue& v : result.values) {
+  for (const calibration::FittedValue& v : result.values) {
     std::string unit;
-    for (const sim::CalibrationParameter& p : sim::calibration_parameters())
+    for (const calibration::CalibrationParameter& p : calibration::calibration_parameters())
       if (p.name == v.name) unit = p.unit;
     std::printf("%-14s %10.4g %10.4g %12.3g  %s\n", v.name.c_str(), v.start, v.value, v.uncertainty,
                 unit.c_str());
@@ -216,6 +200,77 @@ int run_calibrate(int argc, char** argv) {
   std::printf("position RMS %.5f -> %.5f rad, load RMS %.4f -> %.4f; wrote %s\n",
               result.start_errors.position_all_rad, result.errors.position_all_rad,
               result.start_errors.load_all, result.errors.load_all, out.string().c_str());
+}
+
+}  // namespace
+
+int run_calibrate(int argc, char** argv) {
+  core::CliArgs args;
+  declare_options(args);
+  if (Status s = args.parse(argc, argv); !s) return errors.bad_input(s.message());
+  if (args.has("help")) {
+    print_help(args);
+    return 0;
+  }
+  std::filesystem::path out;
+  calibration::CalibrationOptions options;
+  sim::WorldOptions world;
+  sim::WorldFile start;
+  std::vector<fw::FlightLog> logs;
+  if (Status s = read_out(args, out); !s) return errors.bad_input(s.message());
+  if (Status s = read_fit_options(args, options); !s) return errors.bad_input(s.message());
+  if (Status s = read_world(args, world, start); !s) return errors.bad_input(s.message());
+  if (Status s = read_logs(args, options.replay.window_s, logs); !s)
+    return errors.bad_input(s.message());
+  std::vector<const fw::FlightLog*> log_ptrs;
+  std::size_t windows = 0;
+  for (const fw::FlightLog& log : logs) {
+    log_ptrs.push_back(&log);
+    windows += sim::count_windows(log, options.replay.window_s);
+  }
+  if (options.subsets > 0 && windows < static_cast<std::size_t>(options.subsets))
+    return errors.bad_input("--subsets: " + std::to_string(options.subsets) +
+                            " subsets need at least " + std::to_string(options.subsets) +
+                            " windows; the logs have " + std::to_string(windows) + " of " +
+                            args.get("window") + " s");
+  if (Status s = set_measured_values(args, options, log_ptrs, world, start); !s)
+    return errors.bad_input(s.message());
+  if (Status s = set_progress_file(args, out, options); !s) return errors.bad_input(s.message());
+  const bool fit_voltage =
+      std::find(options.fit.begin(), options.fit.end(), "voltage") != options.fit.end();
+
+  options.stop = &g_stop;
+  std::signal(SIGINT, on_sigint);
+  options.on_evaluation = [](const std::string& fit, int n, double j, double best) {
+    std::fprintf(stderr, "\r%-9s evaluation %4d  J %10.4f  best %10.4f", fit.c_str(), n, j, best);
+    std::fflush(stderr);
+  };
+  std::fprintf(stderr, "stride calibrate: %zu log(s), fitting %s in %s\n", logs.size(),
+               args.get("fit").c_str(), sim::describe_world(world).c_str());
+  std::fprintf(stderr, "supply %.2f V (%s), trunk mass x%.4f (%s)\n", start.supply_voltage_v,
+               fit_voltage ? "fitted" : "from the logs", start.robot.trunk_mass_scale,
+               args.has("robot-mass") ? "from --robot-mass" : "the start world's");
+  calibration::CalibrationResult result;
+  const Status s = calibration::calibrate(log_ptrs, world, start, options, result);
+  std::fprintf(stderr, "\n");
+  std::signal(SIGINT, SIG_DFL);
+  if (!s) {
+    if (g_stop.load())
+      return errors.failure("interrupted; the evaluations so far are in " +
+                            options.progress_file.string() + " (--resume continues)");
+    return errors.failure(s.message());
+  }
+  nlohmann::json logs_json = nlohmann::json::array();
+  for (const std::string& path : args.positional()) logs_json.push_back(path);
+  result.world.calibration["logs"] = logs_json;
+  result.world.calibration["supply_voltage_from"] = fit_voltage ? "fit" : "logs";
+  if (args.has("robot-mass"))
+    result.world.calibration["robot_mass_kg"] = std::stod(args.get("robot-mass"));
+  if (Status w = core::write_file_atomically(out, sim::to_json(result.world).dump(2) + "\n"); !w)
+    return errors.failure(w.message());
+  std::error_code error;
+  std::filesystem::remove(options.progress_file, error);
+  print_fit(result, out);
   return 0;
 }
 

@@ -10,7 +10,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
 #include <map>
 #include <string>
 #include <vector>
@@ -19,12 +18,16 @@
 #include <nlohmann/json.hpp>
 
 #include "stride/core/cli_args.hpp"
+#include "stride/core/json_file.hpp"
 #include "stride/firmware/console/line_editor.hpp"
 #include "stride/host_tools/command.hpp"
+#include "stride/host_tools/command_errors.hpp"
 #include "stride/host_tools/console_client.hpp"
 
 namespace stride::tools {
 namespace {
+
+const CommandErrors errors("console");
 
 constexpr const char* kUsage =
     "usage: stride console --port DEV [options] [COMMAND...]\n"
@@ -57,14 +60,8 @@ struct FlashFile {
 };
 
 Status read_flash_file(const std::string& path, FlashFile& out) {
-  std::ifstream in(path);
-  if (!in) return Status::error(path + ": cannot open for reading");
   nlohmann::json doc;
-  try {
-    in >> doc;
-  } catch (const nlohmann::json::exception& e) {
-    return Status::error(path + ": not valid JSON (" + e.what() + ")");
-  }
+  if (Status s = stride::core::read_json_file(path, doc); !s) return s;
   if (!doc.is_object()) return Status::error(path + ": expected a JSON object of parameters");
   out.line = "flash " + doc.dump();
   if (out.line.size() > kMaxConsoleLine) {
@@ -127,8 +124,7 @@ int interactive(ConsoleClient& client, int timeout_ms) {
     }
     ConsoleReply reply;
     if (Status s = client.command(line, reply, timeout_ms); !s) {
-      std::fprintf(stderr, "stride console: %s\n", s.message().c_str());
-      status = 1;
+      status = errors.failure(s.message());
       break;
     }
     print_reply(reply);
@@ -137,38 +133,18 @@ int interactive(ConsoleClient& client, int timeout_ms) {
   return status;
 }
 
-int fail(int code, const std::string& message) {
-  std::fprintf(stderr, "stride console: %s\n", message.c_str());
-  return code;
-}
-
-}  // namespace
-
-int run_console(int argc, char** argv) {
-  core::CliArgs args;
+void declare_options(core::CliArgs& args) {
   args.option("port", "serial device or pseudo-terminal of the console")
       .option("baud", "baud rate", true, "115200")
       .option("timeout", "seconds to wait for each reply", true, "5")
       .option("verify", "after flash FILE, read every value back and report differences", false)
       .option("json", "print one JSON object with every command and reply", false)
       .option("help", "show this help", false);
-  if (Status s = args.parse(argc, argv); !s) return fail(2, s.message());
-  if (args.has("help")) {
-    std::printf("%s%s", kUsage, args.help().c_str());
-    return 0;
-  }
-  if (!args.has("port")) return fail(2, "missing --port DEV");
-  std::int64_t baud = 0;
-  double timeout_s = 0;
-  if (Status s = args.get_int("baud", baud); !s) return fail(2, s.message());
-  if (Status s = args.get_double("timeout", timeout_s); !s) return fail(2, s.message());
-  if (baud <= 0) return fail(2, "option --baud: must be positive");
-  if (timeout_s <= 0) return fail(2, "option --timeout: must be positive");
-  const int timeout_ms = static_cast<int>(timeout_s * 1000);
+}
 
-  // Commands: each positional word is a line; `flash FILE` may also be two words.
+/// The command lines: each positional word is a line; `flash FILE` may also be two words.
+std::vector<std::string> command_lines(const std::vector<std::string>& words) {
   std::vector<std::string> lines;
-  const auto& words = args.positional();
   for (std::size_t i = 0; i < words.size(); ++i) {
     if (words[i] == "flash" && i + 1 < words.size()) {
       lines.push_back("flash " + words[++i]);
@@ -176,6 +152,33 @@ int run_console(int argc, char** argv) {
       lines.push_back(words[i]);
     }
   }
+  return lines;
+}
+
+void print_help(const core::CliArgs& args) {
+  std::printf("%s%s", kUsage, args.help().c_str());
+}
+
+}  // namespace
+
+int run_console(int argc, char** argv) {
+  core::CliArgs args;
+  declare_options(args);
+  if (Status s = args.parse(argc, argv); !s) return errors.bad_input(s.message());
+  if (args.has("help")) {
+    print_help(args);
+    return 0;
+  }
+  if (!args.has("port")) return errors.bad_input("missing --port DEV");
+  std::int64_t baud = 0;
+  double timeout_s = 0;
+  if (Status s = args.get_int("baud", baud); !s) return errors.bad_input(s.message());
+  if (Status s = args.get_double("timeout", timeout_s); !s) return errors.bad_input(s.message());
+  if (baud <= 0) return errors.bad_input("option --baud: must be positive");
+  if (timeout_s <= 0) return errors.bad_input("option --timeout: must be positive");
+  const int timeout_ms = static_cast<int>(timeout_s * 1000);
+
+  const std::vector<std::string> lines = command_lines(args.positional());
   // Expand flash FILE into the one-line JSON now, so a bad file is a usage error (exit 2)
   // before anything reaches the robot.
   std::vector<FlashFile> flash_files(lines.size());
@@ -183,18 +186,18 @@ int run_console(int argc, char** argv) {
   for (std::size_t i = 0; i < lines.size(); ++i) {
     if (lines[i].rfind("flash ", 0) == 0 && lines[i].find('{') == std::string::npos) {
       if (Status s = read_flash_file(lines[i].substr(6), flash_files[i]); !s) {
-        return fail(2, s.message());
+        return errors.bad_input(s.message());
       }
       is_flash[i] = true;
     }
   }
   if (args.has("verify") && std::find(is_flash.begin(), is_flash.end(), true) == is_flash.end()) {
-    return fail(2, "--verify needs a 'flash FILE' command");
+    return errors.bad_input("--verify needs a 'flash FILE' command");
   }
 
   ConsoleClient client;
   if (Status s = client.open(args.get("port"), static_cast<int>(baud)); !s) {
-    return fail(1, s.message());
+    return errors.failure(s.message());
   }
   if (lines.empty()) return interactive(client, timeout_ms);
 
@@ -204,7 +207,7 @@ int run_console(int argc, char** argv) {
   for (std::size_t i = 0; i < lines.size(); ++i) {
     const std::string& line = is_flash[i] ? flash_files[i].line : lines[i];
     ConsoleReply reply;
-    if (Status s = client.command(line, reply, timeout_ms); !s) return fail(1, s.message());
+    if (Status s = client.command(line, reply, timeout_ms); !s) return errors.failure(s.message());
     all_ok = all_ok && reply.ok();
     nlohmann::json entry = {{"command", lines[i]},
                             {"ok", reply.ok()},
@@ -214,7 +217,7 @@ int run_console(int argc, char** argv) {
     if (is_flash[i] && args.has("verify") && reply.ok()) {
       std::vector<std::string> differences;
       if (Status s = verify(client, flash_files[i], timeout_ms, differences); !s) {
-        return fail(1, s.message());
+        return errors.failure(s.message());
       }
       all_ok = all_ok && differences.empty();
       entry["verify"] = {{"checked", flash_files[i].values.size()}, {"differences", differences}};

@@ -9,16 +9,14 @@
 #include "stride/core/cli_args.hpp"
 #include "stride/firmware/robot_description.hpp"
 #include "stride/host_tools/command.hpp"
+#include "stride/host_tools/command_errors.hpp"
 #include "stride/sim_hal/robot_description_writer.hpp"
 #include "stride/sim_hal/robot_model.hpp"
 #include "stride/sim_hal/world_options.hpp"
 
 namespace {
 
-int bad_input(const std::string& message) {
-  std::fprintf(stderr, "stride describe: %s\n", message.c_str());
-  return 2;
-}
+const stride::tools::CommandErrors errors("describe");
 
 }  // namespace
 
@@ -30,7 +28,7 @@ int run_describe(int argc, char** argv) {
               stride::fw::ServoTable::default_path().string())
       .option("out", "file to write (atomically); default: standard output", true, "")
       .option("help", "show this help", false);
-  if (auto st = args.parse(argc, argv); !st) return bad_input(st.message());
+  if (auto st = args.parse(argc, argv); !st) return errors.bad_input(st.message());
   if (args.has("help")) {
     std::printf(
         "usage: stride describe [--urdf FILE] [--servo-table FILE] [--out FILE]\n\n"
@@ -42,30 +40,30 @@ int run_describe(int argc, char** argv) {
     return 0;
   }
   if (!args.positional().empty())
-    return bad_input("unexpected argument '" + args.positional()[0] + "'");
+    return errors.bad_input("unexpected argument '" + args.positional()[0] + "'");
   stride::fw::ServoTable servos;
   if (auto st = stride::fw::ServoTable::load(args.get("servo-table"), servos); !st)
-    return bad_input("--servo-table: " + st.message());
+    return errors.bad_input("--servo-table: " + st.message());
   stride::sim::RobotModel model;
   const std::filesystem::path urdf = args.get("urdf");
   if (auto st = stride::sim::RobotModel::load_file(urdf, model); !st)
-    return bad_input("--urdf: " + st.message());
+    return errors.bad_input("--urdf: " + st.message());
   std::string text;
   if (auto st = stride::sim::write_robot_description(model, stride::sim::igus_servo_joints(),
                                                      servos, urdf.filename().string(), text);
       !st)
-    return bad_input("--urdf: " + st.message());
+    return errors.bad_input("--urdf: " + st.message());
   // What is written must load back: the firmware refuses to start on anything else.
   stride::fw::RobotDescription check;
   if (auto st = stride::fw::RobotDescription::parse(text, "description", servos, check); !st)
-    return bad_input(st.message());
+    return errors.bad_input(st.message());
   const std::string out = args.get("out");
   if (out.empty()) {
     std::fputs(text.c_str(), stdout);
     return 0;
   }
   if (auto st = stride::core::write_file_atomically(out, text); !st)
-    return bad_input("--out: " + st.message());
+    return errors.bad_input("--out: " + st.message());
   std::fprintf(stderr, "stride describe: %s: %zu joints, %.4f kg\n", out.c_str(),
                check.joints().size(), check.total_mass());
   return 0;

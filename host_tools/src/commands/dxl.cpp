@@ -20,6 +20,7 @@
 #include "stride/hal/dynamixel/serial_port.hpp"
 #include "stride/hal/dynamixel/units.hpp"
 #include "stride/host_tools/command.hpp"
+#include "stride/host_tools/command_errors.hpp"
 
 namespace {
 
@@ -31,14 +32,7 @@ void on_dxl_signal(int) {
   g_dxl_stop.store(true);
 }
 
-int bad(const std::string& message) {
-  std::fprintf(stderr, "stride dxl: %s\n", message.c_str());
-  return 2;
-}
-int failed(const std::string& message) {
-  std::fprintf(stderr, "stride dxl: %s\n", message.c_str());
-  return 1;
-}
+const stride::tools::CommandErrors errors("dxl");
 
 bool parse_number(const std::string& text, long max, long& out) {
   if (text.empty()) return false;
@@ -150,8 +144,7 @@ Status resolve_register(Client& client, std::uint8_t id, const std::string& text
   return {};
 }
 
-int run_dxl(int argc, char** argv) {
-  stride::core::CliArgs args;
+void declare_options(stride::core::CliArgs& args) {
   args.option("port", "bus device (e.g. /dev/ttyUSB0 or a stride vbus link)")
       .option("baud", "baud rate", true, "1000000")
       .option("protocol", "Dynamixel protocol 1 or 2", true, "1")
@@ -162,176 +155,183 @@ int run_dxl(int argc, char** argv) {
       .option("max-id", "scan: highest ID to try", true, "253")
       .option("json", "print results as one JSON object", false)
       .option("help", "show this help", false);
-  if (Status s = args.parse(argc, argv); !s) return bad(s.message());
-  if (args.has("help")) {
-    std::printf(
-        "usage: stride dxl --port DEV [options] COMMAND\n\n"
-        "commands:\n"
-        "  scan                      ping IDs 0..max-id, list devices and models\n"
-        "  ping ID                   ping one device, print its model\n"
-        "  read ID REGISTER [LEN]    read a register (name, e.g. present_position, or address)\n"
-        "  write ID REGISTER VALUE   write a register (ID 254 = broadcast)\n"
-        "  monitor [ID...]           print position, speed, load, voltage, temperature of\n"
-        "                            servos (protocol 1.0, default IDs 1-20)\n\n%s",
-        args.help().c_str());
-    return 0;
-  }
-  const auto& words = args.positional();
-  if (words.empty()) return bad("missing command (scan, ping, read, write, monitor)");
-  if (!args.has("port")) return bad("missing --port DEV");
+}
+
+void print_help(const stride::core::CliArgs& args) {
+  std::printf(
+      "usage: stride dxl --port DEV [options] COMMAND\n\n"
+      "commands:\n"
+      "  scan                      ping IDs 0..max-id, list devices and models\n"
+      "  ping ID                   ping one device, print its model\n"
+      "  read ID REGISTER [LEN]    read a register (name, e.g. present_position, or address)\n"
+      "  write ID REGISTER VALUE   write a register (ID 254 = broadcast)\n"
+      "  monitor [ID...]           print position, speed, load, voltage, temperature of\n"
+      "                            servos (protocol 1.0, default IDs 1-20)\n\n%s",
+      args.help().c_str());
+}
+
+/// The numeric options, checked.
+struct BusOptions {
   std::int64_t baud = 0, protocol_number = 0, timeout_ms = 0, max_id = 0, interval_ms = 0,
                count = -1;
+};
+
+Status read_bus_options(const stride::core::CliArgs& args, BusOptions& o) {
   for (const auto& [name, value] :
-       std::vector<std::pair<std::string, std::int64_t*>>{{"baud", &baud},
-                                                          {"protocol", &protocol_number},
-                                                          {"timeout-ms", &timeout_ms},
-                                                          {"max-id", &max_id},
-                                                          {"interval-ms", &interval_ms},
-                                                          {"count", &count}}) {
-    if (Status s = args.get_int(name, *value); !s) return bad(s.message());
+       std::vector<std::pair<std::string, std::int64_t*>>{{"baud", &o.baud},
+                                                          {"protocol", &o.protocol_number},
+                                                          {"timeout-ms", &o.timeout_ms},
+                                                          {"max-id", &o.max_id},
+                                                          {"interval-ms", &o.interval_ms},
+                                                          {"count", &o.count}}) {
+    if (Status s = args.get_int(name, *value); !s) return s;
   }
-  if (baud <= 0 || !dxl::SerialPort::is_standard_baud(static_cast<std::uint32_t>(baud))) {
-    return bad("option --baud: unsupported rate " + args.get("baud"));
-  }
-  if (protocol_number != 1 && protocol_number != 2) return bad("option --protocol: must be 1 or 2");
-  if (timeout_ms <= 0 || timeout_ms > 10000) return bad("option --timeout-ms: must be 1..10000");
-  if (max_id < 0 || max_id > 253) return bad("option --max-id: must be 0..253");
-  if (interval_ms < 0) return bad("option --interval-ms: must be >= 0");
-  const std::string command = words[0];
-  const bool json = args.has("json");
-  auto id_arg = [&](std::size_t k, long& id) {
-    return k < words.size() && parse_number(words[k], 254, id);
-  };
+  if (o.baud <= 0 || !dxl::SerialPort::is_standard_baud(static_cast<std::uint32_t>(o.baud)))
+    return Status::error("option --baud: unsupported rate " + args.get("baud"));
+  if (o.protocol_number != 1 && o.protocol_number != 2)
+    return Status::error("option --protocol: must be 1 or 2");
+  if (o.timeout_ms <= 0 || o.timeout_ms > 10000)
+    return Status::error("option --timeout-ms: must be 1..10000");
+  if (o.max_id < 0 || o.max_id > 253) return Status::error("option --max-id: must be 0..253");
+  if (o.interval_ms < 0) return Status::error("option --interval-ms: must be >= 0");
+  return {};
+}
 
+/// The command word and its ID and argument count; errors are bad input.
+Status check_command(const std::vector<std::string>& words, long& id) {
+  const std::string& command = words[0];
   if (command != "scan" && command != "ping" && command != "read" && command != "write" &&
-      command != "monitor") {
-    return bad("unknown command '" + command + "' (scan, ping, read, write, monitor)");
-  }
-  long id = 0;
-  if ((command == "ping" || command == "read" || command == "write") && !id_arg(1, id)) {
-    return bad(command + ": missing or bad ID '" + (words.size() > 1 ? words[1] : "") + "'");
-  }
-  if ((command == "read" && words.size() < 3) || (command == "write" && words.size() < 4)) {
-    return bad(command + ": missing arguments (see --help)");
-  }
+      command != "monitor")
+    return Status::error("unknown command '" + command + "' (scan, ping, read, write, monitor)");
+  if ((command == "ping" || command == "read" || command == "write") &&
+      !(words.size() > 1 && parse_number(words[1], 254, id)))
+    return Status::error(command + ": missing or bad ID '" + (words.size() > 1 ? words[1] : "") +
+                         "'");
+  if ((command == "read" && words.size() < 3) || (command == "write" && words.size() < 4))
+    return Status::error(command + ": missing arguments (see --help)");
+  return {};
+}
 
-  std::unique_ptr<dxl::SerialPort> port;
-  if (Status s = dxl::SerialPort::open(args.get("port"), static_cast<std::uint32_t>(baud), port);
-      !s) {
-    return failed(s.message());
-  }
-  const auto protocol = protocol_number == 1 ? dxl::Protocol::kV1 : dxl::Protocol::kV2;
-  Client client(std::move(port), protocol, timeout_ms * 1'000'000);
-
-  if (command == "scan") {
-    nlohmann::json found = nlohmann::json::array();
-    for (int scan_id = 0; scan_id <= max_id && !g_dxl_stop.load(); ++scan_id) {
-      if (!client.ping(static_cast<std::uint8_t>(scan_id))) continue;
-      const auto model = client.model(static_cast<std::uint8_t>(scan_id));
-      const std::string label = model ? model_label(*model, protocol) : "model unknown";
-      found.push_back({{"id", scan_id}, {"model", model ? *model : 0}, {"name", label}});
-      if (!json) std::printf("%3d  %s\n", scan_id, label.c_str());
-    }
-    if (json) {
-      std::printf("%s\n", nlohmann::json{{"devices", found}}.dump().c_str());
-    } else {
-      std::printf("%zu device(s) found\n", found.size());
-    }
-    return 0;
-  }
-  const auto dev = static_cast<std::uint8_t>(id);
-  if (command == "ping") {
-    if (!client.ping(dev)) return failed("no reply from ID " + std::to_string(id));
-    const auto model = client.model(dev);
+/// scan: ping IDs 0..max_id and list the devices that answer.
+int scan(Client& client, dxl::Protocol protocol, std::int64_t max_id, bool json) {
+  nlohmann::json found = nlohmann::json::array();
+  for (int scan_id = 0; scan_id <= max_id && !g_dxl_stop.load(); ++scan_id) {
+    if (!client.ping(static_cast<std::uint8_t>(scan_id))) continue;
+    const auto model = client.model(static_cast<std::uint8_t>(scan_id));
     const std::string label = model ? model_label(*model, protocol) : "model unknown";
-    if (json) {
-      std::printf("%s\n", nlohmann::json{{"id", id}, {"model", model ? *model : 0}, {"name", label}}
-                              .dump()
-                              .c_str());
-    } else {
-      std::printf("%ld  %s\n", id, label.c_str());
-    }
-    return 0;
+    found.push_back({{"id", scan_id}, {"model", model ? *model : 0}, {"name", label}});
+    if (!json) std::printf("%3d  %s\n", scan_id, label.c_str());
   }
-  if (command == "read" || command == "write") {
-    std::uint16_t address = 0;
-    std::uint8_t size = 1;
-    if (Status s = resolve_register(client, dev, words[2], address, size); !s)
-      return bad(s.message());
-    if (command == "read") {
-      long length = size;
-      if (words.size() > 3 && !parse_number(words[3], 255, length)) {
-        return bad("read: bad length '" + words[3] + "'");
-      }
-      dxl::Packet reply;
-      if (!client.read(dev, address, static_cast<std::uint16_t>(length), reply)) {
-        return failed("no valid reply from ID " + std::to_string(id));
-      }
-      std::uint32_t value = 0;
-      for (std::size_t k = 0; k < reply.param_count && k < 4; ++k)
-        value |= reply.params[k] << (8 * k);
-      if (json) {
-        std::printf(
-            "%s\n",
-            nlohmann::json{{"id", id},
-                           {"address", address},
-                           {"bytes", std::vector<int>(reply.params.begin(),
-                                                      reply.params.begin() + reply.param_count)},
-                           {"value", value},
-                           {"error", reply.error}}
-                .dump()
-                .c_str());
-      } else {
-        std::printf("ID %ld address %u: %u", id, address, value);
-        if (reply.error != 0) std::printf("  (error 0x%02x)", reply.error);
-        std::printf("\n");
-      }
-      return 0;
-    }
-    long value = 0;
-    if (!parse_number(words[3], 0xFFFFFFFL, value))
-      return bad("write: bad value '" + words[3] + "'");
-    std::int64_t forced = 0;
-    if (args.has("size")) {
-      if (Status s = args.get_int("size", forced); !s || forced < 1 || forced > 4) {
-        return bad("option --size: must be 1..4");
-      }
-      size = static_cast<std::uint8_t>(forced);
-    }
-    if (size < 4 && static_cast<unsigned long>(value) >= (1UL << (8 * size))) {
-      return bad("write: value " + words[3] + " does not fit in " + std::to_string(size) +
-                 " byte(s)");
-    }
-    std::array<std::uint8_t, 4> data{};
-    for (std::uint8_t k = 0; k < size; ++k) data[k] = static_cast<std::uint8_t>(value >> (8 * k));
-    dxl::Packet reply;
-    const bool answered = client.write(dev, address, std::span(data.data(), size), &reply);
-    if (dev != dxl::kBroadcastId && answered && reply.error != 0) {
-      return failed("ID " + std::to_string(id) + " refused the write (error 0x" + [&] {
-        char b[8];
-        std::snprintf(b, sizeof b, "%02x", reply.error);
-        return std::string(b);
-      }() + ")");
-    }
-    if (json) {
-      std::printf("%s\n", nlohmann::json{{"id", id},
-                                         {"address", address},
-                                         {"value", value},
-                                         {"acknowledged", answered && dev != dxl::kBroadcastId}}
-                              .dump()
-                              .c_str());
-    } else {
-      std::printf("ID %ld address %u <- %ld%s\n", id, address, value,
-                  answered && dev != dxl::kBroadcastId ? "" : " (no status reply)");
-    }
-    return 0;
+  if (json) {
+    std::printf("%s\n", nlohmann::json{{"devices", found}}.dump().c_str());
+  } else {
+    std::printf("%zu device(s) found\n", found.size());
   }
-  // monitor
-  if (protocol != dxl::Protocol::kV1) return bad("monitor: protocol 1.0 only");
+  return 0;
+}
+
+/// ping ID: one device and its model.
+int ping(Client& client, dxl::Protocol protocol, long id, bool json) {
+  const auto dev = static_cast<std::uint8_t>(id);
+  if (!client.ping(dev)) return errors.failure("no reply from ID " + std::to_string(id));
+  const auto model = client.model(dev);
+  const std::string label = model ? model_label(*model, protocol) : "model unknown";
+  if (json) {
+    std::printf(
+        "%s\n",
+        nlohmann::json{{"id", id}, {"model", model ? *model : 0}, {"name", label}}.dump().c_str());
+  } else {
+    std::printf("%ld  %s\n", id, label.c_str());
+  }
+  return 0;
+}
+
+/// read ID REGISTER [LEN]
+int read_register(Client& client, const std::vector<std::string>& words, long id,
+                  std::uint16_t address, std::uint8_t size, bool json) {
+  const auto dev = static_cast<std::uint8_t>(id);
+  long length = size;
+  if (words.size() > 3 && !parse_number(words[3], 255, length)) {
+    return errors.bad_input("read: bad length '" + words[3] + "'");
+  }
+  dxl::Packet reply;
+  if (!client.read(dev, address, static_cast<std::uint16_t>(length), reply)) {
+    return errors.failure("no valid reply from ID " + std::to_string(id));
+  }
+  std::uint32_t value = 0;
+  for (std::size_t k = 0; k < reply.param_count && k < 4; ++k) value |= reply.params[k] << (8 * k);
+  if (json) {
+    std::printf("%s\n", nlohmann::json{{"id", id},
+                                       {"address", address},
+                                       {"bytes",
+                                        std::vector<int>(reply.params.begin(),
+                                                         reply.params.begin() + reply.param_count)},
+                                       {"value", value},
+                                       {"error", reply.error}}
+                            .dump()
+                            .c_str());
+  } else {
+    std::printf("ID %ld address %u: %u", id, address, value);
+    if (reply.error != 0) std::printf("  (error 0x%02x)", reply.error);
+    std::printf("\n");
+  }
+  return 0;
+}
+
+/// write ID REGISTER VALUE (--size bytes, or the register's size).
+int write_register(Client& client, const stride::core::CliArgs& args,
+                   const std::vector<std::string>& words, long id, std::uint16_t address,
+                   std::uint8_t size, bool json) {
+  const auto dev = static_cast<std::uint8_t>(id);
+  long value = 0;
+  if (!parse_number(words[3], 0xFFFFFFFL, value))
+    return errors.bad_input("write: bad value '" + words[3] + "'");
+  std::int64_t forced = 0;
+  if (args.has("size")) {
+    if (Status s = args.get_int("size", forced); !s || forced < 1 || forced > 4) {
+      return errors.bad_input("option --size: must be 1..4");
+    }
+    size = static_cast<std::uint8_t>(forced);
+  }
+  if (size < 4 && static_cast<unsigned long>(value) >= (1UL << (8 * size))) {
+    return errors.bad_input("write: value " + words[3] + " does not fit in " +
+                            std::to_string(size) + " byte(s)");
+  }
+  std::array<std::uint8_t, 4> data{};
+  for (std::uint8_t k = 0; k < size; ++k) data[k] = static_cast<std::uint8_t>(value >> (8 * k));
+  dxl::Packet reply;
+  const bool answered = client.write(dev, address, std::span(data.data(), size), &reply);
+  if (dev != dxl::kBroadcastId && answered && reply.error != 0) {
+    return errors.failure("ID " + std::to_string(id) + " refused the write (error 0x" + [&] {
+      char b[8];
+      std::snprintf(b, sizeof b, "%02x", reply.error);
+      return std::string(b);
+    }() + ")");
+  }
+  if (json) {
+    std::printf("%s\n", nlohmann::json{{"id", id},
+                                       {"address", address},
+                                       {"value", value},
+                                       {"acknowledged", answered && dev != dxl::kBroadcastId}}
+                            .dump()
+                            .c_str());
+  } else {
+    std::printf("ID %ld address %u <- %ld%s\n", id, address, value,
+                answered && dev != dxl::kBroadcastId ? "" : " (no status reply)");
+  }
+  return 0;
+}
+
+/// monitor [ID...]: position, speed, load, voltage and temperature of servos, --count times
+/// (or until Ctrl-C) every --interval-ms.
+int monitor(Client& client, dxl::Protocol protocol, const std::vector<std::string>& words,
+            std::int64_t count, std::int64_t interval_ms, bool json) {
+  if (protocol != dxl::Protocol::kV1) return errors.bad_input("monitor: protocol 1.0 only");
   std::vector<std::uint8_t> ids;
   for (std::size_t k = 1; k < words.size(); ++k) {
     long v = 0;
-    if (!parse_number(words[k], 253, v)) return bad("monitor: bad ID '" + words[k] + "'");
+    if (!parse_number(words[k], 253, v))
+      return errors.bad_input("monitor: bad ID '" + words[k] + "'");
     ids.push_back(static_cast<std::uint8_t>(v));
   }
   if (ids.empty()) {
@@ -377,6 +377,46 @@ int run_dxl(int argc, char** argv) {
   }
   if (json) std::printf("%s\n", nlohmann::json{{"readings", readings}}.dump().c_str());
   return 0;
+}
+
+int run_dxl(int argc, char** argv) {
+  stride::core::CliArgs args;
+  declare_options(args);
+  if (Status s = args.parse(argc, argv); !s) return errors.bad_input(s.message());
+  if (args.has("help")) {
+    print_help(args);
+    return 0;
+  }
+  const auto& words = args.positional();
+  if (words.empty()) return errors.bad_input("missing command (scan, ping, read, write, monitor)");
+  if (!args.has("port")) return errors.bad_input("missing --port DEV");
+  BusOptions o;
+  if (Status s = read_bus_options(args, o); !s) return errors.bad_input(s.message());
+  const std::string command = words[0];
+  const bool json = args.has("json");
+  long id = 0;
+  if (Status s = check_command(words, id); !s) return errors.bad_input(s.message());
+
+  std::unique_ptr<dxl::SerialPort> port;
+  if (Status s = dxl::SerialPort::open(args.get("port"), static_cast<std::uint32_t>(o.baud), port);
+      !s) {
+    return errors.failure(s.message());
+  }
+  const auto protocol = o.protocol_number == 1 ? dxl::Protocol::kV1 : dxl::Protocol::kV2;
+  Client client(std::move(port), protocol, o.timeout_ms * 1'000'000);
+
+  if (command == "scan") return scan(client, protocol, o.max_id, json);
+  if (command == "ping") return ping(client, protocol, id, json);
+  if (command == "read" || command == "write") {
+    std::uint16_t address = 0;
+    std::uint8_t size = 1;
+    if (Status s = resolve_register(client, static_cast<std::uint8_t>(id), words[2], address, size);
+        !s)
+      return errors.bad_input(s.message());
+    if (command == "read") return read_register(client, words, id, address, size, json);
+    return write_register(client, args, words, id, address, size, json);
+  }
+  return monitor(client, protocol, words, o.count, o.interval_ms, json);
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 
 #include "stride/core/cli_args.hpp"
 #include "stride/host_tools/command.hpp"
+#include "stride/host_tools/command_errors.hpp"
 #include "stride/sim_hal/identification_run.hpp"
 #include "stride/sim_hal/sim_cli.hpp"
 
@@ -20,10 +21,7 @@ namespace {
 using stride::Status;
 namespace sim = stride::sim;
 
-int bad_input(const std::string& message) {
-  std::fprintf(stderr, "stride identify: %s\n", message.c_str());
-  return 2;
-}
+const stride::tools::CommandErrors errors("identify");
 
 }  // namespace
 
@@ -38,7 +36,7 @@ int run_identify(int argc, char** argv) {
   args.option("params", "walk parameter file the firmware runs with (default: its defaults)", true);
   args.option("json", "print the summary as one JSON object", false);
   sim::declare_world_options(args);
-  if (Status s = args.parse(argc, argv); !s) return bad_input(s.message());
+  if (Status s = args.parse(argc, argv); !s) return errors.bad_input(s.message());
   if (args.has("help")) {
     std::printf(
         "usage: stride identify --out LOG [world options] [--parts LIST] [--params FILE]\n\n"
@@ -50,33 +48,34 @@ int run_identify(int argc, char** argv) {
     return 0;
   }
   if (!args.positional().empty())
-    return bad_input("unexpected argument '" + args.positional()[0] + "'");
-  if (!args.has("out")) return bad_input("--out: the flight log to write is required");
+    return errors.bad_input("unexpected argument '" + args.positional()[0] + "'");
+  if (!args.has("out")) return errors.bad_input("--out: the flight log to write is required");
   const std::filesystem::path out = args.get("out");
   std::error_code error;
   if (out.has_parent_path() && !std::filesystem::is_directory(out.parent_path(), error))
-    return bad_input("--out: no such folder '" + out.parent_path().string() + "'");
-  if (args.has("push")) return bad_input("--push: not available in the identification routine");
+    return errors.bad_input("--out: no such folder '" + out.parent_path().string() + "'");
+  if (args.has("push"))
+    return errors.bad_input("--push: not available in the identification routine");
 
   sim::IdentificationRun run;
   run.parts.clear();
   std::stringstream parts(args.get("parts"));
   for (std::string part; std::getline(parts, part, ',');) run.parts.push_back(part);
-  if (run.parts.empty()) return bad_input("--parts: name at least one part");
-  if (Status s = args.get_double("stand-s", run.stand_s); !s) return bad_input(s.message());
-  if (Status s = args.get_double("walk-s", run.walk_s); !s) return bad_input(s.message());
+  if (run.parts.empty()) return errors.bad_input("--parts: name at least one part");
+  if (Status s = args.get_double("stand-s", run.stand_s); !s) return errors.bad_input(s.message());
+  if (Status s = args.get_double("walk-s", run.walk_s); !s) return errors.bad_input(s.message());
   if (!(run.stand_s >= 0.0 && run.stand_s <= 600.0))
-    return bad_input("--stand-s: must be in [0, 600], got " + args.get("stand-s"));
+    return errors.bad_input("--stand-s: must be in [0, 600], got " + args.get("stand-s"));
   if (!(run.walk_s >= 0.0 && run.walk_s <= 600.0))
-    return bad_input("--walk-s: must be in [0, 600], got " + args.get("walk-s"));
+    return errors.bad_input("--walk-s: must be in [0, 600], got " + args.get("walk-s"));
   run.walk_in_place_s = run.walk_s;
   if (args.has("params")) run.firmware.params_file = args.get("params");
   sim::WorldOptions world;
-  if (Status s = sim::read_world_options(args, world); !s) return bad_input(s.message());
+  if (Status s = sim::read_world_options(args, world); !s) return errors.bad_input(s.message());
 
   sim::IdentificationSummary summary;
   if (Status s = sim::record_identification(run, world, out, summary); !s)
-    return bad_input(s.message());
+    return errors.bad_input(s.message());
   if (args.has("json")) {
     nlohmann::json parts_json = nlohmann::json::object();
     for (const auto& [name, start] : summary.part_start_s) parts_json[name] = start;
@@ -97,9 +96,8 @@ int run_identify(int argc, char** argv) {
       std::printf("  %-15s from %6.2f s\n", name.c_str(), start);
   }
   if (summary.fell || !summary.failure.empty()) {
-    std::fprintf(stderr, "stride identify: %s (the log up to there is kept)\n",
-                 summary.fell ? "the robot fell" : summary.failure.c_str());
-    return 1;
+    return errors.failure((summary.fell ? std::string("the robot fell") : summary.failure) +
+                          " (the log up to there is kept)");
   }
   return 0;
 }

@@ -19,6 +19,7 @@
 
 #include "stride/core/cli_args.hpp"
 #include "stride/host_tools/command.hpp"
+#include "stride/host_tools/command_errors.hpp"
 #include "stride/optimiser/nsga2/evaluator.hpp"
 #include "stride/optimiser/nsga2/mpi_evaluator.hpp"
 #include "stride/optimiser/problems/test_problems.hpp"
@@ -75,10 +76,7 @@ extern "C" void on_interrupt(int) {
   (void)!::write(STDERR_FILENO, later, sizeof later - 1);
 }
 
-int bad_input(const std::string& message) {
-  std::fprintf(stderr, "stride optimise: %s\n", message.c_str());
-  return 2;
-}
+const stride::tools::CommandErrors errors("optimise");
 
 std::string problem_list() {
   std::string names;
@@ -158,10 +156,7 @@ Status read_settings(const stride::core::CliArgs& args, std::size_t real_genes, 
   return {};
 }
 
-}  // namespace
-
-int run_optimise(int argc, char** argv) {
-  stride::core::CliArgs args;
+void declare_options(stride::core::CliArgs& args) {
   args.option("problem", "test problem: " + problem_list())
       .option("config", "robot task config (optimiser/configs/walk.json, kick.json, ...)")
       .option("trials",
@@ -194,155 +189,143 @@ int run_optimise(int argc, char** argv) {
       .option("no-validate", "robot runs: skip `stride validate` at the end", false)
       .option("json", "print a JSON summary on stdout", false)
       .option("help", "show this help", false);
-  if (auto st = args.parse(argc, argv); !st) return bad_input(st.message());
-  if (args.has("help")) {
-    std::printf(
-        "usage: stride optimise --problem NAME --out DIR [options]\n"
-        "       stride optimise --config FILE --out DIR [--jobs N] [--trials K] [--aggregate "
-        "mean|worst]\n"
-        "       stride optimise --out DIR --resume [--generations N]   (N above the run's: extend "
-        "it)\n"
-        "Runs NSGA-II and writes run.json, evaluations.jsonl, generations.jsonl, checkpoint.json\n"
-        "and pareto.csv to DIR; prints one progress line per generation on stderr.\n"
-        "A robot run ends with `stride validate DIR` (validation.json; the config's\n"
-        "validate.seeds seeds per world) unless --no-validate.\n\n%s",
-        args.help().c_str());
-    return 0;
-  }
-  if (!args.positional().empty())
-    return bad_input("unexpected argument '" + args.positional()[0] + "'");
-  if (!args.has("out")) return bad_input("--out DIR is required");
-  const std::filesystem::path dir = args.get("out");
-  const bool resume = args.has("resume");
-  std::unique_ptr<opt::MpiSession> mpi;
-  if (args.has("mpi")) {
-    if (!opt::mpi_available()) return bad_input("--mpi: this build of stride has no MPI");
-    mpi = std::make_unique<opt::MpiSession>(nullptr, nullptr);
-  }
-  const bool worker = mpi && mpi->rank() != 0;  // evaluates only; rank 0 owns the run directory
+}
 
-  Settings s;
-  std::unique_ptr<opt::Problem> problem;
-  if (resume) {
-    if (!std::filesystem::exists(dir / "run.json")) {
-      return bad_input("--resume: " + (dir / "run.json").string() + " does not exist");
-    }
-    if (auto st = opt::read_run_config(dir, s.config); !st) return bad_input(st.message());
-    if (args.has("problem") && args.get("problem") != s.config.problem) {
-      return bad_input("--problem " + args.get("problem") + " differs from the run's " +
-                       s.config.problem);
-    }
-    opt::TaskConfig task;
-    const bool robot = opt::find_task_type(s.config.problem) != nullptr;
-    if (robot) {
-      if (auto st = opt::parse_task_config(s.config.task, task); !st)
-        return bad_input("run.json task: " + st.message());
-    } else if (auto st = make_problem(s.config.problem, problem); !st) {
-      return bad_input(st.message());
-    }
-    const opt::RunConfig recorded = s.config;
-    if (auto st = read_settings(args, 0, s); !st) return bad_input(st.message());
-    // --generations above the run's extends it; every other option must be the run's.
-    if (s.config.settings.generations < recorded.settings.generations) {
-      return bad_input("--generations: " + std::to_string(s.config.settings.generations) +
-                       " is below the run's " + std::to_string(recorded.settings.generations) +
-                       " (--resume can only extend a run)");
-    }
-    opt::Nsga2Settings same = s.config.settings;
-    same.generations = recorded.settings.generations;
-    if (!(same == recorded.settings)) {
-      return bad_input("--resume: the NSGA-II options given differ from the run's run.json");
-    }
-    if (robot) {  // the task records its settings too: an extension changes both
-      task.settings.generations = s.config.settings.generations;
-      if (s.config.task.contains("generations"))
-        s.config.task["generations"] = s.config.settings.generations;
-      problem = std::make_unique<opt::RobotTask>(task);
-    }
-  } else if (args.has("config")) {
-    if (args.has("problem")) return bad_input("--problem and --config exclude each other");
-    opt::TaskConfig task;
-    if (auto st = opt::load_task_config(args.get("config"), task); !st)
-      return bad_input(st.message());
-    if (args.has("trials")) {
-      std::int64_t trials = 1;
-      if (auto st = read_int(args, "trials", 1, 1000, trials); !st) return bad_input(st.message());
-      task.trials = static_cast<int>(trials);
-    }
-    if (args.has("aggregate")) {
-      const std::string a = args.get("aggregate");
-      if (a != "mean" && a != "worst")
-        return bad_input("--aggregate: must be mean or worst, got '" + a + "'");
-      task.aggregate = a == "mean" ? opt::Aggregate::kMean : opt::Aggregate::kWorst;
-    }
-    if (args.has("engine")) {
-      std::vector<stride::sim::EngineKind> engines;
-      if (auto st = stride::sim::read_engine_list(args, "engine", engines); !st)
-        return bad_input(st.message());
-      task.engines = engines;
-    }
-    s.config.settings = task.settings;
-    if (auto st = read_settings(args, 0, s); !st) return bad_input(st.message());
-    task.settings = s.config.settings;
-    auto robot_task = std::make_unique<opt::RobotTask>(task);
-    if (auto st = robot_task->check(); !st) return bad_input(st.message());
-    s.config.problem = task.task;
-    s.config.start = robot_task->start_genome();
-    if (auto st = robot_task->extra_start_genomes(s.config.extra_starts); !st)
-      return bad_input(st.message());
-    s.config.task = opt::to_json(task);
-    problem = std::move(robot_task);
-    if (!worker && std::filesystem::exists(dir / "run.json")) {
-      return bad_input("--out " + dir.string() + " already holds a run (use --resume)");
-    }
-  } else {
-    if (!args.has("problem"))
-      return bad_input("--problem NAME or --config FILE is required (" + problem_list() + ")");
-    if (auto st = make_problem(args.get("problem"), problem); !st) return bad_input(st.message());
-    s.config.problem = problem->name();
-    if (auto st = read_settings(args, problem->shape().reals.size(), s); !st) {
-      return bad_input(st.message());
-    }
-    if (args.has("start")) {
-      opt::Genome start;
-      if (auto st = parse_start(args.get("start"), start); !st) return bad_input(st.message());
-      if (auto st = opt::validate_genome(problem->shape(), start); !st) {
-        return bad_input("--start: " + st.message());
-      }
-      s.config.start = start;
-    }
-    if (!worker && std::filesystem::exists(dir / "run.json")) {
-      return bad_input("--out " + dir.string() + " already holds a run (use --resume)");
-    }
+void print_help(const stride::core::CliArgs& args) {
+  std::printf(
+      "usage: stride optimise --problem NAME --out DIR [options]\n"
+      "       stride optimise --config FILE --out DIR [--jobs N] [--trials K] [--aggregate "
+      "mean|worst]\n"
+      "       stride optimise --out DIR --resume [--generations N]   (N above the run's: extend "
+      "it)\n"
+      "Runs NSGA-II and writes run.json, evaluations.jsonl, generations.jsonl, checkpoint.json\n"
+      "and pareto.csv to DIR; prints one progress line per generation on stderr.\n"
+      "A robot run ends with `stride validate DIR` (validation.json; the config's\n"
+      "validate.seeds seeds per world) unless --no-validate.\n\n%s",
+      args.help().c_str());
+}
+
+/// --resume: the problem and settings recorded in DIR/run.json; a larger --generations extends
+/// the run, any other NSGA-II option must be the run's. Errors are bad input.
+Status resumed_problem(const stride::core::CliArgs& args, const std::filesystem::path& dir,
+                       Settings& s, std::unique_ptr<opt::Problem>& problem) {
+  if (!std::filesystem::exists(dir / "run.json"))
+    return Status::error("--resume: " + (dir / "run.json").string() + " does not exist");
+  if (auto st = opt::read_run_config(dir, s.config); !st) return st;
+  if (args.has("problem") && args.get("problem") != s.config.problem)
+    return Status::error("--problem " + args.get("problem") + " differs from the run's " +
+                         s.config.problem);
+  opt::TaskConfig task;
+  const bool robot = opt::find_task_type(s.config.problem) != nullptr;
+  if (robot) {
+    if (auto st = opt::parse_task_config(s.config.task, task); !st)
+      return Status::error("run.json task: " + st.message());
+  } else if (auto st = make_problem(s.config.problem, problem); !st) {
+    return st;
   }
+  const opt::RunConfig recorded = s.config;
+  if (auto st = read_settings(args, 0, s); !st) return st;
+  // --generations above the run's extends it; every other option must be the run's.
+  if (s.config.settings.generations < recorded.settings.generations)
+    return Status::error("--generations: " + std::to_string(s.config.settings.generations) +
+                         " is below the run's " + std::to_string(recorded.settings.generations) +
+                         " (--resume can only extend a run)");
+  opt::Nsga2Settings same = s.config.settings;
+  same.generations = recorded.settings.generations;
+  if (!(same == recorded.settings))
+    return Status::error("--resume: the NSGA-II options given differ from the run's run.json");
+  if (robot) {  // the task records its settings too: an extension changes both
+    task.settings.generations = s.config.settings.generations;
+    if (s.config.task.contains("generations"))
+      s.config.task["generations"] = s.config.settings.generations;
+    problem = std::make_unique<opt::RobotTask>(task);
+  }
+  return {};
+}
+
+/// --config FILE: a robot task, with --trials, --aggregate, --engine and the NSGA-II options
+/// over the config's. Errors are bad input.
+Status config_problem(const stride::core::CliArgs& args, Settings& s,
+                      std::unique_ptr<opt::Problem>& problem) {
+  if (args.has("problem")) return Status::error("--problem and --config exclude each other");
+  opt::TaskConfig task;
+  if (auto st = opt::load_task_config(args.get("config"), task); !st) return st;
+  if (args.has("trials")) {
+    std::int64_t trials = 1;
+    if (auto st = read_int(args, "trials", 1, 1000, trials); !st) return st;
+    task.trials = static_cast<int>(trials);
+  }
+  if (args.has("aggregate")) {
+    const std::string a = args.get("aggregate");
+    if (a != "mean" && a != "worst")
+      return Status::error("--aggregate: must be mean or worst, got '" + a + "'");
+    task.aggregate = a == "mean" ? opt::Aggregate::kMean : opt::Aggregate::kWorst;
+  }
+  if (args.has("engine")) {
+    std::vector<stride::sim::EngineKind> engines;
+    if (auto st = stride::sim::read_engine_list(args, "engine", engines); !st) return st;
+    task.engines = engines;
+  }
+  s.config.settings = task.settings;
+  if (auto st = read_settings(args, 0, s); !st) return st;
+  task.settings = s.config.settings;
+  auto robot_task = std::make_unique<opt::RobotTask>(task);
+  if (auto st = robot_task->check(); !st) return st;
+  s.config.problem = task.task;
+  s.config.start = robot_task->start_genome();
+  if (auto st = robot_task->extra_start_genomes(s.config.extra_starts); !st) return st;
+  s.config.task = opt::to_json(task);
+  problem = std::move(robot_task);
+  return {};
+}
+
+/// --problem NAME: a test problem, with --start seeding it. Errors are bad input.
+Status test_problem(const stride::core::CliArgs& args, Settings& s,
+                    std::unique_ptr<opt::Problem>& problem) {
+  if (!args.has("problem"))
+    return Status::error("--problem NAME or --config FILE is required (" + problem_list() + ")");
+  if (auto st = make_problem(args.get("problem"), problem); !st) return st;
+  s.config.problem = problem->name();
+  if (auto st = read_settings(args, problem->shape().reals.size(), s); !st) return st;
+  if (args.has("start")) {
+    opt::Genome start;
+    if (auto st = parse_start(args.get("start"), start); !st) return st;
+    if (auto st = opt::validate_genome(problem->shape(), start); !st)
+      return Status::error("--start: " + st.message());
+    s.config.start = start;
+  }
+  return {};
+}
+
+/// The problem and settings of this run: a resumed run, a robot task or a test problem, then
+/// --jobs and --slow-eval-ms. `worker`: an MPI rank that only evaluates (writes nothing).
+Status build_run(const stride::core::CliArgs& args, const std::filesystem::path& dir, bool worker,
+                 Settings& s, std::unique_ptr<opt::Problem>& problem) {
+  const bool resume = args.has("resume");
+  Status built = resume               ? resumed_problem(args, dir, s, problem)
+                 : args.has("config") ? config_problem(args, s, problem)
+                                      : test_problem(args, s, problem);
+  if (!built) return built;
+  if (!resume && !worker && std::filesystem::exists(dir / "run.json"))
+    return Status::error("--out " + dir.string() + " already holds a run (use --resume)");
   s.jobs = std::max<std::int64_t>(1, std::thread::hardware_concurrency());
   if (args.has("jobs")) {
-    if (auto st = read_int(args, "jobs", 1, 1024, s.jobs); !st) return bad_input(st.message());
+    if (auto st = read_int(args, "jobs", 1, 1024, s.jobs); !st) return st;
   }
-  if (auto st = read_int(args, "slow-eval-ms", 0, 60000, s.slow_ms); !st) {
-    return bad_input(st.message());
-  }
-  if (worker) {
-    if (auto st = opt::run_mpi_worker(*problem); !st) {
-      std::fprintf(stderr, "stride optimise: rank %d: %s\n", mpi->rank(), st.message().c_str());
-      return 1;
-    }
-    return 0;
-  }
-  const auto* robot_task = dynamic_cast<const opt::RobotTask*>(problem.get());
-  if (s.slow_ms > 0) {
-    problem =
-        std::make_unique<SlowProblem>(std::move(problem), std::chrono::milliseconds(s.slow_ms));
-  }
+  return read_int(args, "slow-eval-ms", 0, 60000, s.slow_ms);
+}
 
-  std::unique_ptr<opt::Evaluator> evaluator;
-  if (mpi) {
-    evaluator = std::make_unique<opt::MpiEvaluator>(mpi->size());
-  } else if (s.jobs > 1) {
-    evaluator = std::make_unique<opt::ThreadPoolEvaluator>(static_cast<int>(s.jobs));
-  } else {
-    evaluator = std::make_unique<opt::SerialEvaluator>();
-  }
+std::unique_ptr<opt::Evaluator> make_evaluator(const opt::MpiSession* mpi, std::int64_t jobs) {
+  if (mpi) return std::make_unique<opt::MpiEvaluator>(mpi->size());
+  if (jobs > 1) return std::make_unique<opt::ThreadPoolEvaluator>(static_cast<int>(jobs));
+  return std::make_unique<opt::SerialEvaluator>();
+}
+
+/// Runs NSGA-II with the progress bar, SIGINT and SIGTERM stopping it after the generation in
+/// flight (on_interrupt); the previous signal handlers are restored afterwards.
+Status run_with_interrupts(const opt::Problem& problem, const Settings& s,
+                           opt::Evaluator& evaluator, const std::filesystem::path& dir, bool resume,
+                           opt::RunSummary& summary) {
   opt::RunOptions options;
   options.dir = dir;
   options.resume = resume;
@@ -361,48 +344,116 @@ int run_optimise(int argc, char** argv) {
   }, previous_term{};
   sigaction(SIGINT, &action, &previous_int);
   sigaction(SIGTERM, &action, &previous_term);
-  opt::RunSummary summary;
-  const Status run_status = opt::run_optimisation(*problem, s.config, *evaluator, options, summary);
+  const Status run_status = opt::run_optimisation(problem, s.config, evaluator, options, summary);
   sigaction(SIGINT, &previous_int, nullptr);
   sigaction(SIGTERM, &previous_term, nullptr);
   progress.finish();
-  if (!run_status) {
-    std::fprintf(stderr, "stride optimise: %s\n", run_status.message().c_str());
-    return 1;
+  return run_status;
+}
+
+/// A robot run's files after the run: front/ parameter files and the SVG plots.
+Status write_robot_outputs(const std::filesystem::path& dir, const opt::RobotTask& task) {
+  if (auto st = opt::write_front_files(dir, task); !st) return st;
+  if (auto st = opt::write_plots(dir); !st) return st;
+  std::fprintf(stderr, "plots: %s, %s; front parameter files: %s\n",
+               (dir / "pareto_by_generation.svg").c_str(), (dir / "hypervolume.svg").c_str(),
+               (dir / "front").c_str());
+  return {};
+}
+
+/// `stride validate DIR` at the end of a robot run: validation.json, and its path in
+/// `validation`; skipped (with a line saying why) if the run cannot be loaded for it.
+Status validate_run(const std::filesystem::path& dir, std::int64_t jobs,
+                    nlohmann::json& validation) {
+  opt::ValidationSubject subject;
+  if (auto st = opt::load_validation_subject(dir, subject); !st) {
+    std::fprintf(stderr, "stride optimise: validation skipped: %s\n", st.message().c_str());
+    return {};
   }
-  if (const auto* task = robot_task) {
-    if (auto st = opt::write_front_files(dir, *task); !st) {
-      std::fprintf(stderr, "stride optimise: %s\n", st.message().c_str());
-      return 1;
-    }
-    if (auto st = opt::write_plots(dir); !st) {
-      std::fprintf(stderr, "stride optimise: %s\n", st.message().c_str());
-      return 1;
-    }
-    std::fprintf(stderr, "plots: %s, %s; front parameter files: %s\n",
-                 (dir / "pareto_by_generation.svg").c_str(), (dir / "hypervolume.svg").c_str(),
-                 (dir / "front").c_str());
+  opt::ValidationOptions v;
+  v.seeds = subject.config.validate_seeds;
+  v.jobs = static_cast<int>(jobs);
+  v.progress = opt::validation_progress_printer(isatty(STDERR_FILENO) != 0);
+  nlohmann::json result;
+  Status done = opt::run_validation(subject, v, result);
+  if (done) done = opt::write_validation_file(dir, result);
+  if (!done) return Status::error("validation: " + done.message());
+  std::fprintf(stderr, "%svalidation: %s\n", opt::validation_text(result).c_str(),
+               (dir / "validation.json").c_str());
+  validation = (dir / "validation.json").string();
+  return {};
+}
+
+/// The --json summary: the run's last generation, its front and how it ended.
+nlohmann::json summary_json(const Settings& s, const std::filesystem::path& dir,
+                            const opt::RunSummary& summary, const nlohmann::json& validation) {
+  auto number = [](const std::optional<double>& v) -> nlohmann::json {
+    if (!v || !std::isfinite(*v)) return nullptr;
+    return *v;
+  };
+  const opt::GenerationRecord& r = summary.last;
+  return {{"problem", s.config.problem},
+          {"out", dir.string()},
+          {"seed", s.config.settings.seed},
+          {"generations", r.generation},
+          {"evaluations", r.evaluations},
+          {"failures", r.failures},
+          {"cache_hits", r.cache_hits},
+          {"pareto_size", summary.pareto_size},
+          {"hypervolume", number(r.hypervolume)},
+          {"hypervolume_ratio", number(r.hypervolume_ratio)},
+          {"igd", number(r.igd)},
+          {"resumed", summary.resumed},
+          {"resumed_at_generation", summary.resumed_at_generation},
+          {"stopped", summary.stopped},
+          {"validation", validation}};
+}
+
+}  // namespace
+
+int run_optimise(int argc, char** argv) {
+  stride::core::CliArgs args;
+  declare_options(args);
+  if (auto st = args.parse(argc, argv); !st) return errors.bad_input(st.message());
+  if (args.has("help")) {
+    print_help(args);
+    return 0;
   }
+  if (!args.positional().empty())
+    return errors.bad_input("unexpected argument '" + args.positional()[0] + "'");
+  if (!args.has("out")) return errors.bad_input("--out DIR is required");
+  const std::filesystem::path dir = args.get("out");
+  std::unique_ptr<opt::MpiSession> mpi;
+  if (args.has("mpi")) {
+    if (!opt::mpi_available()) return errors.bad_input("--mpi: this build of stride has no MPI");
+    mpi = std::make_unique<opt::MpiSession>(nullptr, nullptr);
+  }
+  const bool worker = mpi && mpi->rank() != 0;  // evaluates only; rank 0 owns the run directory
+
+  Settings s;
+  std::unique_ptr<opt::Problem> problem;
+  if (auto st = build_run(args, dir, worker, s, problem); !st)
+    return errors.bad_input(st.message());
+  if (worker) {
+    if (auto st = opt::run_mpi_worker(*problem); !st)
+      return errors.failure("rank " + std::to_string(mpi->rank()) + ": " + st.message());
+    return 0;
+  }
+  const auto* robot_task = dynamic_cast<const opt::RobotTask*>(problem.get());
+  if (s.slow_ms > 0) {
+    problem =
+        std::make_unique<SlowProblem>(std::move(problem), std::chrono::milliseconds(s.slow_ms));
+  }
+  const std::unique_ptr<opt::Evaluator> evaluator = make_evaluator(mpi.get(), s.jobs);
+  opt::RunSummary summary;
+  if (auto st = run_with_interrupts(*problem, s, *evaluator, dir, args.has("resume"), summary); !st)
+    return errors.failure(st.message());
+
   nlohmann::json validation = nullptr;
-  if (robot_task != nullptr && !summary.stopped && !args.has("no-validate")) {
-    opt::ValidationSubject subject;
-    if (auto st = opt::load_validation_subject(dir, subject); !st) {
-      std::fprintf(stderr, "stride optimise: validation skipped: %s\n", st.message().c_str());
-    } else {
-      opt::ValidationOptions v;
-      v.seeds = subject.config.validate_seeds;
-      v.jobs = static_cast<int>(s.jobs);
-      v.progress = opt::validation_progress_printer(isatty(STDERR_FILENO) != 0);
-      nlohmann::json result;
-      Status done = opt::run_validation(subject, v, result);
-      if (done) done = opt::write_validation_file(dir, result);
-      if (!done) {
-        std::fprintf(stderr, "stride optimise: validation: %s\n", done.message().c_str());
-        return 1;
-      }
-      std::fprintf(stderr, "%svalidation: %s\n", opt::validation_text(result).c_str(),
-                   (dir / "validation.json").c_str());
-      validation = (dir / "validation.json").string();
+  if (robot_task != nullptr) {
+    if (auto st = write_robot_outputs(dir, *robot_task); !st) return errors.failure(st.message());
+    if (!summary.stopped && !args.has("no-validate")) {
+      if (auto st = validate_run(dir, s.jobs, validation); !st) return errors.failure(st.message());
     }
   }
   if (summary.stopped) {
@@ -411,29 +462,8 @@ int run_optimise(int argc, char** argv) {
                  "--out %s --resume\n",
                  summary.last.generation, dir.c_str());
   }
-  if (args.has("json")) {
-    auto number = [](const std::optional<double>& v) -> nlohmann::json {
-      if (!v || !std::isfinite(*v)) return nullptr;
-      return *v;
-    };
-    const opt::GenerationRecord& r = summary.last;
-    const nlohmann::json out = {{"problem", s.config.problem},
-                                {"out", dir.string()},
-                                {"seed", s.config.settings.seed},
-                                {"generations", r.generation},
-                                {"evaluations", r.evaluations},
-                                {"failures", r.failures},
-                                {"cache_hits", r.cache_hits},
-                                {"pareto_size", summary.pareto_size},
-                                {"hypervolume", number(r.hypervolume)},
-                                {"hypervolume_ratio", number(r.hypervolume_ratio)},
-                                {"igd", number(r.igd)},
-                                {"resumed", summary.resumed},
-                                {"resumed_at_generation", summary.resumed_at_generation},
-                                {"stopped", summary.stopped},
-                                {"validation", validation}};
-    std::printf("%s\n", out.dump().c_str());
-  }
+  if (args.has("json"))
+    std::printf("%s\n", summary_json(s, dir, summary, validation).dump().c_str());
   return summary.stopped ? 130 : 0;
 }
 

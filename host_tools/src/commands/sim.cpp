@@ -1,7 +1,8 @@
 // `stride sim stand|walk|kick|getup`: one simulated episode of the firmware against the simulated
-// world, with the metrics of docs/command-line.md (--json), a trajectory recording, pose pictures and a replay
-// page (--html, the replay of report.html for one episode). getup starts lying still and times
-// the firmware's get-up; stand and walk can go on through a get-up after a fall (--after-fall).
+// world, with the metrics of docs/command-line.md (--json), a trajectory recording, pose pictures
+// and a replay page (--html, the replay of report.html for one episode). getup starts lying still
+// and times the firmware's get-up; stand and walk can go on through a get-up after a fall
+// (--after-fall).
 #include <algorithm>
 #include <cstdio>
 #include <optional>
@@ -14,6 +15,7 @@
 #include "stride/firmware/firmware.hpp"
 #include "stride/firmware/motion_request.hpp"
 #include "stride/host_tools/command.hpp"
+#include "stride/host_tools/command_errors.hpp"
 #include "stride/optimiser/report/report_page.hpp"
 #include "stride/optimiser/report/run_plots.hpp"
 #include "stride/sim_hal/episode.hpp"
@@ -31,10 +33,7 @@ using stride::Status;
 namespace sim = stride::sim;
 namespace hal = stride::hal;
 
-int bad_input(const std::string& message) {
-  std::fprintf(stderr, "stride sim: %s\n", message.c_str());
-  return 2;
-}
+const stride::tools::CommandErrors errors("sim");
 
 Status parse_times(const std::string& text, std::vector<double>& out) {
   std::stringstream in(text);
@@ -135,18 +134,11 @@ Status write_html(const stride::core::CliArgs& args, const std::string& motion,
   Status written =
       report::write_episode_html(args.get("html"), "Stride sim " + motion, facts,
                                  robot.world().model(), episode, scene, times, &warnings);
-  for (const std::string& w : warnings)
-    std::fprintf(stderr, "stride sim: warning: %s (see %s)\n", w.c_str(), args.get("html").c_str());
+  for (const std::string& w : warnings) errors.warning(w + " (see " + args.get("html") + ")");
   return written;
 }
 
-}  // namespace
-
-int run_sim_servo(int argc, char** argv);  // sim_servo.cpp
-
-int run_sim(int argc, char** argv) {
-  if (argc >= 2 && std::string(argv[1]) == "servo") return run_sim_servo(argc - 1, argv + 1);
-  stride::core::CliArgs args;
+void declare_options(stride::core::CliArgs& args) {
   args.option("help", "show this help", false);
   args.option("params", "parameter file (JSON) loaded into the controller", true);
   args.option("vx", "walk forward command, normalised [-1, 1]", true, "0");
@@ -174,229 +166,265 @@ int run_sim(int argc, char** argv) {
   args.option("html", "write a self-contained replay page (accelerometer, poses, animation)", true);
   args.option("json", "print the result as one JSON object", false);
   sim::declare_world_options(args);
-  if (Status s = args.parse(argc, argv); !s) return bad_input(s.message());
-  if (args.has("help")) {
-    std::printf(
-        "usage: stride sim stand|walk|kick [options] [--after-fall getup (stand, walk)]\n"
-        "       stride sim getup --lying front|back [options]\n"
-        "       stride sim servo --help   (one servo on a bench)\n\n"
-        "getup places the robot lying still on its front or back (joints in the Stand pose)\n"
-        "and runs the firmware: its motion manager sees the fall, waits\n"
-        "motion.fallen_settle_time and plays get_up_front or get_up_back, retrying while the\n"
-        "robot stays down. --json then reports stood_up_s: seconds from lying still to\n"
-        "standing, or null if it did not stand within --duration (20 s by default, the time\n"
-        "the rules give a fallen robot). Standing: the motion manager is back in Stand after\n"
-        "a get-up script, the trunk's z axis within 25 deg of vertical and the torso origin\n"
-        "above 0.45 m, all held for 1 s; stood_up_s is the start of that second.\n"
-        "With --after-fall getup a stand or walk episode does not end at a fall (fell,\n"
-        "fall_time_s: trunk tilted past 60 deg or its origin below 0.25 m) but goes on\n"
-        "through the get-up (the walk is not resumed; 30 s by default), and stood_up_s counts\n"
-        "from the fall.\n"
-        "Both also report get_up_attempts and get_up_script (the first get-up played).\n\n"
-        "%s",
-        args.help().c_str());
-    return 0;
-  }
+}
+
+void print_help(const stride::core::CliArgs& args) {
+  std::printf(
+      "usage: stride sim stand|walk|kick [options] [--after-fall getup (stand, walk)]\n"
+      "       stride sim getup --lying front|back [options]\n"
+      "       stride sim servo --help   (one servo on a bench)\n\n"
+      "getup places the robot lying still on its front or back (joints in the Stand pose)\n"
+      "and runs the firmware: its motion manager sees the fall, waits\n"
+      "motion.fallen_settle_time and plays get_up_front or get_up_back, retrying while the\n"
+      "robot stays down. --json then reports stood_up_s: seconds from lying still to\n"
+      "standing, or null if it did not stand within --duration (20 s by default, the time\n"
+      "the rules give a fallen robot). Standing: the motion manager is back in Stand after\n"
+      "a get-up script, the trunk's z axis within 25 deg of vertical and the torso origin\n"
+      "above 0.45 m, all held for 1 s; stood_up_s is the start of that second.\n"
+      "With --after-fall getup a stand or walk episode does not end at a fall (fell,\n"
+      "fall_time_s: trunk tilted past 60 deg or its origin below 0.25 m) but goes on\n"
+      "through the get-up (the walk is not resumed; 30 s by default), and stood_up_s counts\n"
+      "from the fall.\n"
+      "Both also report get_up_attempts and get_up_script (the first get-up played).\n\n"
+      "%s",
+      args.help().c_str());
+}
+
+/// What the command line asks for, checked: the motion, its length and command, the world.
+struct SimRequest {
+  std::string motion;         ///< stand, walk, kick or getup
+  bool getup = false;         ///< motion == "getup"
+  std::string lying;          ///< getup: front or back
+  bool watch_get_up = false;  ///< getup, or --after-fall getup
+  std::string duration_text;  ///< --duration as given (or its default)
+  double duration = 0.0, vx = 0.0, vy = 0.0, vth = 0.0, metrics_from = 0.25;
+  std::vector<double> snapshot_times;
+  sim::WorldOptions world;
+};
+
+/// Reads and checks the motion and every option but the firmware's; errors are bad input.
+Status read_request(const stride::core::CliArgs& args, SimRequest& r) {
   if (args.positional().size() != 1)
-    return bad_input("expected one motion: stand, walk, kick or getup");
-  const std::string motion = args.positional()[0];
+    return Status::error("expected one motion: stand, walk, kick or getup");
+  r.motion = args.positional()[0];
+  const std::string& motion = r.motion;
   if (motion != "stand" && motion != "walk" && motion != "kick" && motion != "getup")
-    return bad_input("unknown motion '" + motion + "' (expected stand, walk, kick or getup)");
-  const bool getup = motion == "getup";
-  const std::string lying = args.get("lying");
-  if (args.has("lying") && !getup)
-    return bad_input("--lying: only with getup (stride sim getup --lying front|back), not " +
-                     motion);
-  if (getup && !args.has("lying")) return bad_input("--lying: getup needs a side, front or back");
-  if (getup && lying != "front" && lying != "back")
-    return bad_input("--lying: unknown side '" + lying + "' (expected front or back)");
+    return Status::error("unknown motion '" + motion + "' (expected stand, walk, kick or getup)");
+  r.getup = motion == "getup";
+  r.lying = args.get("lying");
+  if (args.has("lying") && !r.getup)
+    return Status::error("--lying: only with getup (stride sim getup --lying front|back), not " +
+                         motion);
+  if (r.getup && !args.has("lying"))
+    return Status::error("--lying: getup needs a side, front or back");
+  if (r.getup && r.lying != "front" && r.lying != "back")
+    return Status::error("--lying: unknown side '" + r.lying + "' (expected front or back)");
   if (args.has("after-fall") && args.get("after-fall") != "getup")
-    return bad_input("--after-fall: unknown value '" + args.get("after-fall") +
-                     "' (expected getup)");
+    return Status::error("--after-fall: unknown value '" + args.get("after-fall") +
+                         "' (expected getup)");
   if (args.has("after-fall") && motion != "stand" && motion != "walk")
-    return bad_input("--after-fall: only with stand or walk, not " + motion +
-                     (getup ? " (it starts lying and always gets up)" : ""));
-  const bool watch_get_up = getup || args.has("after-fall");
+    return Status::error("--after-fall: only with stand or walk, not " + motion +
+                         (r.getup ? " (it starts lying and always gets up)" : ""));
+  r.watch_get_up = r.getup || args.has("after-fall");
   // Default lengths: 10 s; lying, the 20 s the rules give a fallen robot; after a fall, 10 s
   // and those 20 s.
-  const char* default_duration = getup ? "20" : watch_get_up ? "30" : "10";
-  const std::string duration_text = args.has("duration") ? args.get("duration") : default_duration;
-  double duration = std::stod(default_duration), vx = 0, vy = 0, vth = 0, metrics_from = 0.25;
-  for (auto [name, out] : {std::pair{"duration", &duration},
-                           {"vx", &vx},
-                           {"vy", &vy},
-                           {"vth", &vth},
-                           {"metrics-from", &metrics_from}})
-    if (Status s = args.get_double(name, *out); !s) return bad_input(s.message());
-  if (!(duration > 0.0) || duration > 3600.0)
-    return bad_input("--duration: must be in (0, 3600] s, got " + args.get("duration"));
-  if (args.has("metrics-from") && !(metrics_from >= 0.0 && metrics_from < duration))
-    return bad_input("--metrics-from: must be in [0, " + duration_text + ") s, got " +
-                     args.get("metrics-from"));
-  std::vector<double> snapshot_times;
-  if (Status s = parse_times(args.get("snapshot-times"), snapshot_times); !s)
-    return bad_input(s.message());
+  const char* default_duration = r.getup ? "20" : r.watch_get_up ? "30" : "10";
+  r.duration_text = args.has("duration") ? args.get("duration") : default_duration;
+  r.duration = std::stod(default_duration);
+  for (auto [name, out] : {std::pair{"duration", &r.duration},
+                           {"vx", &r.vx},
+                           {"vy", &r.vy},
+                           {"vth", &r.vth},
+                           {"metrics-from", &r.metrics_from}})
+    if (Status s = args.get_double(name, *out); !s) return s;
+  if (!(r.duration > 0.0) || r.duration > 3600.0)
+    return Status::error("--duration: must be in (0, 3600] s, got " + args.get("duration"));
+  if (args.has("metrics-from") && !(r.metrics_from >= 0.0 && r.metrics_from < r.duration))
+    return Status::error("--metrics-from: must be in [0, " + r.duration_text + ") s, got " +
+                         args.get("metrics-from"));
+  if (Status s = parse_times(args.get("snapshot-times"), r.snapshot_times); !s) return s;
   // The pushes must fall within the episode (read_world_options takes them below).
   for (const std::string& text : args.get_all("push")) {
     sim::TorsoPush push;
-    if (Status s = sim::parse_push(text, duration, push); !s) return bad_input(s.message());
+    if (Status s = sim::parse_push(text, r.duration, push); !s) return s;
   }
-  sim::WorldOptions world_options;
-  if (Status s = sim::read_world_options(args, world_options); !s) return bad_input(s.message());
+  if (Status s = sim::read_world_options(args, r.world); !s) return s;
   if (motion == "walk")
-    for (double v : {vx, vy, vth})
-      if (!(v >= -1.0 && v <= 1.0)) return bad_input("--vx/--vy/--vth: must be in [-1, 1]");
+    for (double v : {r.vx, r.vy, r.vth})
+      if (!(v >= -1.0 && v <= 1.0)) return Status::error("--vx/--vy/--vth: must be in [-1, 1]");
+  return {};
+}
 
-  // The firmware exactly as stride-fw builds it (parameters, servo table, engines).
-  stride::fw::FirmwareOptions fw_options;
-  if (args.has("params")) fw_options.params_file = args.get("params");
-  std::unique_ptr<stride::fw::Firmware> firmware;
-  if (Status s = stride::fw::Firmware::create(fw_options, firmware); !s)
-    return bad_input(s.message());
-  world_options.control_period_ns = firmware->period_ns();
-  if (Status s = sim::check_physics_step(world_options.physics_step_ns, firmware->period_ns(),
-                                         "--physics-step-us");
-      !s)
-    return bad_input(s.message());
-
-  sim::TrajectoryRecorder recorder;
-  sim::EpisodeOptions episode;
-  episode.duration_s = duration;
-  episode.metrics_start_s = metrics_from;
-  episode.recorder = args.has("record") ? &recorder : nullptr;
-  if (args.has("snapshot")) episode.snapshot_times_s = snapshot_times;
-  sim::EpisodeCapturer capturer;
-  if (args.has("html")) episode.on_tick = capturer.observer();
-  std::unique_ptr<sim::SimRobot> robot_ptr;
-  sim::EpisodeResult result;
-  GetUpOutcome get_up;
-  std::optional<double> predicted_s;  // stand and walk: when the firmware predicted a fall
-  if (motion == "kick") {
-    // The seed's kick episode (script_episodes.hpp): ball in front of the kicking foot, the
-    // kick requested at 1 s, played by the firmware's script engine once the stand is reached.
-    sim::KickEpisodeOptions kick;
-    kick.script = args.get("script");
-    if (firmware->params().list("script." + kick.script + ".frame").empty())
-      return bad_input("--script: no script '" + kick.script + "' in the firmware's scripts");
-    kick.duration_s = duration;
-    if (kick.script == "kick_left") kick.ball_position.y() = -kick.ball_position.y();
-    kick.firmware = fw_options;
-    kick.episode = episode;
-    if (Status s = sim::run_kick_episode(world_options, kick, result, &robot_ptr); !s) {
-      std::fprintf(stderr, "stride sim: %s\n", s.message().c_str());
-      return 1;
-    }
-  } else {
-    std::unique_ptr<sim::SimWorld> world;
-    if (Status s = sim::SimWorld::create(world_options, world); !s) {
-      std::fprintf(stderr, "stride sim: %s\n", s.message().c_str());
-      return 1;
-    }
-    // getup: lying still on the side asked for (the optimiser's get-up task starts there too).
-    if (getup) {
-      if (Status s = world->reset(sim::lying_reset_spec(lying == "front")); !s) {
-        std::fprintf(stderr, "stride sim: %s\n", s.message().c_str());
-        return 1;
-      }
-    }
-    robot_ptr = std::make_unique<sim::SimRobot>(std::move(world));
-    sim::SimRobot& robot = *robot_ptr;
-
-    stride::fw::Controller& controller = firmware->controller();
-    if (motion == "walk") controller.request(stride::fw::MotionRequest::walk(vx, vy, vth));
-    if (motion == "walk") {
-      // The request is taken at the next step: a refusal means the walk engine is missing.
-      stride::hal::SensorFrame probe;
-      robot.read(probe);
-      (void)controller.step(probe, 0);
-      if (controller.motion().refused_requests() > 0) {
-        std::fprintf(stderr, "stride sim: walk engine not available\n");
-        return 1;
-      }
-    }
-    // A get-up is followed tick by tick (it only reads the world: the episode is the same).
-    sim::StoodUpWatch stood_up(static_cast<double>(robot.period_ns()) * 1e-9);
-    if (watch_get_up) episode.stop_on_fall = false;
-    // A robot that may fall and go on lying: its landing is measured (impact in --json).
-    episode.impact_metrics = watch_get_up && !getup;
-    // The first tick the firmware predicted a fall (FallPredictor), whether or not it protects.
-    const double period_s = static_cast<double>(robot.period_ns()) * 1e-9;
-    const stride::hal::Tick first_tick = robot.current_tick();
-    const sim::StepFunction step = [&controller, &stood_up, &robot, watch_get_up, &predicted_s,
-                                    period_s, first_tick](const stride::hal::SensorFrame& sensors,
-                                                          stride::hal::Tick tick) {
-      stride::hal::CommandFrame commands = controller.step(sensors, tick);
-      if (watch_get_up) stood_up.after_step(controller, robot.world(), tick);
-      if (!predicted_s && controller.safety().report().predictions > 0)
-        predicted_s = static_cast<double>(tick - first_tick) * period_s;
-      return commands;
-    };
-    result = sim::run_episode(robot, step, episode);
-    if (watch_get_up) {
-      get_up.watched = true;
-      get_up.lying = getup ? lying : "";
-      get_up.attempts = stood_up.get_up().attempts();
-      get_up.first_script = stood_up.get_up().first_script();
-      // From lying still (t = 0) or from the episode's fall; without a fall there is nothing to
-      // stand up from.
-      if (stood_up.stood_up_at_s() && (getup || result.fell))
-        get_up.stood_up_s = *stood_up.stood_up_at_s() - (getup ? 0.0 : result.fall_time_s);
-    }
+/// stand, walk or getup: the firmware driving the simulated robot, a get-up followed tick by
+/// tick when asked for, and the first tick the firmware predicted a fall.
+Status run_controlled_episode(const SimRequest& r, stride::fw::Firmware& firmware,
+                              sim::EpisodeOptions& episode, sim::EpisodeResult& result,
+                              std::unique_ptr<sim::SimRobot>& robot_ptr, GetUpOutcome& get_up,
+                              std::optional<double>& predicted_s) {
+  const bool getup = r.getup, watch_get_up = r.watch_get_up;
+  std::unique_ptr<sim::SimWorld> world;
+  if (Status s = sim::SimWorld::create(r.world, world); !s) return s;
+  // getup: lying still on the side asked for (the optimiser's get-up task starts there too).
+  if (getup) {
+    if (Status s = world->reset(sim::lying_reset_spec(r.lying == "front")); !s) return s;
   }
+  robot_ptr = std::make_unique<sim::SimRobot>(std::move(world));
   sim::SimRobot& robot = *robot_ptr;
 
+  stride::fw::Controller& controller = firmware.controller();
+  if (r.motion == "walk") controller.request(stride::fw::MotionRequest::walk(r.vx, r.vy, r.vth));
+  if (r.motion == "walk") {
+    // The request is taken at the next step: a refusal means the walk engine is missing.
+    stride::hal::SensorFrame probe;
+    robot.read(probe);
+    (void)controller.step(probe, 0);
+    if (controller.motion().refused_requests() > 0)
+      return Status::error("walk engine not available");
+  }
+  // A get-up is followed tick by tick (it only reads the world: the episode is the same).
+  sim::StoodUpWatch stood_up(static_cast<double>(robot.period_ns()) * 1e-9);
+  if (watch_get_up) episode.stop_on_fall = false;
+  // A robot that may fall and go on lying: its landing is measured (impact in --json).
+  episode.impact_metrics = watch_get_up && !getup;
+  // The first tick the firmware predicted a fall (FallPredictor), whether or not it protects.
+  const double period_s = static_cast<double>(robot.period_ns()) * 1e-9;
+  const stride::hal::Tick first_tick = robot.current_tick();
+  const sim::StepFunction step = [&controller, &stood_up, &robot, watch_get_up, &predicted_s,
+                                  period_s, first_tick](const stride::hal::SensorFrame& sensors,
+                                                        stride::hal::Tick tick) {
+    stride::hal::CommandFrame commands = controller.step(sensors, tick);
+    if (watch_get_up) stood_up.after_step(controller, robot.world(), tick);
+    if (!predicted_s && controller.safety().report().predictions > 0)
+      predicted_s = static_cast<double>(tick - first_tick) * period_s;
+    return commands;
+  };
+  result = sim::run_episode(robot, step, episode);
+  if (watch_get_up) {
+    get_up.watched = true;
+    get_up.lying = getup ? r.lying : "";
+    get_up.attempts = stood_up.get_up().attempts();
+    get_up.first_script = stood_up.get_up().first_script();
+    // From lying still (t = 0) or from the episode's fall; without a fall there is nothing to
+    // stand up from.
+    if (stood_up.stood_up_at_s() && (getup || result.fell))
+      get_up.stood_up_s = *stood_up.stood_up_at_s() - (getup ? 0.0 : result.fall_time_s);
+  }
+  return {};
+}
+
+/// --record, --snapshot and --html.
+Status write_outputs(const stride::core::CliArgs& args, const SimRequest& r,
+                     const sim::TrajectoryRecorder& recorder, sim::SimRobot& robot,
+                     const sim::EpisodeResult& result, const GetUpOutcome& get_up,
+                     sim::EpisodeCapturer& capturer) {
   if (args.has("record")) {
-    if (Status s = recorder.save(args.get("record")); !s) {
-      std::fprintf(stderr, "stride sim: %s\n", s.message().c_str());
-      return 1;
-    }
+    if (Status s = recorder.save(args.get("record")); !s) return s;
   }
   if (args.has("snapshot")) {
     const std::string svg = sim::render_pose_svg(
         robot.world().model(), result.snapshots, robot.world().ground().grass_thickness_m,
-        world_options.ball.present ? world_options.ball.radius_m : 0.0);
-    if (Status s = stride::core::write_file_atomically(args.get("snapshot"), svg); !s) {
-      std::fprintf(stderr, "stride sim: %s\n", s.message().c_str());
-      return 1;
-    }
+        r.world.ball.present ? r.world.ball.radius_m : 0.0);
+    if (Status s = stride::core::write_file_atomically(args.get("snapshot"), svg); !s) return s;
   }
-  if (args.has("html")) {
-    if (Status s = write_html(args, motion, duration_text, world_options, robot, result, get_up,
-                              capturer.finish());
-        !s) {
-      std::fprintf(stderr, "stride sim: %s\n", s.message().c_str());
-      return 1;
-    }
-  }
-  if (args.has("json")) {
+  if (args.has("html"))
+    return write_html(args, r.motion, r.duration_text, r.world, robot, result, get_up,
+                      capturer.finish());
+  return {};
+}
+
+/// The result: one JSON object with --json, else two lines of text.
+void print_result(bool json_output, const SimRequest& r, const sim::EpisodeResult& result,
+                  const GetUpOutcome& get_up, const std::optional<double>& predicted_s) {
+  if (json_output) {
     nlohmann::json json = sim::to_json(result);
     if (predicted_s) json["fall_predicted_s"] = *predicted_s;
     if (get_up.watched) {
-      if (getup) json["lying"] = lying;
+      if (r.getup) json["lying"] = r.lying;
       json["stood_up_s"] = get_up.stood_up_s ? nlohmann::json(*get_up.stood_up_s) : nullptr;
       json["get_up_attempts"] = get_up.attempts;
       json["get_up_script"] = get_up.first_script;
     }
     std::printf("%s\n", json.dump().c_str());
   } else if (get_up.watched) {
-    std::printf("%s%s: %s; %.2f s sim (%.2f s wall, %.1fx real time)\n", motion.c_str(),
-                getup ? (" (lying on the " + lying + ")").c_str() : "",
+    std::printf("%s%s: %s; %.2f s sim (%.2f s wall, %.1fx real time)\n", r.motion.c_str(),
+                r.getup ? (" (lying on the " + r.lying + ")").c_str() : "",
                 outcome_text(result, get_up).c_str(), result.sim_time_s, result.wall_time_s,
                 result.rtf);
     std::printf("max |a| %.2f m/s^2, state %s\n", result.max_accel,
                 sim::hash_hex(result.state_hash).c_str());
   } else {
-    std::printf("%s: %s after %.2f s sim (%.2f s wall, %.1fx real time)\n", motion.c_str(),
+    std::printf("%s: %s after %.2f s sim (%.2f s wall, %.1fx real time)\n", r.motion.c_str(),
                 result.fell ? "FELL" : "standing", result.sim_time_s, result.wall_time_s,
                 result.rtf);
     std::printf("distance %.3f m, max |a| %.2f m/s^2, max field-plane sway %.2f m/s^2, state %s\n",
                 result.distance_m, result.max_accel, result.max_fps,
                 sim::hash_hex(result.state_hash).c_str());
   }
-  if (result.status != sim::WorldStatus::kRunning) {
-    std::fprintf(stderr, "stride sim: episode ended: %s\n", result.failure_reason.c_str());
-    return 1;
+}
+
+}  // namespace
+
+int run_sim_servo(int argc, char** argv);  // sim_servo.cpp
+
+int run_sim(int argc, char** argv) {
+  if (argc >= 2 && std::string(argv[1]) == "servo") return run_sim_servo(argc - 1, argv + 1);
+  stride::core::CliArgs args;
+  declare_options(args);
+  if (Status s = args.parse(argc, argv); !s) return errors.bad_input(s.message());
+  if (args.has("help")) {
+    print_help(args);
+    return 0;
   }
+  SimRequest r;
+  if (Status s = read_request(args, r); !s) return errors.bad_input(s.message());
+
+  // The firmware exactly as stride-fw builds it (parameters, servo table, engines).
+  stride::fw::FirmwareOptions fw_options;
+  if (args.has("params")) fw_options.params_file = args.get("params");
+  std::unique_ptr<stride::fw::Firmware> firmware;
+  if (Status s = stride::fw::Firmware::create(fw_options, firmware); !s)
+    return errors.bad_input(s.message());
+  r.world.control_period_ns = firmware->period_ns();
+  if (Status s = sim::check_physics_step(r.world.physics_step_ns, firmware->period_ns(),
+                                         "--physics-step-us");
+      !s)
+    return errors.bad_input(s.message());
+
+  sim::TrajectoryRecorder recorder;
+  sim::EpisodeOptions episode;
+  episode.duration_s = r.duration;
+  episode.metrics_start_s = r.metrics_from;
+  episode.recorder = args.has("record") ? &recorder : nullptr;
+  if (args.has("snapshot")) episode.snapshot_times_s = r.snapshot_times;
+  sim::EpisodeCapturer capturer;
+  if (args.has("html")) episode.on_tick = capturer.observer();
+  std::unique_ptr<sim::SimRobot> robot_ptr;
+  sim::EpisodeResult result;
+  GetUpOutcome get_up;
+  std::optional<double> predicted_s;  // stand and walk: when the firmware predicted a fall
+  Status ran;
+  if (r.motion == "kick") {
+    // The seed's kick episode (script_episodes.hpp): ball in front of the kicking foot, the
+    // kick requested at 1 s, played by the firmware's script engine once the stand is reached.
+    sim::KickEpisodeOptions kick;
+    kick.script = args.get("script");
+    if (firmware->params().list("script." + kick.script + ".frame").empty())
+      return errors.bad_input("--script: no script '" + kick.script +
+                              "' in the firmware's scripts");
+    kick.duration_s = r.duration;
+    if (kick.script == "kick_left") kick.ball_position.y() = -kick.ball_position.y();
+    kick.firmware = fw_options;
+    kick.episode = episode;
+    ran = sim::run_kick_episode(r.world, kick, result, &robot_ptr);
+  } else {
+    ran = run_controlled_episode(r, *firmware, episode, result, robot_ptr, get_up, predicted_s);
+  }
+  if (!ran) return errors.failure(ran.message());
+  if (Status s = write_outputs(args, r, recorder, *robot_ptr, result, get_up, capturer); !s)
+    return errors.failure(s.message());
+  print_result(args.has("json"), r, result, get_up, predicted_s);
+  if (result.status != sim::WorldStatus::kRunning)
+    return errors.failure("episode ended: " + result.failure_reason);
   return 0;
 }
 

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "stride/core/cli_args.hpp"
+#include "stride/host_tools/command_errors.hpp"
 #include "stride/sim_hal/servo_bench.hpp"
 
 namespace {
@@ -15,16 +16,9 @@ namespace {
 using stride::Status;
 namespace sim = stride::sim;
 
-int bad_input(const std::string& message) {
-  std::fprintf(stderr, "stride sim servo: %s\n", message.c_str());
-  return 2;
-}
+const stride::tools::CommandErrors errors("sim servo");
 
-}  // namespace
-
-/// argv starts at "servo".
-int run_sim_servo(int argc, char** argv) {
-  stride::core::CliArgs args;
+void declare_options(stride::core::CliArgs& args) {
   args.option("help", "show this help", false);
   args.option("model", "servo: mx64 or mx106", true, "mx106");
   args.option("experiment", "no-load, blocked or pendulum", true, "no-load");
@@ -38,20 +32,32 @@ int run_sim_servo(int argc, char** argv) {
               true, "sin-time-square");
   args.option("duration", "no-load and pendulum: run length [s]", true, "6");
   args.option("json", "print the result as one JSON object", false);
-  if (Status s = args.parse(argc, argv); !s) return bad_input(s.message());
+}
+
+void print_help(const stride::core::CliArgs& args) {
+  std::printf(
+      "usage: stride sim servo --model mx64|mx106 --experiment no-load|blocked|pendulum "
+      "[options]\n\n"
+      "no-load: output free, goal far away; prints the steady speed (speed_rad_s).\n"
+      "blocked: output held still, goal --error-deg away; prints duty and torque_nm.\n"
+      "pendulum: a point mass on an arm swinging under gravity on a BAM trajectory;\n"
+      "          --json prints the trace (t, goal, position, speed, torque).\n\n%s",
+      args.help().c_str());
+}
+
+}  // namespace
+
+/// argv starts at "servo".
+int run_sim_servo(int argc, char** argv) {
+  stride::core::CliArgs args;
+  declare_options(args);
+  if (Status s = args.parse(argc, argv); !s) return errors.bad_input(s.message());
   if (args.has("help")) {
-    std::printf(
-        "usage: stride sim servo --model mx64|mx106 --experiment no-load|blocked|pendulum "
-        "[options]\n\n"
-        "no-load: output free, goal far away; prints the steady speed (speed_rad_s).\n"
-        "blocked: output held still, goal --error-deg away; prints duty and torque_nm.\n"
-        "pendulum: a point mass on an arm swinging under gravity on a BAM trajectory;\n"
-        "          --json prints the trace (t, goal, position, speed, torque).\n\n%s",
-        args.help().c_str());
+    print_help(args);
     return 0;
   }
   if (!args.positional().empty())
-    return bad_input("unexpected argument '" + args.positional()[0] + "'");
+    return errors.bad_input("unexpected argument '" + args.positional()[0] + "'");
   sim::ServoBenchOptions o;
   for (Status s :
        {sim::parse_servo_model(args.get("model"), o.model),
@@ -62,7 +68,7 @@ int run_sim_servo(int argc, char** argv) {
         args.get_double("error-deg", o.error_deg), args.get_double("arm-length", o.arm_length_m),
         args.get_double("arm-mass", o.arm_mass_kg), args.get_double("duration", o.duration_s),
         sim::validate(o)})
-    if (!s) return bad_input(s.message());
+    if (!s) return errors.bad_input(s.message());
   if (o.experiment == sim::BenchExperiment::kNoLoad && !args.has("duration")) o.duration_s = 2.0;
 
   const sim::ServoBenchResult r = sim::run_servo_bench(o);

@@ -20,6 +20,7 @@
 #include "stride/hal/dynamixel/virtual_bus.hpp"
 #include "stride/hal/dynamixel/virtual_bus_v2.hpp"
 #include "stride/host_tools/command.hpp"
+#include "stride/host_tools/command_errors.hpp"
 #include "stride/sim_hal/episode.hpp"
 #include "stride/sim_hal/sim_bus_physics.hpp"
 #include "stride/sim_hal/sim_cli.hpp"
@@ -32,22 +33,22 @@ void on_vbus_signal(int) {
   g_vbus_stop.store(true);
 }
 
-int bad(const std::string& message) {
-  std::fprintf(stderr, "stride vbus: %s\n", message.c_str());
-  return 2;
-}
+const stride::tools::CommandErrors errors("vbus");
 
-int run_vbus(int argc, char** argv) {
-  using namespace stride;
-  namespace dxl = hal::dxl;
-  // --fault may repeat (and take comma-separated items); collect it before CliArgs.
-  std::vector<std::string> faults;
-  std::vector<const char*> rest;
+using stride::Status;
+namespace dxl = stride::hal::dxl;
+namespace fw = stride::fw;
+namespace sim = stride::sim;
+
+/// --fault may repeat (and take comma-separated items): it is taken out of argv before CliArgs
+/// sees the rest.
+Status split_faults(int argc, char** argv, std::vector<std::string>& faults,
+                    std::vector<const char*>& rest) {
   for (int i = 0; i < argc; ++i) {
     const std::string word = argv[i];
     std::string value;
     if (word == "--fault") {
-      if (i + 1 >= argc) return bad("option --fault needs a value");
+      if (i + 1 >= argc) return Status::error("option --fault needs a value");
       value = argv[++i];
     } else if (word.rfind("--fault=", 0) == 0) {
       value = word.substr(8);
@@ -64,7 +65,10 @@ int run_vbus(int argc, char** argv) {
       start = comma + 1;
     }
   }
-  core::CliArgs args;
+  return {};
+}
+
+void declare_options(stride::core::CliArgs& args) {
   args.option("link", "path of the symlink to create to the pseudo-terminal (required)")
       .option(
           "fault",
@@ -91,101 +95,110 @@ int run_vbus(int argc, char** argv) {
       .option("json", "print the bus counters as one JSON object on exit", false)
       .option("help", "show this help", false);
   sim::declare_world_options(args);
-  if (Status s = args.parse(static_cast<int>(rest.size()), rest.data()); !s)
-    return bad(s.message());
-  if (args.has("help")) {
-    std::printf(
-        "usage: stride vbus --link PATH [--fault KIND:VALUE]... [--lockstep] [--json]\n\n"
-        "Serves an emulated CM730 (ID 200) and 20 MX-64/MX-106 servos (IDs 1-20, models from\n"
-        "the servo table) with their protocol 1.0 control tables on a pseudo-terminal until\n"
-        "SIGINT/SIGTERM (--protocol 2: 20 MX(2.0) servos, no CM730). Servo motion:\n"
-        "first-order model, or with --sim the Simbody simulation of the robot, advanced one\n"
-        "period per BULK_READ.\n\n%s",
-        args.help().c_str());
-    return 0;
-  }
-  if (!args.has("link")) return bad("missing --link PATH");
-  dxl::VirtualBus::Options options;
+}
+
+void print_help(const stride::core::CliArgs& args) {
+  std::printf(
+      "usage: stride vbus --link PATH [--fault KIND:VALUE]... [--lockstep] [--json]\n\n"
+      "Serves an emulated CM730 (ID 200) and 20 MX-64/MX-106 servos (IDs 1-20, models from\n"
+      "the servo table) with their protocol 1.0 control tables on a pseudo-terminal until\n"
+      "SIGINT/SIGTERM (--protocol 2: 20 MX(2.0) servos, no CM730). Servo motion:\n"
+      "first-order model, or with --sim the Simbody simulation of the robot, advanced one\n"
+      "period per BULK_READ.\n\n%s",
+      args.help().c_str());
+}
+
+/// The bus options from the command line; `protocol` 1 or 2, `sim`: back it with the simulation
+/// (and `world` its world). Errors are bad input.
+Status read_bus_options(const stride::core::CliArgs& args, const std::vector<std::string>& faults,
+                        dxl::VirtualBus::Options& options, std::int64_t& protocol, bool& use_sim,
+                        sim::WorldOptions& world) {
+  if (!args.has("link")) return Status::error("missing --link PATH");
   for (const auto& f : faults) {
-    if (Status s = options.faults.add(f); !s) return bad(s.message());
+    if (Status s = options.faults.add(f); !s) return s;
   }
   double period_ms = 10.0;
-  if (Status s = args.get_double("period-ms", period_ms); !s) return bad(s.message());
+  if (Status s = args.get_double("period-ms", period_ms); !s) return s;
   if (!(period_ms > 0.0 && period_ms <= 1000.0))
-    return bad("option --period-ms: must be in (0, 1000]");
-  std::int64_t protocol = 1;
-  if (Status s = args.get_int("protocol", protocol); !s) return bad(s.message());
-  if (protocol != 1 && protocol != 2) return bad("option --protocol: must be 1 or 2");
+    return Status::error("option --period-ms: must be in (0, 1000]");
+  if (Status s = args.get_int("protocol", protocol); !s) return s;
+  if (protocol != 1 && protocol != 2) return Status::error("option --protocol: must be 1 or 2");
   fw::ServoTable table;
-  if (Status s = fw::ServoTable::load(args.get("servo-table"), table); !s) return bad(s.message());
+  if (Status s = fw::ServoTable::load(args.get("servo-table"), table); !s) return s;
   options.calibration = fw::servo_calibrations(table);
-  const bool use_sim = args.has("sim");
-  if (use_sim && protocol != 1) return bad("option --sim: needs --protocol 1 (the CM730's IMU)");
+  use_sim = args.has("sim");
+  if (use_sim && protocol != 1)
+    return Status::error("option --sim: needs --protocol 1 (the CM730's IMU)");
   options.lockstep = args.has("lockstep") || use_sim;
   options.period_ns = static_cast<std::int64_t>(period_ms * 1e6);
+  if (use_sim) {
+    if (Status s = sim::read_world_options(args, world); !s) return s;
+    world.control_period_ns = options.period_ns;
+  }
+  return {};
+}
+
+/// The emulated bus: protocol 1.0 (CM730 + servos, first-order servo model or the simulation)
+/// or 2.0 (servos only).
+struct Bus {
+  std::unique_ptr<dxl::BusResponder> responder;
+  dxl::VirtualBus* v1 = nullptr;
+  dxl::VirtualBusV2* v2 = nullptr;
+  sim::SimBusPhysics* sim_physics = nullptr;  ///< with --sim
+  dxl::VirtualBusCounters counters() const {
+    return v1 != nullptr ? v1->counters() : v2->counters();
+  }
+};
+
+Status make_bus(const dxl::VirtualBus::Options& options, std::int64_t protocol, bool use_sim,
+                const sim::WorldOptions& world_options, Bus& bus) {
   dxl::FirstOrderPhysics::Options physics;
-  for (std::size_t i = 0; i < hal::kServoCount; ++i)
+  for (std::size_t i = 0; i < stride::hal::kServoCount; ++i)
     physics.models[i] = options.calibration[i].model;
   std::unique_ptr<dxl::VirtualBusPhysics> motion =
       std::make_unique<dxl::FirstOrderPhysics>(physics);
-  sim::SimBusPhysics* sim_physics = nullptr;
   if (use_sim) {
-    sim::WorldOptions world_options;
-    if (Status s = sim::read_world_options(args, world_options); !s) return bad(s.message());
-    world_options.control_period_ns = options.period_ns;
     std::unique_ptr<sim::SimWorld> world;
-    if (Status s = sim::SimWorld::create(world_options, world); !s) {
-      std::fprintf(stderr, "stride vbus: %s\n", s.message().c_str());
-      return 1;
-    }
+    if (Status s = sim::SimWorld::create(world_options, world); !s) return s;
     auto backed = std::make_unique<sim::SimBusPhysics>(std::move(world));
-    sim_physics = backed.get();
+    bus.sim_physics = backed.get();
     motion = std::move(backed);
   }
-  std::unique_ptr<dxl::BusResponder> responder;
-  dxl::VirtualBus* bus_v1 = nullptr;
-  dxl::VirtualBusV2* bus_v2 = nullptr;
   if (protocol == 1) {
-    auto bus = std::make_unique<dxl::VirtualBus>(options, std::move(motion));
-    bus_v1 = bus.get();
-    responder = std::move(bus);
+    auto v1 = std::make_unique<dxl::VirtualBus>(options, std::move(motion));
+    bus.v1 = v1.get();
+    bus.responder = std::move(v1);
   } else {
-    dxl::VirtualBusV2::Options v2;
-    v2.calibration = options.calibration;
-    v2.lockstep = options.lockstep;
-    v2.period_ns = options.period_ns;
-    v2.faults = options.faults;
-    auto bus =
-        std::make_unique<dxl::VirtualBusV2>(v2, std::make_unique<dxl::FirstOrderPhysics>(physics));
-    bus_v2 = bus.get();
-    responder = std::move(bus);
+    dxl::VirtualBusV2::Options v2_options;
+    v2_options.calibration = options.calibration;
+    v2_options.lockstep = options.lockstep;
+    v2_options.period_ns = options.period_ns;
+    v2_options.faults = options.faults;
+    auto v2 = std::make_unique<dxl::VirtualBusV2>(
+        v2_options, std::make_unique<dxl::FirstOrderPhysics>(physics));
+    bus.v2 = v2.get();
+    bus.responder = std::move(v2);
   }
+  return {};
+}
 
-  std::unique_ptr<dxl::PtyBusServer> server;
-  if (Status s = dxl::PtyBusServer::create(args.get("link"), server); !s) {
-    std::fprintf(stderr, "stride vbus: %s\n", s.message().c_str());
-    return 1;
+/// SCHED_FIFO and locked memory, so that replies are not late on a busy machine (a warning
+/// each where refused).
+void ask_for_realtime() {
+  sched_param param{};
+  param.sched_priority = 85;
+  if (sched_setscheduler(0, SCHED_FIFO, &param) != 0) {
+    errors.warning(std::string("SCHED_FIFO refused (") + std::strerror(errno) + ")");
   }
-  if (!args.has("no-rt")) {
-    sched_param param{};
-    param.sched_priority = 85;
-    if (sched_setscheduler(0, SCHED_FIFO, &param) != 0) {
-      std::fprintf(stderr, "stride vbus: warning: SCHED_FIFO refused (%s)\n", std::strerror(errno));
-    }
-    if (mlockall(MCL_CURRENT | MCL_FUTURE) != 0) {
-      std::fprintf(stderr, "stride vbus: warning: mlockall refused (%s)\n", std::strerror(errno));
-    }
+  if (mlockall(MCL_CURRENT | MCL_FUTURE) != 0) {
+    errors.warning(std::string("mlockall refused (") + std::strerror(errno) + ")");
   }
-  struct sigaction action {};
-  action.sa_handler = on_vbus_signal;
-  sigemptyset(&action.sa_mask);
-  sigaction(SIGINT, &action, nullptr);
-  sigaction(SIGTERM, &action, nullptr);
-  std::fprintf(stderr, "stride vbus: serving on %s -> %s (%s%s)\n", server->link_path().c_str(),
-               server->slave_path().c_str(), options.lockstep ? "lockstep" : "wall clock",
-               use_sim ? ", Simbody simulation" : "");
-  const Status served = server->serve(*responder, g_vbus_stop);
-  const dxl::VirtualBusCounters c = bus_v1 != nullptr ? bus_v1->counters() : bus_v2->counters();
+}
+
+/// On exit: the bus counters (and the simulation's state) on stderr, and with --json as one
+/// JSON object on stdout.
+void report_counters(const Bus& bus, bool json_output) {
+  const dxl::VirtualBusCounters c = bus.counters();
   using ull = unsigned long long;
   std::fprintf(
       stderr,
@@ -197,9 +210,9 @@ int run_vbus(int argc, char** argv) {
       static_cast<ull>(c.error_replies), static_cast<ull>(c.dropped), static_cast<ull>(c.corrupted),
       static_cast<ull>(c.silenced), static_cast<ull>(c.bad_packets));
   nlohmann::json sim_report;
-  if (sim_physics != nullptr) {
-    const sim::SimWorld& w = sim_physics->world();
-    sim_report = {{"ticks", sim_physics->ticks()},
+  if (bus.sim_physics != nullptr) {
+    const sim::SimWorld& w = bus.sim_physics->world();
+    sim_report = {{"ticks", bus.sim_physics->ticks()},
                   {"sim_time_s", w.time_s()},
                   {"status", sim::to_string(w.status())},
                   {"failure_reason", w.failure_reason()},
@@ -209,7 +222,7 @@ int run_vbus(int argc, char** argv) {
                  sim::to_string(w.status()), w.time_s(),
                  sim_report["torso_height_m"].get<double>());
   }
-  if (args.has("json")) {
+  if (json_output) {
     nlohmann::json report = {{"instructions", c.instructions}, {"bulk_reads", c.bulk_reads},
                              {"sync_reads", c.sync_reads},     {"sync_writes", c.sync_writes},
                              {"replies", c.replies},           {"error_replies", c.error_replies},
@@ -219,9 +232,47 @@ int run_vbus(int argc, char** argv) {
     std::printf("%s\n", report.dump().c_str());
     std::fflush(stdout);
   }
+}
+
+int run_vbus(int argc, char** argv) {
+  std::vector<std::string> faults;
+  std::vector<const char*> rest;
+  if (Status s = split_faults(argc, argv, faults, rest); !s) return errors.bad_input(s.message());
+  stride::core::CliArgs args;
+  declare_options(args);
+  if (Status s = args.parse(static_cast<int>(rest.size()), rest.data()); !s)
+    return errors.bad_input(s.message());
+  if (args.has("help")) {
+    print_help(args);
+    return 0;
+  }
+  dxl::VirtualBus::Options options;
+  std::int64_t protocol = 1;
+  bool use_sim = false;
+  sim::WorldOptions world;
+  if (Status s = read_bus_options(args, faults, options, protocol, use_sim, world); !s)
+    return errors.bad_input(s.message());
+  Bus bus;
+  if (Status s = make_bus(options, protocol, use_sim, world, bus); !s)
+    return errors.failure(s.message());
+
+  std::unique_ptr<dxl::PtyBusServer> server;
+  if (Status s = dxl::PtyBusServer::create(args.get("link"), server); !s) {
+    return errors.failure(s.message());
+  }
+  if (!args.has("no-rt")) ask_for_realtime();
+  struct sigaction action {};
+  action.sa_handler = on_vbus_signal;
+  sigemptyset(&action.sa_mask);
+  sigaction(SIGINT, &action, nullptr);
+  sigaction(SIGTERM, &action, nullptr);
+  std::fprintf(stderr, "stride vbus: serving on %s -> %s (%s%s)\n", server->link_path().c_str(),
+               server->slave_path().c_str(), options.lockstep ? "lockstep" : "wall clock",
+               use_sim ? ", Simbody simulation" : "");
+  const Status served = server->serve(*bus.responder, g_vbus_stop);
+  report_counters(bus, args.has("json"));
   if (!served) {
-    std::fprintf(stderr, "stride vbus: %s\n", served.message().c_str());
-    return 1;
+    return errors.failure(served.message());
   }
   return 0;
 }

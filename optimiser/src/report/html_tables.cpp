@@ -1,11 +1,11 @@
 // The tables of report.html: settings, Ind_O against the picks, validation, Table E.
 #include "stride/optimiser/report/html_tables.hpp"
+#include "stride/core/json_file.hpp"
 #include "stride/optimiser/tasks/task_type.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 
 #include "stride/optimiser/report/html_page.hpp"
 #include "stride/optimiser/run/validation.hpp"
@@ -189,12 +189,13 @@ static std::string stride_validation_html(const json& doc) {
 }
 
 std::string validation_table_html(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  if (!in) return "";
-  const json doc = json::parse(in, nullptr, false);
-  if (doc.is_discarded())
+  json doc;
+  core::JsonFileError why = core::JsonFileError::kNone;
+  if (!core::read_json_file(file, doc, &why)) {
+    if (why == core::JsonFileError::kCannotOpen) return "";
     return missing_note(file.filename().string() +
                         " exists but cannot be parsed (not valid JSON).");
+  }
   if (doc.is_object() && doc.value("format", "") == "stride-validation-1" &&
       doc.contains("worlds") && doc["worlds"].is_array() && doc.contains("table") &&
       doc["table"].is_array())

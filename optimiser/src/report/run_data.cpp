@@ -1,5 +1,6 @@
 // RunData: tolerant reading of a robot run directory for reports.
 #include "stride/optimiser/report/run_data.hpp"
+#include "stride/core/json_file.hpp"
 #include "stride/optimiser/tasks/task_type.hpp"
 
 #include <algorithm>
@@ -57,13 +58,13 @@ std::string run_progress_text(std::size_t done, std::size_t planned) {
 void read_rescored(const fs::path& path, std::vector<FrontMember>& front,
                    std::vector<std::string>& warnings) {
   if (!fs::exists(path)) return;
-  std::ifstream in(path);
-  const json doc = json::parse(in, nullptr, false);
+  json doc;
+  const bool parsed = core::read_json_file(path, doc).is_ok();
   const auto fail = [&](const std::string& why) {
     for (FrontMember& m : front) m.rescored.clear();
     warnings.push_back(path.string() + ": " + why + "; the picks use the run's scores");
   };
-  if (doc.is_discarded() || !doc.contains("members") || !doc["members"].is_array())
+  if (!parsed || !doc.contains("members") || !doc["members"].is_array())
     return fail("not a rescored front");
   const json& members = doc["members"];
   if (members.size() != front.size()) return fail("its rows do not match pareto.csv");
@@ -81,10 +82,8 @@ void read_rescored(const fs::path& path, std::vector<FrontMember>& front,
 Status load_run_data(const fs::path& dir, RunData& out) {
   out = RunData{};
   out.dir = dir;
-  std::ifstream in(dir / "run.json");
-  if (!in) return Status::error((dir / "run.json").string() + ": cannot open");
-  out.run = json::parse(in, nullptr, false);
-  if (out.run.is_discarded() || !out.run.is_object())
+  if (Status s = core::read_json_file(dir / "run.json", out.run); !s) return s;
+  if (!out.run.is_object())
     return Status::error((dir / "run.json").string() + ": not a JSON object");
   if (out.run.contains("problem") && out.run["problem"].is_string())
     out.task = out.run["problem"].get<std::string>();

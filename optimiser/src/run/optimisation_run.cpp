@@ -5,12 +5,12 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <optional>
 #include <set>
 #include <sstream>
 
 #include "stride/core/atomic_file.hpp"
+#include "stride/core/json_file.hpp"
 #include "stride/optimiser/nsga2/indicators.hpp"
 #include "stride/optimiser/run/log_files.hpp"
 
@@ -168,17 +168,6 @@ Status rescore_front(const Problem& problem, Evaluator& evaluator,
   return core::write_file_atomically(path, doc.dump(1) + "\n");
 }
 
-Status read_json(const fs::path& path, json& out) {
-  std::ifstream in(path);
-  if (!in) return Status::error(path.string() + ": cannot be read");
-  try {
-    out = json::parse(in);
-  } catch (const json::exception& e) {
-    return Status::error(path.string() + ": not valid JSON (" + e.what() + ")");
-  }
-  return {};
-}
-
 }  // namespace
 
 json run_description(const Problem& problem, const RunConfig& config) {
@@ -221,7 +210,7 @@ Status parse_genome_json(const json& j, const char* field, Genome& g) {
 
 Status read_run_config(const fs::path& dir, RunConfig& config) {
   json j;
-  if (auto st = read_json(dir / "run.json", j); !st) return st;
+  if (auto st = core::read_json_file(dir / "run.json", j); !st) return st;
   try {
     if (j.at("format").get<std::string>() != kRunFormat) {
       return Status::error((dir / "run.json").string() + " is not a Stride run description");
@@ -282,15 +271,150 @@ GenerationRecord measure(const Problem& problem, const std::vector<Individual>& 
   return r;
 }
 
+namespace {
+
+/// The files of a run directory that run_optimisation writes.
+struct RunFiles {
+  explicit RunFiles(const fs::path& dir)
+      : run(dir / "run.json"),
+        checkpoint(dir / "checkpoint.json"),
+        evaluations(dir / "evaluations.jsonl"),
+        generations(dir / "generations.jsonl"),
+        pareto(dir / "pareto.csv"),
+        rescored(dir / "front-rescored.json") {}
+  fs::path run, checkpoint, evaluations, generations, pareto, rescored;
+};
+
+/// --resume: the engine as of the last checkpoint (or a fresh one if the run never wrote one),
+/// the logs cut back to it; a larger total of generations extends the run.
+Status resume_engine(const Problem& problem, const RunConfig& config, const json& description,
+                     const RunFiles& files, std::unique_ptr<Nsga2>& engine) {
+  json existing;
+  if (auto st = core::read_json_file(files.run, existing); !st) return st;
+  // A larger total of generations extends the run (written to run.json once restored).
+  const int recorded_generations =
+      existing.contains("settings") ? existing["settings"].value("generations", 0) : 0;
+  const bool extends = config.settings.generations > recorded_generations;
+  if (extends) {
+    existing["settings"]["generations"] = config.settings.generations;
+    if (existing.contains("task") && existing["task"].is_object() &&
+        existing["task"].contains("generations"))
+      existing["task"]["generations"] = config.settings.generations;  // a robot task's record
+  }
+  if (existing != description) {
+    return Status::error(files.run.string() +
+                         " describes another run (problem, settings or "
+                         "task differ)");
+  }
+  std::size_t evaluation_lines = 0;
+  std::size_t generation_lines = 0;
+  json cp;
+  const bool have_checkpoint = fs::exists(files.checkpoint);
+  if (have_checkpoint) {
+    if (auto st = core::read_json_file(files.checkpoint, cp); !st) return st;
+    try {
+      evaluation_lines = cp.at("run").at("evaluation_lines").get<std::size_t>();
+      generation_lines = cp.at("run").at("generation_lines").get<std::size_t>();
+    } catch (const json::exception& e) {
+      return Status::error(files.checkpoint.string() + ": malformed (" + e.what() + ")");
+    }
+  }
+  std::vector<std::string> lines;
+  if (auto st = keep_first_lines(files.generations, generation_lines, lines); !st) return st;
+  if (auto st = keep_first_lines(files.evaluations, evaluation_lines, lines); !st) return st;
+  std::vector<std::pair<Genome, Result>> known(lines.size());
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    if (auto st = parse_evaluation_line(lines[i], known[i]); !st) return st;
+  }
+  if (have_checkpoint) {
+    if (auto st = Nsga2::restore(cp.at("engine"), problem.shape(), known, engine); !st) {
+      return Status::error(files.checkpoint.string() + ": " + st.message());
+    }
+  } else if (auto st =
+                 Nsga2::create(config.settings, problem.shape(), start_genomes(config), engine);
+             !st) {
+    return st;
+  }
+  if (extends) {
+    if (auto st = engine->extend(config.settings.generations); !st) return st;
+    if (auto st = core::write_file_atomically(files.run, description.dump(2) + "\n"); !st)
+      return st;
+  }
+  return {};
+}
+
+/// A new run: the engine from the config's settings and start genomes, and run.json.
+Status start_engine(const Problem& problem, const RunConfig& config, const json& description,
+                    const fs::path& dir, const RunFiles& files, std::unique_ptr<Nsga2>& engine) {
+  if (fs::exists(files.run) || fs::exists(files.checkpoint) || fs::exists(files.evaluations)) {
+    return Status::error(dir.string() + " already holds a run (use --resume or another --out)");
+  }
+  if (auto st = Nsga2::create(config.settings, problem.shape(), start_genomes(config), engine);
+      !st) {
+    return st;
+  }
+  return core::write_file_atomically(files.run, description.dump(2) + "\n");
+}
+
+/// Evaluates one batch and tells the engine every result; results are logged in batch order,
+/// out-of-order ones waiting until their turn.
+Status evaluate_batch(const Problem& problem, Evaluator& evaluator, Nsga2& engine,
+                      const std::vector<Candidate>& batch, int generation, LineLog& evaluations) {
+  std::vector<bool> told(batch.size(), false);
+  std::size_t next_to_log = 0;
+  Status failure;
+  evaluator.evaluate(problem, batch, [&](std::size_t index, EvaluationOutcome outcome) {
+    if (!failure.is_ok() || index >= batch.size() || told[index]) return;
+    if (auto st = engine.tell(batch[index].id, std::move(outcome)); !st) {
+      failure = st;
+      return;
+    }
+    told[index] = true;
+    while (next_to_log < batch.size() && told[next_to_log]) {
+      const Individual* ind = engine.batch_member(batch[next_to_log].id);
+      if (auto st = evaluations.append(evaluation_line(*ind, generation).dump()); !st) {
+        failure = st;
+        return;
+      }
+      ++next_to_log;
+    }
+  });
+  return failure;
+}
+
+/// The engine's state as a generation record (without its wall time and best objectives).
+GenerationRecord current_record(const Problem& problem, const Nsga2& engine,
+                                const std::optional<FrontReference>& reference,
+                                int generations_planned) {
+  GenerationRecord record = measure(problem, engine.population(), reference);
+  record.generation = engine.completed_generations();
+  record.generations = generations_planned;
+  record.evaluations = engine.counters().evaluations;
+  record.failures = engine.counters().failures;
+  record.cache_hits = engine.counters().cache_hits;
+  return record;
+}
+
+/// The best value of each objective over the population's feasible, unfailed members (empty if
+/// there are none).
+std::vector<double> best_objectives(const std::vector<Individual>& population) {
+  std::vector<double> best;
+  for (const Individual& ind : population) {
+    if (ind.result.failed || ind.result.violation > 0.0) continue;
+    if (best.empty()) best = ind.result.objectives;
+    for (std::size_t m = 0; m < best.size(); ++m)
+      best[m] = std::min(best[m], ind.result.objectives[m]);
+  }
+  return best;
+}
+
+}  // namespace
+
 Status run_optimisation(const Problem& problem, const RunConfig& config, Evaluator& evaluator,
                         const RunOptions& options, RunSummary& summary) {
   const fs::path& dir = options.dir;
   const json description = run_description(problem, config);
-  const fs::path run_path = dir / "run.json";
-  const fs::path checkpoint_path = dir / "checkpoint.json";
-  const fs::path evaluations_path = dir / "evaluations.jsonl";
-  const fs::path generations_path = dir / "generations.jsonl";
-  const fs::path pareto_path = dir / "pareto.csv";
+  const RunFiles files(dir);
 
   std::error_code ec;
   fs::create_directories(dir, ec);
@@ -299,74 +423,17 @@ Status run_optimisation(const Problem& problem, const RunConfig& config, Evaluat
   std::unique_ptr<Nsga2> engine;
   summary = RunSummary{};
   if (options.resume) {
-    json existing;
-    if (auto st = read_json(run_path, existing); !st) return st;
-    // A larger total of generations extends the run (written to run.json once restored).
-    const int recorded_generations =
-        existing.contains("settings") ? existing["settings"].value("generations", 0) : 0;
-    const bool extends = config.settings.generations > recorded_generations;
-    if (extends) {
-      existing["settings"]["generations"] = config.settings.generations;
-      if (existing.contains("task") && existing["task"].is_object() &&
-          existing["task"].contains("generations"))
-        existing["task"]["generations"] = config.settings.generations;  // a robot task's record
-    }
-    if (existing != description) {
-      return Status::error(run_path.string() +
-                           " describes another run (problem, settings or "
-                           "task differ)");
-    }
-    std::size_t evaluation_lines = 0;
-    std::size_t generation_lines = 0;
-    json cp;
-    const bool have_checkpoint = fs::exists(checkpoint_path);
-    if (have_checkpoint) {
-      if (auto st = read_json(checkpoint_path, cp); !st) return st;
-      try {
-        evaluation_lines = cp.at("run").at("evaluation_lines").get<std::size_t>();
-        generation_lines = cp.at("run").at("generation_lines").get<std::size_t>();
-      } catch (const json::exception& e) {
-        return Status::error(checkpoint_path.string() + ": malformed (" + e.what() + ")");
-      }
-    }
-    std::vector<std::string> lines;
-    if (auto st = keep_first_lines(generations_path, generation_lines, lines); !st) return st;
-    if (auto st = keep_first_lines(evaluations_path, evaluation_lines, lines); !st) return st;
-    std::vector<std::pair<Genome, Result>> known(lines.size());
-    for (std::size_t i = 0; i < lines.size(); ++i) {
-      if (auto st = parse_evaluation_line(lines[i], known[i]); !st) return st;
-    }
-    if (have_checkpoint) {
-      if (auto st = Nsga2::restore(cp.at("engine"), problem.shape(), known, engine); !st) {
-        return Status::error(checkpoint_path.string() + ": " + st.message());
-      }
-    } else if (auto st =
-                   Nsga2::create(config.settings, problem.shape(), start_genomes(config), engine);
-               !st) {
-      return st;
-    }
-    if (extends) {
-      if (auto st = engine->extend(config.settings.generations); !st) return st;
-      if (auto st = core::write_file_atomically(run_path, description.dump(2) + "\n"); !st)
-        return st;
-    }
+    if (auto st = resume_engine(problem, config, description, files, engine); !st) return st;
     summary.resumed = true;
     summary.resumed_at_generation = engine->completed_generations();
-  } else {
-    if (fs::exists(run_path) || fs::exists(checkpoint_path) || fs::exists(evaluations_path)) {
-      return Status::error(dir.string() + " already holds a run (use --resume or another --out)");
-    }
-    if (auto st = Nsga2::create(config.settings, problem.shape(), start_genomes(config), engine);
-        !st) {
-      return st;
-    }
-    if (auto st = core::write_file_atomically(run_path, description.dump(2) + "\n"); !st) return st;
+  } else if (auto st = start_engine(problem, config, description, dir, files, engine); !st) {
+    return st;
   }
 
   LineLog evaluations;
   LineLog generations;
-  if (auto st = evaluations.open(evaluations_path); !st) return st;
-  if (auto st = generations.open(generations_path); !st) return st;
+  if (auto st = evaluations.open(files.evaluations); !st) return st;
+  if (auto st = generations.open(files.generations); !st) return st;
   const std::optional<FrontReference> reference = problem.reference();
 
   auto write_checkpoint = [&]() -> Status {
@@ -376,7 +443,7 @@ Status run_optimisation(const Problem& problem, const RunConfig& config, Evaluat
         {"engine", engine->checkpoint()},
         {"run",
          {{"evaluation_lines", evaluations.lines()}, {"generation_lines", generations.lines()}}}};
-    return core::write_file_atomically(checkpoint_path, cp.dump() + "\n");
+    return core::write_file_atomically(files.checkpoint, cp.dump() + "\n");
   };
   if (!options.resume) {
     if (auto st = write_checkpoint(); !st) return st;
@@ -386,49 +453,21 @@ Status run_optimisation(const Problem& problem, const RunConfig& config, Evaluat
     const auto started = std::chrono::steady_clock::now();
     const std::vector<Candidate> batch = engine->ask();
     const int generation = engine->completed_generations() + 1;
-    // Results are logged in batch order: out-of-order ones wait until their turn.
-    std::vector<bool> told(batch.size(), false);
-    std::size_t next_to_log = 0;
-    Status failure;
-    evaluator.evaluate(problem, batch, [&](std::size_t index, EvaluationOutcome outcome) {
-      if (!failure.is_ok() || index >= batch.size() || told[index]) return;
-      if (auto st = engine->tell(batch[index].id, std::move(outcome)); !st) {
-        failure = st;
-        return;
-      }
-      told[index] = true;
-      while (next_to_log < batch.size() && told[next_to_log]) {
-        const Individual* ind = engine->batch_member(batch[next_to_log].id);
-        if (auto st = evaluations.append(evaluation_line(*ind, generation).dump()); !st) {
-          failure = st;
-          return;
-        }
-        ++next_to_log;
-      }
-    });
-    if (!failure) return failure;
+    if (auto st = evaluate_batch(problem, evaluator, *engine, batch, generation, evaluations); !st)
+      return st;
     if (auto st = engine->advance(); !st) return st;
-    GenerationRecord record = measure(problem, engine->population(), reference);
-    record.generation = engine->completed_generations();
-    record.generations = config.settings.generations;
-    record.evaluations = engine->counters().evaluations;
-    record.failures = engine->counters().failures;
-    record.cache_hits = engine->counters().cache_hits;
+    GenerationRecord record =
+        current_record(problem, *engine, reference, config.settings.generations);
     record.wall_s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     if (auto st = generations.append(generation_line(record).dump()); !st) return st;
     std::size_t rows = 0;
     const std::string csv = pareto_csv(problem.shape(), engine->population(), rows);
-    if (auto st = core::write_file_atomically(pareto_path, csv); !st) return st;
+    if (auto st = core::write_file_atomically(files.pareto, csv); !st) return st;
     if (auto st = write_checkpoint(); !st) return st;
     summary.last = record;
     summary.pareto_size = rows;
-    for (const Individual& ind : engine->population()) {
-      if (ind.result.failed || ind.result.violation > 0.0) continue;
-      if (record.best_objectives.empty()) record.best_objectives = ind.result.objectives;
-      for (std::size_t m = 0; m < record.best_objectives.size(); ++m)
-        record.best_objectives[m] = std::min(record.best_objectives[m], ind.result.objectives[m]);
-    }
+    record.best_objectives = best_objectives(engine->population());
     summary.last = record;
     if (options.on_generation) options.on_generation(record);
     if (options.stop != nullptr && options.stop->load() && !engine->finished()) {
@@ -437,20 +476,14 @@ Status run_optimisation(const Problem& problem, const RunConfig& config, Evaluat
     }
   }
   // A resampling run's final front, scored again on worlds no generation saw.
-  const fs::path rescored_path = dir / "front-rescored.json";
   if (config.settings.resample && engine->finished() &&
-      (summary.last.generation != 0 || !fs::exists(rescored_path))) {
+      (summary.last.generation != 0 || !fs::exists(files.rescored))) {
     if (options.on_rescore) options.on_rescore(front_rows(engine->population()).size());
-    if (auto st = rescore_front(problem, evaluator, engine->population(), rescored_path); !st)
+    if (auto st = rescore_front(problem, evaluator, engine->population(), files.rescored); !st)
       return st;
   }
   if (summary.last.generation == 0) {  // resumed a finished run: report its final state
-    summary.last = measure(problem, engine->population(), reference);
-    summary.last.generation = engine->completed_generations();
-    summary.last.generations = config.settings.generations;
-    summary.last.evaluations = engine->counters().evaluations;
-    summary.last.failures = engine->counters().failures;
-    summary.last.cache_hits = engine->counters().cache_hits;
+    summary.last = current_record(problem, *engine, reference, config.settings.generations);
     std::size_t rows = 0;
     pareto_csv(problem.shape(), engine->population(), rows);
     summary.pareto_size = rows;

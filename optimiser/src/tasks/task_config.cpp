@@ -1,10 +1,11 @@
-// Task configuration parsing with field-naming errors.
+// Task configuration parsing with field-naming errors: a config object into a TaskConfig, one
+// section at a time. Reading it from a file and writing it back: task_config_file.cpp.
 #include "stride/optimiser/tasks/task_config.hpp"
 
 #include <cmath>
-#include <fstream>
 #include <system_error>
 
+#include "stride/core/json_file.hpp"
 #include "stride/optimiser/tasks/task_type.hpp"
 #include "stride/sim_hal/robot_model.hpp"
 #include "stride/sim_hal/world_spec.hpp"
@@ -108,6 +109,18 @@ constexpr const char* kTrialWorldOptions[] = {"noise",          "seed",
                                               "strength_range", "latency_probability",
                                               "contact_range",  "com_range"};
 
+/// A parameter file named by a config field (`params`, `starts[i]`); the error starts with the
+/// field.
+Status read_parameter_file(const std::string& file, const std::string& field, nlohmann::json& out) {
+  core::JsonFileError why = core::JsonFileError::kNone;
+  if (Status s = core::read_json_file(file, out, &why); !s) {
+    if (why == core::JsonFileError::kCannotOpen)
+      return Status::error(field + ": cannot open '" + file + "'");
+    return Status::error(field + ": " + s.message());
+  }
+  return {};
+}
+
 // The simulated world (TaskConfig::world): `world` is a named world ("faithful", "seed"), a
 // world file (its path or its object, with "format": "stride-world") or an object of the
 // world option table's fields (sim::read_world_spec), whose `engine` is the run's engine. The
@@ -174,10 +187,7 @@ Status parse_robot(const nlohmann::json& doc, TaskConfig& c) {
     nlohmann::json values = doc.at("params");
     if (values.is_string()) {
       const std::string file = values.get<std::string>();
-      std::ifstream in(file);
-      if (!in) return Status::error("params: cannot open '" + file + "'");
-      values = nlohmann::json::parse(in, nullptr, false);
-      if (values.is_discarded()) return Status::error("params: '" + file + "' is not valid JSON");
+      if (Status s = read_parameter_file(file, "params", values); !s) return s;
     }
     if (!values.is_object())
       return Status::error("params: must be a parameter file's path or an object {name: number}");
@@ -243,10 +253,7 @@ Status parse_starts(const nlohmann::json& doc, TaskConfig& c) {
     }
     if (values.is_string()) {
       const std::string file = values.get<std::string>();
-      std::ifstream in(file);
-      if (!in) return Status::error(field + ": cannot open '" + file + "'");
-      values = nlohmann::json::parse(in, nullptr, false);
-      if (values.is_discarded()) return Status::error(field + ": '" + file + "' is not valid JSON");
+      if (Status s = read_parameter_file(file, field, values); !s) return s;
     }
     if (!values.is_object())
       return Status::error(field +
@@ -267,19 +274,10 @@ Status parse_starts(const nlohmann::json& doc, TaskConfig& c) {
   return {};
 }
 
-Status parse_task_config(const nlohmann::json& doc, TaskConfig& out) {
-  if (!doc.is_object()) return Status::error("config: must be a JSON object");
-  for (const auto& [key, value] : doc.items()) {
-    bool known = false;
-    for (const char* k : kKnownFields) known = known || key == k;
-    if (!known) return Status::error(key + ": unknown field");
-  }
-  TaskConfig c;
-  if (!doc.contains("task") || !doc.at("task").is_string())
-    return Status::error("task: missing or not a string");
-  c.task = doc.at("task").get<std::string>();
-  const TaskType* type = find_task_type(c.task);
-  if (type == nullptr) return Status::error("task: '" + c.task + "' is not " + task_type_list());
+namespace {
+
+/// seed, pop, generations and the NSGA-II operators' settings.
+Status parse_settings(const nlohmann::json& doc, TaskConfig& c) {
   std::int64_t v = 0;
   if (Status s = integer(doc, "seed", 0, INT64_MAX, v, true); !s) return s;
   c.settings.seed = static_cast<std::uint64_t>(v);
@@ -299,7 +297,11 @@ Status parse_task_config(const nlohmann::json& doc, TaskConfig& out) {
     c.settings.resample = doc.at("resample").get<bool>();
   }
   if (Status s = validate(c.settings); !s) return s;
+  return {};
+}
 
+/// genes: the parameters the genome sets, each with its range and start.
+Status parse_genes(const nlohmann::json& doc, TaskConfig& c) {
   if (!doc.contains("genes") || !doc.at("genes").is_array() || doc.at("genes").empty())
     return Status::error("genes: missing or not a non-empty array");
   const auto& genes = doc.at("genes");
@@ -322,7 +324,11 @@ Status parse_task_config(const nlohmann::json& doc, TaskConfig& out) {
         return Status::error(prefix + "parameter: '" + gene.parameter + "' appears twice");
     c.genes.push_back(gene);
   }
-  if (Status s = parse_starts(doc, c); !s) return s;
+  return {};
+}
+
+/// The episode: its length and goal, the walk command, the kick, the straightness limits.
+Status parse_episode(const nlohmann::json& doc, TaskConfig& c) {
   if (Status s = number(doc, "duration_s", c.duration_s, false); !s) return s;
   if (!(c.duration_s > 0.0 && c.duration_s <= 600.0))
     return Status::error("duration_s: must be in (0, 600]");
@@ -349,6 +355,11 @@ Status parse_task_config(const nlohmann::json& doc, TaskConfig& out) {
     if (Status s = number(doc, name, *target, false); !s) return s;
     if (*target < 0.0) return Status::error(std::string(name) + ": must be >= 0 or null (off)");
   }
+  return {};
+}
+
+/// omni: the walk-omni task's command timing.
+Status parse_omni(const nlohmann::json& doc, TaskConfig& c) {
   if (doc.contains("omni")) {
     const auto& o = doc.at("omni");
     if (!o.is_object()) return Status::error("omni: must be an object");
@@ -365,8 +376,12 @@ Status parse_task_config(const nlohmann::json& doc, TaskConfig& out) {
     }
     if (!(c.omni.hold_s >= 1.0)) return Status::error("omni.hold_s: must be at least 1 s");
   }
-  if (doc.contains("ramp"))
-    if (Status s = parse_ramp(doc.at("ramp"), c.ramp); !s) return s;
+  return {};
+}
+
+/// trials, aggregate, trial_seed and the randomisation of the trial worlds.
+Status parse_trials(const nlohmann::json& doc, TaskConfig& c) {
+  std::int64_t v = 0;
   if (Status s = integer(doc, "trials", 1, 1000, v, false); !s) return s;
   if (doc.contains("trials")) c.trials = static_cast<int>(v);
   if (doc.contains("aggregate")) {
@@ -402,8 +417,11 @@ Status parse_task_config(const nlohmann::json& doc, TaskConfig& out) {
       *target = r.at(name).get<double>();
     }
   }
-  if (Status s = parse_engines(doc, c.engines); !s) return s;
-  if (Status s = parse_robot(doc, c); !s) return s;
+  return {};
+}
+
+/// validate: the seeds per world of the validation at the end of a run.
+Status parse_validate(const nlohmann::json& doc, TaskConfig& c) {
   if (doc.contains("validate")) {
     const auto& val = doc.at("validate");
     if (!val.is_object()) return Status::error("validate: must be an object");
@@ -416,6 +434,11 @@ Status parse_task_config(const nlohmann::json& doc, TaskConfig& out) {
       c.validate_seeds = n.get<int>();
     }
   }
+  return {};
+}
+
+/// hypervolume_ideal and hypervolume_nadir: both or neither, ideal below nadir.
+Status parse_hypervolume_box(const nlohmann::json& doc, TaskConfig& c) {
   if (Status s = vector_of(doc, "hypervolume_ideal", c.hv_ideal); !s) return s;
   if (Status s = vector_of(doc, "hypervolume_nadir", c.hv_nadir); !s) return s;
   if (c.hv_ideal.empty() != c.hv_nadir.empty())
@@ -424,114 +447,38 @@ Status parse_task_config(const nlohmann::json& doc, TaskConfig& out) {
     if (!(c.hv_ideal[i] < c.hv_nadir[i]))
       return Status::error("hypervolume_nadir[" + std::to_string(i) +
                            "]: must exceed hypervolume_ideal");
+  return {};
+}
+
+}  // namespace
+
+Status parse_task_config(const nlohmann::json& doc, TaskConfig& out) {
+  if (!doc.is_object()) return Status::error("config: must be a JSON object");
+  for (const auto& [key, value] : doc.items()) {
+    bool known = false;
+    for (const char* k : kKnownFields) known = known || key == k;
+    if (!known) return Status::error(key + ": unknown field");
+  }
+  TaskConfig c;
+  if (!doc.contains("task") || !doc.at("task").is_string())
+    return Status::error("task: missing or not a string");
+  c.task = doc.at("task").get<std::string>();
+  const TaskType* type = find_task_type(c.task);
+  if (type == nullptr) return Status::error("task: '" + c.task + "' is not " + task_type_list());
+  if (Status s = parse_settings(doc, c); !s) return s;
+  if (Status s = parse_genes(doc, c); !s) return s;
+  if (Status s = parse_starts(doc, c); !s) return s;
+  if (Status s = parse_episode(doc, c); !s) return s;
+  if (Status s = parse_omni(doc, c); !s) return s;
+  if (doc.contains("ramp"))
+    if (Status s = parse_ramp(doc.at("ramp"), c.ramp); !s) return s;
+  if (Status s = parse_trials(doc, c); !s) return s;
+  if (Status s = parse_engines(doc, c.engines); !s) return s;
+  if (Status s = parse_robot(doc, c); !s) return s;
+  if (Status s = parse_validate(doc, c); !s) return s;
+  if (Status s = parse_hypervolume_box(doc, c); !s) return s;
   out = std::move(c);
   return {};
-}
-
-Status load_task_config(const std::filesystem::path& path, TaskConfig& out) {
-  std::ifstream in(path);
-  if (!in) return Status::error(path.string() + ": cannot open");
-  nlohmann::json doc = nlohmann::json::parse(in, nullptr, false);
-  if (doc.is_discarded()) return Status::error(path.string() + ": not valid JSON");
-  // A relative robot description or parameter file is relative to the config file.
-  const auto relative_to_config = [&path](nlohmann::json& object, const char* key) {
-    if (!object.is_object() || !object.contains(key) || !object.at(key).is_string()) return;
-    const std::string text = object.at(key).get<std::string>();
-    if ((std::string(key) == "world" || std::string(key) == "base") &&
-        !sim::looks_like_world_file(text))
-      return;  // a named world
-    const std::filesystem::path file = text;
-    if (file.is_relative() && !file.empty())
-      object[key] =
-          (std::filesystem::absolute(path).parent_path() / file).lexically_normal().string();
-  };
-  for (const char* key : {"urdf", "params", "world"}) relative_to_config(doc, key);
-  if (doc.is_object() && doc.contains("starts") && doc.at("starts").is_array()) {
-    for (nlohmann::json& entry : doc["starts"]) {
-      if (!entry.is_string() || entry.get<std::string>() == "defaults") continue;
-      const std::filesystem::path file = entry.get<std::string>();
-      if (file.is_relative() && !file.empty())
-        entry = (std::filesystem::absolute(path).parent_path() / file).lexically_normal().string();
-    }
-  }
-  if (doc.is_object() && doc.contains("world"))
-    for (const char* key : {"urdf", "base"}) relative_to_config(doc["world"], key);
-  if (Status s = parse_task_config(doc, out); !s)
-    return Status::error(path.string() + ": " + s.message());
-  return {};
-}
-
-nlohmann::json to_json(const TaskConfig& c) {
-  nlohmann::json genes = nlohmann::json::array();
-  for (const auto& g : c.genes)
-    genes.push_back(
-        {{"parameter", g.parameter}, {"min", g.min}, {"max", g.max}, {"start", g.start}});
-  nlohmann::json j = {{"task", c.task},
-                      {"seed", c.settings.seed},
-                      {"pop", c.settings.pop_size},
-                      {"generations", c.settings.generations},
-                      {"pc", c.settings.real_cross_prob},
-                      {"pm", c.settings.real_mut_prob},
-                      {"etac", c.settings.eta_c},
-                      {"etam", c.settings.eta_m},
-                      {"seed_fraction", c.settings.seed_mutation_fraction},
-                      {"genes", genes},
-                      {"duration_s", c.duration_s},
-                      {"goal_distance_m", c.goal_distance_m},
-                      {"walk_vx", c.walk_vx},
-                      {"script", c.script},
-                      {"kick_at_s", c.kick_at_s},
-                      {"yaw_drift_limit_rad", c.yaw_drift_limit_rad},
-                      {"trials", c.trials},
-                      {"aggregate", c.aggregate == Aggregate::kMean ? "mean" : "worst"},
-                      {"trial_seed", c.trial_seed},
-                      {"randomisation",
-                       {{"imu_noise", c.randomisation.imu_noise},
-                        {"friction_range", c.randomisation.friction_range},
-                        {"mass_range", c.randomisation.mass_range},
-                        {"strength_range", c.randomisation.strength_range},
-                        {"contact_range", c.randomisation.contact_range}}}};
-  // Only when set, so that the record of a run from before it stays equal.
-  if (c.randomisation.com_range != 0.0) j["randomisation"]["com_range"] = c.randomisation.com_range;
-  nlohmann::json engines = nlohmann::json::array();
-  for (sim::EngineKind e : c.engines) engines.push_back(sim::to_string(e));
-  j["engines"] = engines;
-  j["validate"] = {{"seeds", c.validate_seeds}};
-  if (!c.base_params.empty()) {
-    nlohmann::json params = nlohmann::json::object();
-    for (const auto& [name, value] : c.base_params) params[name] = value;
-    j["params"] = params;  // the values, so that run.json stands alone
-  }
-  // Written only when set, so that the run.json of a run from before them stays equal.
-  if (c.settings.resample) j["resample"] = true;
-  if (!c.starts.empty()) {
-    nlohmann::json starts = nlohmann::json::array();
-    for (const TaskConfig::Start& s : c.starts) {
-      if (s.firmware_defaults) {
-        starts.push_back("defaults");
-        continue;
-      }
-      nlohmann::json values = nlohmann::json::object();
-      for (const auto& [name, value] : s.values) values[name] = value;
-      starts.push_back(values);
-    }
-    j["starts"] = starts;
-  }
-  j["world"] = sim::to_json(c.world);  // a world file by value, as the params
-  auto limit = [](double v) { return v < 0.0 ? nlohmann::json(nullptr) : nlohmann::json(v); };
-  j["max_drift_ratio"] = limit(c.max_drift_ratio);
-  j["max_heading_change_deg"] = limit(c.max_heading_change_deg);
-  j["max_turn_translation_m"] = limit(c.max_turn_translation_m);
-  j["ramp"] = to_json(c.ramp);
-  j["omni"] = {{"start_s", c.omni.start_s},
-               {"ramp_s", c.omni.ramp_s},
-               {"hold_s", c.omni.hold_s},
-               {"stop_s", c.omni.stop_s}};
-  if (!c.hv_ideal.empty()) {
-    j["hypervolume_ideal"] = c.hv_ideal;
-    j["hypervolume_nadir"] = c.hv_nadir;
-  }
-  return j;
 }
 
 }  // namespace stride::opt

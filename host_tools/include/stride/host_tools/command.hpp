@@ -6,7 +6,7 @@
 //
 // where `int run_sim(int argc, char** argv)` receives argv starting at the subcommand name.
 // A subcommand prints `--help`, exits 0 on success, 2 on bad input (one line on stderr naming
-// what was wrong) and 1 on a failure while running.
+// what was wrong) and 1 on a failure while running (command_errors.hpp prints and returns both).
 #pragma once
 
 #include <string_view>

@@ -1,5 +1,5 @@
 // `stride replay`'s outputs: text table, JSON summary, HTML page with inline SVG traces.
-#include "stride/sim_hal/log_replay_report.hpp"
+#include "stride/calibration/replay_report.hpp"
 
 #include "stride/core/text_escape.hpp"
 
@@ -10,7 +10,11 @@
 #include <limits>
 #include <sstream>
 
-namespace stride::sim {
+namespace stride::calibration {
+
+using sim::ReplayErrors;
+using sim::ReplayResult;
+using sim::ReplayWindow;
 
 namespace {
 
@@ -263,4 +267,4 @@ std::string replay_html(const ReplayResult& r, const std::string& title,
   return page.str();
 }
 
-}  // namespace stride::sim
+}  // namespace stride::calibration

@@ -23,13 +23,13 @@
 
 #include "child_process.hpp"
 #include "expect_bad_input.hpp"
+#include "stride/calibration/replay_report.hpp"
 #include "stride/firmware/control_loop.hpp"
 #include "stride/firmware/firmware.hpp"
 #include "stride/firmware/motion_request.hpp"
 #include "stride/firmware/recorder/flight_log_reader.hpp"
 #include "stride/firmware/recorder/flight_recorder.hpp"
 #include "stride/sim_hal/log_replay.hpp"
-#include "stride/sim_hal/log_replay_report.hpp"
 #include "stride/sim_hal/sim_cli.hpp"
 #include "stride/sim_hal/sim_robot.hpp"
 #include "temp_dir.hpp"
@@ -130,7 +130,7 @@ PartError part(const ReplayResult& r, std::size_t first, std::size_t last) {
 // The windows of 0-4 s, the robot standing up and holding the stand, and 4-8 s, walking.
 TEST_F(LogReplay, TheSameWorldReplaysAtTheEncodersResolution) {
   const ReplayResult r = replay(world_from({"--noise", "off"}));
-  std::printf("same world:\n%s", replay_table(r).c_str());
+  std::printf("same world:\n%s", calibration::replay_table(r).c_str());
   ASSERT_EQ(r.windows.size(), 4u);
   EXPECT_EQ(r.ticks_not_replayed, 0u);
   for (const ReplayWindow& w : r.windows) {
@@ -141,11 +141,11 @@ TEST_F(LogReplay, TheSameWorldReplaysAtTheEncodersResolution) {
   // joints, the worst joint 2.6 ticks in one window).
   const PartError standing = part(r, 0, 2);
   for (std::size_t i = 0; i < hal::kServoCount; ++i)
-    EXPECT_LT(standing.joint[i], 2.5 * kEncoderTickRad) << r.servo_names[i];
-  EXPECT_LT(standing.all, 1.2 * kEncoderTickRad);
+    EXPECT_LT(standing.joint[i], 2.5 * calibration::kEncoderTickRad) << r.servo_names[i];
+  EXPECT_LT(standing.all, 1.2 * calibration::kEncoderTickRad);
   // Walking, the replay starts each window with the trunk at rest on the feet: measured 2.6 and
   // 5.5 ticks (the worst joint 11 ticks), 3.1 over the whole log (FLIGHT_LOG.md, "Replaying").
-  EXPECT_LT(r.overall.position_all_rad, 4.0 * kEncoderTickRad);
+  EXPECT_LT(r.overall.position_all_rad, 4.0 * calibration::kEncoderTickRad);
   // The IMU standing: attitude within half a degree, the accelerometer within 1.5 m/s^2 (measured
   // 1.0 and 0.3: the logged run began with the robot on the grass top and sinking into it, the
   // replay places it sunk).
@@ -170,7 +170,7 @@ TEST_F(LogReplay, IsDeterministic) {
 TEST_F(LogReplay, AnotherServoLawIsClearlyWorse) {
   const ReplayResult same = replay(world_from({"--noise", "off"}));
   const ReplayResult other = replay(world_from({"--noise", "off", "--servo-law", "seed"}));
-  std::printf("seed servo law:\n%s", replay_table(other).c_str());
+  std::printf("seed servo law:\n%s", calibration::replay_table(other).c_str());
   EXPECT_GT(part(other, 0, 2).all, 3.0 * part(same, 0, 2).all);
   EXPECT_GT(other.overall.position_all_rad, 2.0 * same.overall.position_all_rad);
   EXPECT_GT(other.overall.speed_all_rad_s, 2.0 * same.overall.speed_all_rad_s);

@@ -37,7 +37,7 @@
 #include "stride/sim_hal/log_replay.hpp"
 #include "stride/sim_hal/world_file.hpp"
 
-namespace stride::sim {
+namespace stride::calibration {
 
 /// A parameter the calibration can fit (`--fit NAME`).
 struct CalibrationParameter {
@@ -54,12 +54,12 @@ const std::vector<CalibrationParameter>& calibration_parameters();
 /// Parses a comma-separated list of names ("gyro_bias" and "accel_bias" stand for their three
 /// axes, "all" for every parameter); the error names an unknown name and lists the known ones.
 Status parse_fit_names(const std::string& list, std::vector<std::string>& out);
-double calibration_value(const WorldFile& world, const std::string& name);
-void set_calibration_value(WorldFile& world, const std::string& name, double value);
+double calibration_value(const sim::WorldFile& world, const std::string& name);
+void set_calibration_value(sim::WorldFile& world, const std::string& name, double value);
 
 struct CalibrationOptions {
   std::vector<std::string> fit;         ///< parameter names (parse_fit_names)
-  ReplayOptions replay;                 ///< window length, threads (keep_traces unused)
+  sim::ReplayOptions replay;            ///< window length, threads (keep_traces unused)
   int max_evaluations = 250;            ///< per fit of the continuous parameters
   int subsets = 3;                      ///< K for the uncertainty (0: none)
   std::filesystem::path progress_file;  ///< evaluations, one JSON line each ("" none)
@@ -79,21 +79,22 @@ struct FittedValue {
 };
 
 struct CalibrationResult {
-  WorldFile world;  ///< the start world with the fitted values, "calibration" filled in
+  sim::WorldFile world;  ///< the start world with the fitted values, "calibration" filled in
   std::vector<FittedValue> values;
   double nominal_objective = 0.0;  ///< J of the base world with nothing calibrated
   double start_objective = 0.0, objective = 0.0;
-  ReplayErrors start_errors, errors;  ///< RMS errors over the windows of the first log
-  int evaluations = 0;                ///< computed in this run (stored ones not counted)
-  int stored_evaluations = 0;         ///< taken from the progress file (--resume)
+  sim::ReplayErrors start_errors, errors;  ///< RMS errors over the windows of the first log
+  int evaluations = 0;                     ///< computed in this run (stored ones not counted)
+  int stored_evaluations = 0;              ///< taken from the progress file (--resume)
 };
 
 /// Fits `options.fit` of `start` to `logs` (each checked by check_replayable and check_window)
 /// replayed in `base` (the world options the replays run in; `start` is applied on top).
 /// Errors: an interrupted fit ("interrupted"), a progress file that cannot be read or written,
 /// a world that cannot be built.
-Status calibrate(const std::vector<const fw::FlightLog*>& logs, const WorldOptions& base,
-                 const WorldFile& start, const CalibrationOptions& options, CalibrationResult& out);
+Status calibrate(const std::vector<const fw::FlightLog*>& logs, const sim::WorldOptions& base,
+                 const sim::WorldFile& start, const CalibrationOptions& options,
+                 CalibrationResult& out);
 
 /// The supply voltage the logs measured: the median of the CM730's readings over every log
 /// [V]; false if no log has a reading.
@@ -102,9 +103,9 @@ bool logged_supply_voltage(const std::vector<const fw::FlightLog*>& logs, double
 /// The trunk mass scale that gives the simulated robot (`world`'s model) the weighed total
 /// mass `robot_mass_kg`: the difference is put in the trunk (battery, cables). The error names
 /// --robot-mass and the range it allows.
-Status trunk_scale_for_mass(const WorldOptions& world, double robot_mass_kg, double& out);
+Status trunk_scale_for_mass(const sim::WorldOptions& world, double robot_mass_kg, double& out);
 
 /// J of one replay result (the objective above).
-double calibration_objective(const ReplayResult& result);
+double calibration_objective(const sim::ReplayResult& result);
 
-}  // namespace stride::sim
+}  // namespace stride::calibration

@@ -1,6 +1,6 @@
 // stride calibrate's fit (calibration.hpp): the parameters, the objective over the replayed
 // windows, NLopt's BOBYQA, the latency search, the jackknife and the progress file.
-#include "stride/sim_hal/calibration.hpp"
+#include "stride/calibration/calibration.hpp"
 
 #include <nlopt.h>
 
@@ -16,7 +16,17 @@
 
 #include <nlohmann/json.hpp>
 
-namespace stride::sim {
+namespace stride::calibration {
+
+using sim::count_windows;
+using sim::ReplayErrors;
+using sim::ReplayOptions;
+using sim::ReplayResult;
+using sim::ReplayWindow;
+using sim::RobotCalibration;
+using sim::RobotModel;
+using sim::WorldFile;
+using sim::WorldOptions;
 
 namespace {
 
@@ -459,4 +469,4 @@ Status calibrate(const std::vector<const fw::FlightLog*>& logs, const WorldOptio
   return Status::ok();
 }
 
-}  // namespace stride::sim
+}  // namespace stride::calibration

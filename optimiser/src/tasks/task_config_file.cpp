@@ -1,0 +1,120 @@
+// A task config read from its file (a relative robot description, world or parameter file is
+// relative to the config) and written back as JSON (the task record in a run's run.json).
+#include <filesystem>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "stride/core/json_file.hpp"
+#include "stride/optimiser/tasks/speed_ramp.hpp"
+#include "stride/optimiser/tasks/task_config.hpp"
+#include "stride/sim_hal/world_file.hpp"
+#include "stride/sim_hal/world_spec.hpp"
+
+namespace stride::opt {
+
+Status load_task_config(const std::filesystem::path& path, TaskConfig& out) {
+  nlohmann::json doc;
+  if (Status s = core::read_json_file(path, doc); !s) return s;
+  // A relative robot description or parameter file is relative to the config file.
+  const auto relative_to_config = [&path](nlohmann::json& object, const char* key) {
+    if (!object.is_object() || !object.contains(key) || !object.at(key).is_string()) return;
+    const std::string text = object.at(key).get<std::string>();
+    if ((std::string(key) == "world" || std::string(key) == "base") &&
+        !sim::looks_like_world_file(text))
+      return;  // a named world
+    const std::filesystem::path file = text;
+    if (file.is_relative() && !file.empty())
+      object[key] =
+          (std::filesystem::absolute(path).parent_path() / file).lexically_normal().string();
+  };
+  for (const char* key : {"urdf", "params", "world"}) relative_to_config(doc, key);
+  if (doc.is_object() && doc.contains("starts") && doc.at("starts").is_array()) {
+    for (nlohmann::json& entry : doc["starts"]) {
+      if (!entry.is_string() || entry.get<std::string>() == "defaults") continue;
+      const std::filesystem::path file = entry.get<std::string>();
+      if (file.is_relative() && !file.empty())
+        entry = (std::filesystem::absolute(path).parent_path() / file).lexically_normal().string();
+    }
+  }
+  if (doc.is_object() && doc.contains("world"))
+    for (const char* key : {"urdf", "base"}) relative_to_config(doc["world"], key);
+  if (Status s = parse_task_config(doc, out); !s)
+    return Status::error(path.string() + ": " + s.message());
+  return {};
+}
+
+nlohmann::json to_json(const TaskConfig& c) {
+  nlohmann::json genes = nlohmann::json::array();
+  for (const auto& g : c.genes)
+    genes.push_back(
+        {{"parameter", g.parameter}, {"min", g.min}, {"max", g.max}, {"start", g.start}});
+  nlohmann::json j = {{"task", c.task},
+                      {"seed", c.settings.seed},
+                      {"pop", c.settings.pop_size},
+                      {"generations", c.settings.generations},
+                      {"pc", c.settings.real_cross_prob},
+                      {"pm", c.settings.real_mut_prob},
+                      {"etac", c.settings.eta_c},
+                      {"etam", c.settings.eta_m},
+                      {"seed_fraction", c.settings.seed_mutation_fraction},
+                      {"genes", genes},
+                      {"duration_s", c.duration_s},
+                      {"goal_distance_m", c.goal_distance_m},
+                      {"walk_vx", c.walk_vx},
+                      {"script", c.script},
+                      {"kick_at_s", c.kick_at_s},
+                      {"yaw_drift_limit_rad", c.yaw_drift_limit_rad},
+                      {"trials", c.trials},
+                      {"aggregate", c.aggregate == Aggregate::kMean ? "mean" : "worst"},
+                      {"trial_seed", c.trial_seed},
+                      {"randomisation",
+                       {{"imu_noise", c.randomisation.imu_noise},
+                        {"friction_range", c.randomisation.friction_range},
+                        {"mass_range", c.randomisation.mass_range},
+                        {"strength_range", c.randomisation.strength_range},
+                        {"contact_range", c.randomisation.contact_range}}}};
+  // Only when set, so that the record of a run from before it stays equal.
+  if (c.randomisation.com_range != 0.0) j["randomisation"]["com_range"] = c.randomisation.com_range;
+  nlohmann::json engines = nlohmann::json::array();
+  for (sim::EngineKind e : c.engines) engines.push_back(sim::to_string(e));
+  j["engines"] = engines;
+  j["validate"] = {{"seeds", c.validate_seeds}};
+  if (!c.base_params.empty()) {
+    nlohmann::json params = nlohmann::json::object();
+    for (const auto& [name, value] : c.base_params) params[name] = value;
+    j["params"] = params;  // the values, so that run.json stands alone
+  }
+  // Written only when set, so that the run.json of a run from before them stays equal.
+  if (c.settings.resample) j["resample"] = true;
+  if (!c.starts.empty()) {
+    nlohmann::json starts = nlohmann::json::array();
+    for (const TaskConfig::Start& s : c.starts) {
+      if (s.firmware_defaults) {
+        starts.push_back("defaults");
+        continue;
+      }
+      nlohmann::json values = nlohmann::json::object();
+      for (const auto& [name, value] : s.values) values[name] = value;
+      starts.push_back(values);
+    }
+    j["starts"] = starts;
+  }
+  j["world"] = sim::to_json(c.world);  // a world file by value, as the params
+  auto limit = [](double v) { return v < 0.0 ? nlohmann::json(nullptr) : nlohmann::json(v); };
+  j["max_drift_ratio"] = limit(c.max_drift_ratio);
+  j["max_heading_change_deg"] = limit(c.max_heading_change_deg);
+  j["max_turn_translation_m"] = limit(c.max_turn_translation_m);
+  j["ramp"] = to_json(c.ramp);
+  j["omni"] = {{"start_s", c.omni.start_s},
+               {"ramp_s", c.omni.ramp_s},
+               {"hold_s", c.omni.hold_s},
+               {"stop_s", c.omni.stop_s}};
+  if (!c.hv_ideal.empty()) {
+    j["hypervolume_ideal"] = c.hv_ideal;
+    j["hypervolume_nadir"] = c.hv_nadir;
+  }
+  return j;
+}
+
+}  // namespace stride::opt
