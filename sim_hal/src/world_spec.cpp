@@ -54,9 +54,11 @@ const std::vector<WorldOptionInfo>& world_option_table() {
       {"imu",
        "",
        "the world's",
-       "IMU model: ideal (true value plus white noise) or cm730 (chips and CM730)",
+       "IMU model: ideal (true value plus white noise), cm730 (chips and the stock CM730) or "
+       "cm730-nimbro (chips and the CM730 with NimbRo's firmware: 16-bit registers, a "
+       "magnetometer)",
        V::kName,
-       {"ideal", "cm730"}},
+       {"ideal", "cm730", "cm730-nimbro"}},
       {"contact",
        "",
        "the world's",
@@ -209,7 +211,9 @@ Status set_name(WorldSpec& s, std::string_view key, const std::string& value) {
   } else if (key == "servo_law") {
     s.servo_law = value == "seed" ? ServoLaw::kSeed : ServoLaw::kIdentified;
   } else if (key == "imu") {
-    s.imu_cm730 = value == "cm730";
+    s.imu = value == "cm730"          ? ImuKind::kCm730
+            : value == "cm730-nimbro" ? ImuKind::kCm730Nimbro
+                                      : ImuKind::kIdeal;
   } else if (key == "contact") {
     s.contact = value;
   } else if (key == "noise") {
@@ -320,7 +324,7 @@ bool WorldSpec::is_set(std::string_view key) const {
   if (key == "engine") return engine != d.engine;
   if (key == "physics_step_us") return physics_step_us != d.physics_step_us;
   if (key == "servo_law") return servo_law.has_value();
-  if (key == "imu") return imu_cm730.has_value();
+  if (key == "imu") return imu.has_value();
   if (key == "contact") return contact.has_value();
   if (key == "friction") return friction.has_value();
   if (key == "urdf") return !urdf.empty();
@@ -352,7 +356,7 @@ WorldOptions WorldSpec::to_options() const {
     w.apply(base);
   }
   if (servo_law) w.servo.law = *servo_law;
-  if (imu_cm730) w.use_cm730_imu(*imu_cm730);
+  if (imu) w.use_imu(*imu);
   if (contact) parse_contact_kind(*contact, w.contact);
   if (friction) w.contact.friction = *friction;
   w.physics_step_ns = physics_step_us * 1000;

@@ -78,7 +78,7 @@ struct WorldSpec {
   EngineKind engine = EngineKind::kSimbody;
   std::int64_t physics_step_us = 2000;
   std::optional<ServoLaw> servo_law;        ///< unset: the base world's
-  std::optional<bool> imu_cm730;            ///< unset: the base world's (true: the CM730 chain)
+  std::optional<ImuKind> imu;               ///< unset: the base world's
   std::optional<std::string> contact;       ///< "turf", "seed", "soft", "hard"; unset: the base's
   std::optional<double> friction;           ///< Coulomb coefficient; unset: the contact's
   std::filesystem::path urdf;               ///< empty: the igus model
