@@ -88,6 +88,10 @@ int run_vbus(int argc, char** argv) {
               "back the servos and the IMU with the Simbody simulation of the robot "
               "(protocol 1; implies --lockstep: one control period per BULK_READ)",
               false)
+      .option("cm730",
+              "the CM730's firmware to serve: stock (ROBOTIS table) or nimbro (NimbRo's: 16-bit "
+              "IMU and a magnetometer); default: nimbro when --imu is cm730-nimbro, else stock",
+              true)
       .option("json", "print the bus counters as one JSON object on exit", false)
       .option("help", "show this help", false);
   sim::declare_world_options(args);
@@ -129,10 +133,22 @@ int run_vbus(int argc, char** argv) {
   std::unique_ptr<dxl::VirtualBusPhysics> motion =
       std::make_unique<dxl::FirstOrderPhysics>(physics);
   sim::SimBusPhysics* sim_physics = nullptr;
+  const bool profile_given = args.has("cm730");
+  if (profile_given && !dxl::parse_cm730_profile(args.get("cm730"), options.cm730_profile))
+    return bad("option --cm730: expected stock or nimbro, got '" + args.get("cm730") + "'");
   if (use_sim) {
     sim::WorldOptions world_options;
     if (Status s = sim::read_world_options(args, world_options); !s) return bad(s.message());
     world_options.control_period_ns = options.period_ns;
+    // The CM730 serves what its chips read: NimbRo's table goes with NimbRo's IMU chain.
+    const bool nimbro_imu = world_options.imu_kind() == sim::ImuKind::kCm730Nimbro;
+    if (!profile_given && nimbro_imu) options.cm730_profile = dxl::Cm730Profile::kNimbro;
+    if (options.cm730_profile == dxl::Cm730Profile::kNimbro && !nimbro_imu) {
+      if (args.has("imu"))
+        return bad("option --cm730 nimbro: the simulation's --imu must be cm730-nimbro, got '" +
+                   args.get("imu") + "'");
+      world_options.use_imu(sim::ImuKind::kCm730Nimbro);
+    }
     std::unique_ptr<sim::SimWorld> world;
     if (Status s = sim::SimWorld::create(world_options, world); !s) {
       std::fprintf(stderr, "stride vbus: %s\n", s.message().c_str());
@@ -181,9 +197,10 @@ int run_vbus(int argc, char** argv) {
   sigemptyset(&action.sa_mask);
   sigaction(SIGINT, &action, nullptr);
   sigaction(SIGTERM, &action, nullptr);
-  std::fprintf(stderr, "stride vbus: serving on %s -> %s (%s%s)\n", server->link_path().c_str(),
-               server->slave_path().c_str(), options.lockstep ? "lockstep" : "wall clock",
-               use_sim ? ", Simbody simulation" : "");
+  std::fprintf(stderr, "stride vbus: serving on %s -> %s (%s%s, %s CM730)\n",
+               server->link_path().c_str(), server->slave_path().c_str(),
+               options.lockstep ? "lockstep" : "wall clock", use_sim ? ", Simbody simulation" : "",
+               dxl::to_string(options.cm730_profile));
   const Status served = server->serve(*responder, g_vbus_stop);
   const dxl::VirtualBusCounters c = bus_v1 != nullptr ? bus_v1->counters() : bus_v2->counters();
   using ull = unsigned long long;
