@@ -69,9 +69,11 @@ TEST(MagneticHeading, TiltCompensatedHeadingIsTheYawWhateverTheTilt) {
 /// A walk of `seconds` after a 1 s stand, with the hold's correction turning the robot over
 /// each 0.5 s step. The gyro reads a bias of `bias` rad/s once the walk starts (the stand saw
 /// none: a drift the start-up calibration missed). Returns the robot's true heading change.
-double walk_with_bias(double bias, bool magnetometer, double seconds, double* estimate = nullptr) {
+double walk_with_bias(double bias, bool magnetometer, double seconds, double bias_time = 0.0,
+                      double* estimate = nullptr) {
   ParameterStore store;
   walk::HeadingHold hold(store, kPeriod);
+  EXPECT_TRUE(store.set_now({{"walk.balance.heading_mag_bias_time", bias_time}}).is_ok());
   hold.reset();
   const double pitch = 0.12;  // the walk's forward lean
   double yaw = 0.0;
@@ -95,19 +97,32 @@ double walk_with_bias(double bias, bool magnetometer, double seconds, double* es
 
 TEST(MagneticHeading, GyroBiasTurnsTheGyroOnlyWalkButNotTheFusedOne) {
   const double bias = 0.02;  // a third of the stock register's step
-  const double gyro_only = walk_with_bias(bias, false, 30.0);
-  double fused_estimate = 0.0;
-  const double fused = walk_with_bias(bias, true, 30.0, &fused_estimate);
-  // Gyro only: the hold steers the measured heading to 0, so the robot turns by -bias t.
-  EXPECT_LT(gyro_only, -0.4);
-  // Fused: the magnetometer tells the true heading; the hold keeps it.
-  EXPECT_LT(std::abs(fused), 0.06);
-  EXPECT_LT(std::abs(fused - fused_estimate), 0.03);
+  const double gyro_only_30 = walk_with_bias(bias, false, 30.0);
+  const double gyro_only_60 = walk_with_bias(bias, false, 60.0);
+  // Gyro only: the hold steers the measured heading to 0, so the robot turns by -bias t,
+  // without bound.
+  EXPECT_LT(gyro_only_30, -0.4);
+  EXPECT_LT(gyro_only_60, -1.0);
+  // Fused (the defaults: heading_mag_time 10 s, no bias learning): the error stays near
+  // -bias * 10 s = -0.2 rad however long the walk.
+  const double fused_30 = walk_with_bias(bias, true, 30.0);
+  const double fused_60 = walk_with_bias(bias, true, 60.0);
+  EXPECT_NEAR(fused_30, -0.2, 0.04);
+  EXPECT_NEAR(fused_60, -0.2, 0.03);
+  // Learning the bias from the magnetometer (over 10 s) takes that error away too.
+  double estimate = 0.0;
+  const double learnt = walk_with_bias(bias, true, 60.0, 10.0, &estimate);
+  EXPECT_LT(std::abs(learnt), 0.03);
+  EXPECT_LT(std::abs(learnt - estimate), 0.03);
 }
 
 TEST(MagneticHeading, LearnsTheGyroBiasFromTheMagnetometer) {
   ParameterStore store;
   walk::MagneticHeading heading(store, kPeriod);
+  ASSERT_TRUE(store
+                  .set_now({{"walk.balance.heading_mag_time", 2.0},
+                            {"walk.balance.heading_mag_bias_time", 10.0}})
+                  .is_ok());
   const Eigen::Matrix3d r = attitude(0.8, 0.1, -0.05);
   // The heading is measured from magnetic north (0.4 rad from the world's x here).
   for (int i = 0; i < 100; ++i) heading.update(reading(r, 0.0, 0.0, true, 0.4), true);
