@@ -59,6 +59,15 @@ const std::vector<WorldOptionInfo>& world_option_table() {
        "magnetometer)",
        V::kName,
        {"ideal", "cm730", "cm730-nimbro"}},
+      {"mag_disturbance",
+       "gauss",
+       "0.03",
+       "amplitude of the floor's magnetic disturbance the cm730-nimbro magnetometer reads "
+       "(per horizontal axis, varying over 3 m; sim_hal/models/README.md \"Magnetometer\")",
+       V::kNumber,
+       {},
+       0.0,
+       0.5},
       {"contact",
        "",
        "the world's",
@@ -232,6 +241,7 @@ void set_number(WorldSpec& s, std::string_view key, double v) {
   if (key == "latency_probability") s.randomise.latency_probability = v;
   if (key == "contact_range") s.randomise.contact_range = v;
   if (key == "latency_ticks") s.latency_ticks = static_cast<int>(v);
+  if (key == "mag_disturbance") s.mag_disturbance = v;
 }
 
 Status set_base(WorldSpec& s, const std::string& value, const std::string& shown) {
@@ -325,6 +335,7 @@ bool WorldSpec::is_set(std::string_view key) const {
   if (key == "physics_step_us") return physics_step_us != d.physics_step_us;
   if (key == "servo_law") return servo_law.has_value();
   if (key == "imu") return imu.has_value();
+  if (key == "mag_disturbance") return mag_disturbance.has_value();
   if (key == "contact") return contact.has_value();
   if (key == "friction") return friction.has_value();
   if (key == "urdf") return !urdf.empty();
@@ -357,6 +368,7 @@ WorldOptions WorldSpec::to_options() const {
   }
   if (servo_law) w.servo.law = *servo_law;
   if (imu) w.use_imu(*imu);
+  if (mag_disturbance) w.imu.chain.magnetometer.disturbance_gauss = *mag_disturbance;
   if (contact) parse_contact_kind(*contact, w.contact);
   if (friction) w.contact.friction = *friction;
   w.physics_step_ns = physics_step_us * 1000;
