@@ -11,6 +11,7 @@
 #include "stride/sim_hal/imu_sampler.hpp"
 #include "stride/sim_hal/magnetometer_model.hpp"
 #include "stride/sim_hal/world_options.hpp"
+#include "stride/sim_hal/world_spec.hpp"
 
 namespace stride::sim {
 namespace {
@@ -146,6 +147,24 @@ TEST(Magnetometer, SamplerGivesAFieldOnlyToTheNimbroChainAndKeepsTheWorldStream)
     for (int k = 0; k < 10; ++k) chain.step(kUpright, Eigen::Vector3d::Zero(), 0.002, expected);
     EXPECT_EQ(rng.next_u64(), expected.next_u64());
   }
+}
+
+TEST(ImuNimbro, WorldOptionsNameTheProfileAndTheFloorField) {
+  WorldSpec spec;
+  ASSERT_TRUE(spec.set("imu", "cm730-nimbro", "--imu").is_ok());
+  ASSERT_TRUE(spec.set("mag_disturbance", "0.01", "--mag-disturbance").is_ok());
+  const WorldOptions o = spec.to_options();
+  EXPECT_EQ(o.imu_kind(), ImuKind::kCm730Nimbro);
+  EXPECT_TRUE(o.imu.chain.noise);  // --noise on by default, kept by the chain's swap
+  EXPECT_EQ(o.imu.chain.magnetometer.disturbance_gauss, 0.01);
+  const nlohmann::json j = to_json(spec);
+  EXPECT_EQ(j.at("imu"), "cm730-nimbro");
+  EXPECT_EQ(j.at("mag_disturbance"), 0.01);
+  const Status bad = spec.set("imu", "nimbro", "--imu");
+  EXPECT_EQ(bad.message(), "--imu: expected ideal, cm730 or cm730-nimbro, got 'nimbro'");
+  EXPECT_FALSE(spec.set("mag_disturbance", "-0.1", "--mag-disturbance").is_ok());
+  EXPECT_EQ(spec.to_options().imu_kind(), ImuKind::kCm730Nimbro);   // unchanged by the errors
+  EXPECT_EQ(WorldSpec{}.to_options().imu_kind(), ImuKind::kCm730);  // the default world's
 }
 
 }  // namespace
