@@ -20,7 +20,11 @@ void declare(stride::core::CliArgs& args) {
       .option("bus-margin-us", "serial: time added to every bus transaction's wire time", true,
               "1500")
       .option("allow-missing", "serial: start even if devices are missing (they are retried)",
-              false);
+              false)
+      .option("cm730",
+              "serial: the CM730's firmware: stock (ROBOTIS table, 10-bit IMU) or nimbro (NimbRo's "
+              "table: 16-bit IMU and a magnetometer, which the walk's heading hold then uses)",
+              true, "stock");
 }
 
 const char* health_name(stride::hal::DeviceHealth h) {
@@ -50,6 +54,11 @@ Status check(const stride::core::CliArgs& args, std::int64_t period_ns) {
   if (margin_us < 0 || margin_us * 1000 > period_ns) {
     return Status::error("option --bus-margin-us: must be between 0 and the loop period");
   }
+  dxl::Cm730Profile profile = dxl::Cm730Profile::kStock;
+  if (!dxl::parse_cm730_profile(args.get("cm730"), profile)) {
+    return Status::error("option --cm730: expected stock or nimbro, got '" + args.get("cm730") +
+                         "'");
+  }
   return {};
 }
 
@@ -64,6 +73,7 @@ Status make(const stride::core::CliArgs& args, std::int64_t period_ns,
   auto options = stride::fw::dynamixel_options(table, period_ns);
   options.margin_ns = margin_us * 1000;
   options.allow_missing = args.has("allow-missing");
+  (void)dxl::parse_cm730_profile(args.get("cm730"), options.cm730_profile);  // checked above
   options.self_paced = false;  // stride-fw's RealtimeRobot paces the loop
   std::unique_ptr<dxl::DynamixelRobot> robot;
   if (Status s = dxl::open_dynamixel_robot(args.get("port"), static_cast<std::uint32_t>(baud),

@@ -29,6 +29,15 @@ ImuChain ImuChain::ideal() {
   return c;
 }
 
+ImuChain ImuChain::cm730_nimbro() {
+  ImuChain c;
+  c.gyro_register_lsb = kPi / 180.0 * 500.0 / 65536.0;
+  c.accel_register_lsb = 2.0 * 4.0 * 9.81 / 65536.0;
+  c.register_half_range = 32768.0;
+  c.magnetometer.present = true;
+  return c;
+}
+
 bool ImuChain::is_ideal() const {
   return gyro.output_rate_hz <= 0.0;
 }

@@ -5,7 +5,8 @@ namespace stride::sim {
 
 void ImuSampler::reset(const ImuOptions& options, double gravity_mps2,
                        const Eigen::Vector3d& accel_bias, const Eigen::Vector3d& gyro_bias,
-                       const Eigen::Matrix3d& torso_rotation) {
+                       const Eigen::Matrix3d& torso_rotation,
+                       const MagnetometerStart& magnetometer) {
   options_ = options;
   gravity_ = gravity_mps2;
   accel_bias_ = accel_bias;
@@ -16,6 +17,13 @@ void ImuSampler::reset(const ImuOptions& options, double gravity_mps2,
     model_.configure(options.chain);
     model_.reset(torso_rotation.transpose() * Eigen::Vector3d(0, 0, gravity_mps2),
                  Eigen::Vector3d::Zero(), accel_bias, gyro_bias);
+    if (options.chain.magnetometer.present) {
+      period_s_ = magnetometer.period_s;
+      magnetometer_.reset(options.chain.magnetometer, magnetometer.seed, torso_rotation,
+                          magnetometer.position, options.chain.noise);
+      reading_.mag = magnetometer_.reading();
+      reading_.has_mag = true;
+    }
   }
 }
 
@@ -33,6 +41,10 @@ void ImuSampler::sample(const TorsoMotion& motion, WorldRng& rng) {
   if (chain_) {
     reading_.accel = model_.accel();
     reading_.gyro = model_.gyro();
+    if (reading_.has_mag) {
+      magnetometer_.sample(motion.rotation, motion.position, period_s_);
+      reading_.mag = magnetometer_.reading();
+    }
     return;
   }
   Eigen::Vector3d accel_noise, gyro_noise;

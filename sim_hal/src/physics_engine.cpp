@@ -74,9 +74,32 @@ bool parse_world_preset(std::string_view text, WorldPreset& out) {
 }
 
 void WorldOptions::use_cm730_imu(bool cm730) {
+  use_imu(cm730 ? ImuKind::kCm730 : ImuKind::kIdeal);
+}
+
+void WorldOptions::use_imu(ImuKind kind) {
   const bool noise = imu.chain.noise;
-  imu.chain = cm730 ? ImuChain{} : ImuChain::ideal();
+  imu.chain = kind == ImuKind::kIdeal         ? ImuChain::ideal()
+              : kind == ImuKind::kCm730Nimbro ? ImuChain::cm730_nimbro()
+                                              : ImuChain{};
   imu.chain.noise = noise;
+}
+
+ImuKind WorldOptions::imu_kind() const {
+  if (imu.chain.is_ideal()) return ImuKind::kIdeal;
+  return imu.chain.magnetometer.present ? ImuKind::kCm730Nimbro : ImuKind::kCm730;
+}
+
+const char* to_string(ImuKind kind) {
+  switch (kind) {
+    case ImuKind::kIdeal:
+      return "ideal";
+    case ImuKind::kCm730:
+      return "cm730";
+    case ImuKind::kCm730Nimbro:
+      return "cm730-nimbro";
+  }
+  return "?";
 }
 
 void WorldOptions::apply(WorldPreset preset) {

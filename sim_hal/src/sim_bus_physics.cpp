@@ -48,6 +48,7 @@ hal::dxl::PhysicsImu SimBusPhysics::imu() const {
   hal::dxl::PhysicsImu imu;
   imu.accel_mps2 = sensors_.cm730.accel_mps2;
   imu.gyro_rad_s = sensors_.cm730.gyro_rad_s;
+  imu.mag_gauss = sensors_.cm730.mag_gauss;
   return imu;
 }
 

@@ -95,7 +95,7 @@ std::string describe_world(const WorldOptions& o) {
   }
   return std::string(to_string(o.engine)) + ", " +
          (o.servo.law == ServoLaw::kIdentified ? "identified" : "seed") + " servo law, " +
-         (o.imu.chain.is_ideal() ? "ideal" : "cm730") + " IMU, " + ground + ", step " +
+         to_string(o.imu_kind()) + " IMU, " + ground + ", step " +
          std::to_string(o.physics_step_ns / 1000) + " us" + describe_calibration(o);
 }
 

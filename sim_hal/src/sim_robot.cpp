@@ -44,7 +44,9 @@ void SimRobot::read(hal::SensorFrame& out) noexcept {
   for (int k = 0; k < 3; ++k) {
     out.cm730.accel_mps2[static_cast<std::size_t>(k)] = imu.accel[k];
     out.cm730.gyro_rad_s[static_cast<std::size_t>(k)] = imu.gyro[k];
+    out.cm730.mag_gauss[static_cast<std::size_t>(k)] = imu.mag[k];
   }
+  out.cm730.has_magnetometer = imu.has_mag;
   out.cm730.voltage_v = world_->battery_voltage();
   out.cm730.buttons = 0;
   out.cm730.error_flags = 0;

@@ -72,8 +72,9 @@ struct SimWorld::Impl {
   void servo_torques();
   bool step_once();
   TorsoMotion torso_motion() const {
-    return {engine->link_pose(0).linear(), engine->torso_angular_velocity(),
-            engine->torso_acceleration()};
+    const Eigen::Isometry3d pose = engine->link_pose(0);
+    return {pose.linear(), engine->torso_angular_velocity(), engine->torso_acceleration(),
+            pose.translation()};
   }
 };
 
@@ -353,8 +354,14 @@ Status SimWorld::reset(const ResetSpec& spec) {
   w.steps = 0;
   w.status = WorldStatus::kRunning;
   w.reason.clear();
+  // The magnetometer draws from its own generator, seeded from a copy of the world's (so its
+  // draws depend on the seed and the episode but take nothing from the world's stream).
+  MagnetometerStart magnetometer;
+  magnetometer.position = w.engine->link_pose(0).translation();
+  magnetometer.seed = WorldRng(w.rng).next_u64() ^ 0x6d61676e65746f6dULL;
+  magnetometer.period_s = static_cast<double>(w.options.control_period_ns) * 1e-9;
   w.imu.reset(w.options.imu, w.options.gravity_mps2, w.accel_bias, w.gyro_bias,
-              w.engine->link_pose(0).linear());
+              w.engine->link_pose(0).linear(), magnetometer);
   w.imu.sample(w.torso_motion(), w.rng);
   return Status::ok();
 }

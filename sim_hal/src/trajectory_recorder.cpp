@@ -55,6 +55,10 @@ void TrajectoryRecorder::record(hal::Tick tick, const SimWorld& world,
                            {"right", contact(g.right_contact)},
                            {"other", g.other_contacts}}},
                          {"ball", {{"p", vec(g.ball_position)}, {"v", vec(g.ball_velocity)}}}};
+  if (sensors.cm730.has_magnetometer) {
+    const auto& m = sensors.cm730.mag_gauss;
+    line["imu"]["mag"] = {m[0], m[1], m[2]};
+  }
   text_ += line.dump() + "\n";
   ++lines_;
 }

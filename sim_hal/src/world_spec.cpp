@@ -54,9 +54,20 @@ const std::vector<WorldOptionInfo>& world_option_table() {
       {"imu",
        "",
        "the world's",
-       "IMU model: ideal (true value plus white noise) or cm730 (chips and CM730)",
+       "IMU model: ideal (true value plus white noise), cm730 (chips and the stock CM730) or "
+       "cm730-nimbro (chips and the CM730 with NimbRo's firmware: 16-bit registers, a "
+       "magnetometer)",
        V::kName,
-       {"ideal", "cm730"}},
+       {"ideal", "cm730", "cm730-nimbro"}},
+      {"mag_disturbance",
+       "gauss",
+       "0.03",
+       "amplitude of the floor's magnetic disturbance the cm730-nimbro magnetometer reads "
+       "(per horizontal axis, varying over 3 m; sim_hal/models/README.md \"Magnetometer\")",
+       V::kNumber,
+       {},
+       0.0,
+       0.5},
       {"contact",
        "",
        "the world's",
@@ -218,7 +229,9 @@ Status set_name(WorldSpec& s, std::string_view key, const std::string& value) {
   } else if (key == "servo_law") {
     s.servo_law = value == "seed" ? ServoLaw::kSeed : ServoLaw::kIdentified;
   } else if (key == "imu") {
-    s.imu_cm730 = value == "cm730";
+    s.imu = value == "cm730"          ? ImuKind::kCm730
+            : value == "cm730-nimbro" ? ImuKind::kCm730Nimbro
+                                      : ImuKind::kIdeal;
   } else if (key == "contact") {
     s.contact = value;
   } else if (key == "noise") {
@@ -238,6 +251,7 @@ void set_number(WorldSpec& s, std::string_view key, double v) {
   if (key == "contact_range") s.randomise.contact_range = v;
   if (key == "com_range") s.randomise.com_range = v;
   if (key == "latency_ticks") s.latency_ticks = static_cast<int>(v);
+  if (key == "mag_disturbance") s.mag_disturbance = v;
 }
 
 Status set_base(WorldSpec& s, const std::string& value, const std::string& shown) {
@@ -330,7 +344,8 @@ bool WorldSpec::is_set(std::string_view key) const {
   if (key == "engine") return engine != d.engine;
   if (key == "physics_step_us") return physics_step_us != d.physics_step_us;
   if (key == "servo_law") return servo_law.has_value();
-  if (key == "imu") return imu_cm730.has_value();
+  if (key == "imu") return imu.has_value();
+  if (key == "mag_disturbance") return mag_disturbance.has_value();
   if (key == "contact") return contact.has_value();
   if (key == "friction") return friction.has_value();
   if (key == "urdf") return !urdf.empty();
@@ -363,7 +378,8 @@ WorldOptions WorldSpec::to_options() const {
     w.apply(base);
   }
   if (servo_law) w.servo.law = *servo_law;
-  if (imu_cm730) w.use_cm730_imu(*imu_cm730);
+  if (imu) w.use_imu(*imu);
+  if (mag_disturbance) w.imu.chain.magnetometer.disturbance_gauss = *mag_disturbance;
   if (contact) parse_contact_kind(*contact, w.contact);
   if (friction) w.contact.friction = *friction;
   w.physics_step_ns = physics_step_us * 1000;

@@ -78,7 +78,8 @@ nlohmann::json to_json(const WorldSpec& s) {
   if (s.is_set("engine")) j["engine"] = to_string(s.engine);
   j["physics_step_us"] = s.physics_step_us;
   if (s.servo_law) j["servo_law"] = *s.servo_law == ServoLaw::kSeed ? "seed" : "identified";
-  if (s.imu_cm730) j["imu"] = *s.imu_cm730 ? "cm730" : "ideal";
+  if (s.imu) j["imu"] = to_string(*s.imu);
+  if (s.mag_disturbance) j["mag_disturbance"] = *s.mag_disturbance;
   if (s.contact) j["contact"] = *s.contact;
   if (s.friction) j["friction"] = *s.friction;
   if (!s.urdf.empty()) j["urdf"] = std::filesystem::absolute(s.urdf).string();

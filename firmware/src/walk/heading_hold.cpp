@@ -7,7 +7,7 @@
 namespace stride::fw::walk {
 
 HeadingHold::HeadingHold(ParameterStore& store, double period_s)
-    : store_(store), period_s_(period_s) {
+    : store_(store), period_s_(period_s), magnetic_(store, period_s) {
   gain_ = store.add_real("walk.balance.heading_gain", 0.5, 0.0, 2.0, "1/step",
                          "turn velocity (rad/step) added per rad of heading error while no turn "
                          "is commanded (0: heading hold off)");
@@ -30,6 +30,10 @@ void HeadingHold::reset() noexcept {
   window_ticks_ = 0;
   previous_mean_ = step_pair_mean_ = 0.0;
   previous_mean_valid_ = false;
+  magnetic_.reset();
+  using_magnetometer_ = false;
+  reference_valid_ = false;
+  reference_ = 0.0;
 }
 
 void HeadingHold::update(const hal::Cm730State& imu, double body_tilt, bool calibrating,
@@ -37,6 +41,8 @@ void HeadingHold::update(const hal::Cm730State& imu, double body_tilt, bool cali
   const double gx = std::isfinite(imu.gyro_rad_s[0]) ? imu.gyro_rad_s[0] : 0.0;
   const double gz = std::isfinite(imu.gyro_rad_s[2]) ? imu.gyro_rad_s[2] : 0.0;
   const double yaw_rate = std::cos(body_tilt) * gz - std::sin(body_tilt) * gx;
+  using_magnetometer_ = magnetic_.active(imu);
+  if (using_magnetometer_) magnetic_.update(imu, calibrating);
   if (calibrating) {
     bias_sum_ += yaw_rate;
     ++bias_samples_;
@@ -46,12 +52,19 @@ void HeadingHold::update(const hal::Cm730State& imu, double body_tilt, bool cali
   const double alpha = period_s_ / (period_s_ + store_.value(filter_time_));
   rate_ += alpha * (rate - rate_);
   holding_ = hold;
-  if (hold) {
+  if (hold && using_magnetometer_) {
+    if (!reference_valid_) reference_ = magnetic_.heading();
+    reference_valid_ = true;
+    error_ = magnetic_.heading() - reference_;
+    window_sum_ += error_;
+    ++window_ticks_;
+  } else if (hold) {
     error_ += rate * period_s_;
     window_sum_ += error_;
     ++window_ticks_;
   } else {
     error_ = 0.0;
+    reference_valid_ = false;
     window_sum_ = 0.0;
     window_ticks_ = 0;
     previous_mean_valid_ = false;

@@ -1,6 +1,7 @@
-// Control table data of the MX-64/MX-106 (1.0 and 2.0 firmware) and the stock CM730.
-// Figures: igus.md 6.2 (MX 1.0), 6.3 (MX 2.0), 6.4 (CM730 as NUbots uses it), and the ROBOTIS
-// e-manual MX pages for initial values and ranges not listed there.
+// Control table data of the MX-64/MX-106 (1.0 and 2.0 firmware), the stock CM730 and the CM730
+// with NimbRo's firmware. Figures: igus.md 6.2 (MX 1.0), 6.3 (MX 2.0), 6.4 (CM730 as NUbots
+// uses it), 6.5 (NimbRo's CM730), and the ROBOTIS e-manual MX pages for initial values and
+// ranges not listed there.
 #include "stride/hal/dynamixel/control_table.hpp"
 
 #include <array>
@@ -134,6 +135,35 @@ constexpr std::array kCm730 = {
     Register{"present_voltage", 50, 1, R, M, 150, 0, 255},
 };
 
+// NimbRo's CM730 (igus.md 6.5). The IMU registers are signed 16-bit values (two's complement in
+// the register's 0..65535); upright and still the accelerometer's z reads +1 g = 8192 LSB (65536 /
+// 8).
+constexpr std::array kCm730Nimbro = {
+    Register{"model_number", 0, 2, R, E, cm730_nimbro::kModel, cm730_nimbro::kModel,
+             cm730_nimbro::kModel},
+    Register{"firmware_version", 2, 1, R, E, 16, 0, 255},
+    Register{"id", 3, 1, RW, E, 200, 0, 253},
+    Register{"baud_rate", 4, 1, RW, E, 1, 0, 254},
+    Register{"return_delay_time", 5, 1, RW, E, 0, 0, 254},
+    Register{"status_return_level", 16, 1, RW, E, 2, 0, 2},
+    Register{"dynamixel_power", 24, 1, RW, M, 0, 0, 1},
+    Register{"led_panel", 25, 1, RW, M, 0, 0, 7},
+    Register{"rgbled5", 26, 2, RW, M, 0, 0, 32767},
+    Register{"rgbled6", 28, 2, RW, M, 0, 0, 32767},
+    Register{"button", 30, 1, R, M, 0, 0, 3},
+    Register{"battery_voltage", 31, 1, R, M, 150, 0, 255},
+    Register{"gyro_x", 32, 2, R, M, 0, 0, 65535},
+    Register{"gyro_y", 34, 2, R, M, 0, 0, 65535},
+    Register{"gyro_z", 36, 2, R, M, 0, 0, 65535},
+    Register{"acc_x", 38, 2, R, M, 0, 0, 65535},
+    Register{"acc_y", 40, 2, R, M, 0, 0, 65535},
+    Register{"acc_z", 42, 2, R, M, 8192, 0, 65535},
+    Register{"mag_x", 44, 2, R, M, 0, 0, 65535},
+    Register{"mag_y", 46, 2, R, M, 0, 0, 65535},
+    Register{"mag_z", 48, 2, R, M, 0, 0, 65535},
+    Register{"temperature", 50, 1, R, M, 35, 0, 255},
+};
+
 const ControlTable kMx64V1Table{"MX-64", mx1::kModelMx64, Protocol::kV1, mx1::kTableSize, kMx64V1};
 const ControlTable kMx106V1Table{"MX-106", mx1::kModelMx106, Protocol::kV1, mx1::kTableSize,
                                  kMx106V1};
@@ -142,6 +172,8 @@ const ControlTable kMx64V2Table{"MX-64(2.0)", mx2::kModelMx64, Protocol::kV2, mx
 const ControlTable kMx106V2Table{"MX-106(2.0)", mx2::kModelMx106, Protocol::kV2, mx2::kTableSize,
                                  kMx106V2};
 const ControlTable kCm730Table{"CM730", cm730::kModel, Protocol::kV1, cm730::kTableSize, kCm730};
+const ControlTable kCm730NimbroTable{"CM730 (NimbRo firmware)", cm730_nimbro::kModel, Protocol::kV1,
+                                     cm730_nimbro::kTableSize, kCm730Nimbro};
 
 }  // namespace
 
@@ -182,9 +214,32 @@ const ControlTable& cm730_table() {
   return kCm730Table;
 }
 
+const ControlTable& cm730_nimbro_table() {
+  return kCm730NimbroTable;
+}
+
+const char* to_string(Cm730Profile profile) {
+  return profile == Cm730Profile::kNimbro ? "nimbro" : "stock";
+}
+
+bool parse_cm730_profile(std::string_view text, Cm730Profile& out) {
+  if (text == "stock") {
+    out = Cm730Profile::kStock;
+  } else if (text == "nimbro") {
+    out = Cm730Profile::kNimbro;
+  } else {
+    return false;
+  }
+  return true;
+}
+
+const ControlTable& cm730_table(Cm730Profile profile) {
+  return profile == Cm730Profile::kNimbro ? kCm730NimbroTable : kCm730Table;
+}
+
 const ControlTable* table_for_model(std::uint16_t model_number, Protocol protocol) {
-  for (const ControlTable* t :
-       {&kMx64V1Table, &kMx106V1Table, &kMx64V2Table, &kMx106V2Table, &kCm730Table}) {
+  for (const ControlTable* t : {&kMx64V1Table, &kMx106V1Table, &kMx64V2Table, &kMx106V2Table,
+                                &kCm730Table, &kCm730NimbroTable}) {
     if (t->model_number == model_number && t->protocol == protocol) return t;
   }
   return nullptr;

@@ -159,11 +159,15 @@ Status DynamixelRobot::start() {
       skipped_[i] = true;
       continue;
     }
-    const std::uint16_t expected =
-        i == kCm730Index ? cm730::kModel : model_number_v1(options_.calibration[i].model);
+    const std::uint16_t expected = i == kCm730Index
+                                       ? cm730_table(options_.cm730_profile).model_number
+                                       : model_number_v1(options_.calibration[i].model);
     if (model != expected) {
       wrong += (wrong.empty() ? "" : ", ") + device_name(i) + " is " + model_name(model) +
-               ", servo table says " + model_name(expected);
+               (i == kCm730Index
+                    ? std::string(", --cm730 ") + to_string(options_.cm730_profile) + " expects "
+                    : std::string(", servo table says ")) +
+               model_name(expected);
       continue;
     }
     d.health = DeviceHealth::kOk;
@@ -214,6 +218,21 @@ void DynamixelRobot::decode_cm730(const std::uint8_t* data) noexcept {
   auto at = [&](std::uint8_t address) { return read_u16(data + (address - kCm730ReadAddress)); };
   Cm730State& c = state_.cm730;
   c.buttons = data[0];
+  if (options_.cm730_profile == Cm730Profile::kNimbro) {
+    namespace n = cm730_nimbro;
+    c.gyro_rad_s = {units::nimbro_gyro_from_raw(at(n::kGyroX)),
+                    units::nimbro_gyro_from_raw(at(n::kGyroY)),
+                    units::nimbro_gyro_from_raw(at(n::kGyroZ))};
+    c.accel_mps2 = {units::nimbro_accel_from_raw(at(n::kAccelX)),
+                    units::nimbro_accel_from_raw(at(n::kAccelY)),
+                    units::nimbro_accel_from_raw(at(n::kAccelZ))};
+    c.mag_gauss = {units::nimbro_mag_from_raw(at(n::kMagX)),
+                   units::nimbro_mag_from_raw(at(n::kMagY)),
+                   units::nimbro_mag_from_raw(at(n::kMagZ))};
+    c.has_magnetometer = true;
+    c.voltage_v = units::voltage_from_register(data[n::kBatteryVoltage - kCm730ReadAddress]);
+    return;
+  }
   c.gyro_rad_s = {units::gyro_from_raw(at(cm730::kGyroX)), units::gyro_from_raw(at(cm730::kGyroY)),
                   units::gyro_from_raw(at(cm730::kGyroZ))};
   c.accel_mps2 = {units::accel_from_raw(at(cm730::kAccelX)),

@@ -149,5 +149,36 @@ std::uint16_t gyro_to_raw(double rad_s) {
   return clamp_round<std::uint16_t>(rad_s / kGyroPerLsb + 512.0, 0.0, 1023.0);
 }
 
+namespace {
+double from_signed16(std::uint16_t raw, double lsb) {
+  return static_cast<double>(static_cast<std::int16_t>(raw)) * lsb;
+}
+std::uint16_t to_signed16(double value, double lsb) {
+  if (!std::isfinite(value)) return 0;
+  const auto count =
+      static_cast<std::int16_t>(std::lround(std::clamp(value / lsb, -32768.0, 32767.0)));
+  return static_cast<std::uint16_t>(count);
+}
+}  // namespace
+
+double nimbro_gyro_from_raw(std::uint16_t raw) {
+  return from_signed16(raw, kNimbroGyroPerLsb);
+}
+std::uint16_t nimbro_gyro_to_raw(double rad_s) {
+  return to_signed16(rad_s, kNimbroGyroPerLsb);
+}
+double nimbro_accel_from_raw(std::uint16_t raw) {
+  return from_signed16(raw, kNimbroAccelPerLsb);
+}
+std::uint16_t nimbro_accel_to_raw(double mps2) {
+  return to_signed16(mps2, kNimbroAccelPerLsb);
+}
+double nimbro_mag_from_raw(std::uint16_t raw) {
+  return from_signed16(raw, kNimbroMagPerLsb);
+}
+std::uint16_t nimbro_mag_to_raw(double gauss) {
+  return to_signed16(gauss, kNimbroMagPerLsb);
+}
+
 }  // namespace units
 }  // namespace stride::hal::dxl

@@ -40,7 +40,7 @@ VirtualBus::VirtualBus(const Options& options, std::unique_ptr<VirtualBusPhysics
   }
   Device cm;
   cm.id = kCm730Id;
-  cm.table = &cm730_table();
+  cm.table = &cm730_table(options_.cm730_profile);
   devices_.push_back(std::move(cm));
   for (Device& d : devices_) {
     reset_device(d);
@@ -107,6 +107,19 @@ void VirtualBus::push_command(Device& device) {
 void VirtualBus::refresh(Device& device) {
   if (device.servo_index < 0) {
     const PhysicsImu imu = physics_->imu();
+    if (options_.cm730_profile == Cm730Profile::kNimbro) {
+      namespace n = cm730_nimbro;
+      for (std::size_t k = 0; k < 3; ++k) {
+        const auto offset = static_cast<std::uint16_t>(2 * k);
+        store_value(device.mem, n::kGyroX + offset, 2,
+                    units::nimbro_gyro_to_raw(imu.gyro_rad_s[k]));
+        store_value(device.mem, n::kAccelX + offset, 2,
+                    units::nimbro_accel_to_raw(imu.accel_mps2[k]));
+        store_value(device.mem, n::kMagX + offset, 2, units::nimbro_mag_to_raw(imu.mag_gauss[k]));
+      }
+      device.mem[n::kBatteryVoltage] = units::voltage_to_register(15.0);
+      return;
+    }
     store_value(device.mem, cm730::kAccelX, 2, units::accel_to_raw(imu.accel_mps2[0]));
     store_value(device.mem, cm730::kAccelY, 2, units::accel_to_raw(imu.accel_mps2[1]));
     store_value(device.mem, cm730::kAccelZ, 2, units::accel_to_raw(imu.accel_mps2[2]));

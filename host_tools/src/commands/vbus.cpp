@@ -88,6 +88,10 @@ void declare_options(stride::core::CliArgs& args) {
               "do not ask for SCHED_FIFO and mlockall (asked for by default, so that "
               "replies are not late on a busy machine)",
               false)
+      .option("cm730",
+              "the CM730's firmware to serve: stock (ROBOTIS table) or nimbro (NimbRo's: 16-bit "
+              "IMU and a magnetometer); default: nimbro when --imu is cm730-nimbro, else stock",
+              true)
       .option("sim",
               "back the servos and the IMU with the Simbody simulation of the robot "
               "(protocol 1; implies --lockstep: one control period per BULK_READ)",
@@ -131,9 +135,23 @@ Status read_bus_options(const stride::core::CliArgs& args, const std::vector<std
     return Status::error("option --sim: needs --protocol 1 (the CM730's IMU)");
   options.lockstep = args.has("lockstep") || use_sim;
   options.period_ns = static_cast<std::int64_t>(period_ms * 1e6);
+  const bool profile_given = args.has("cm730");
+  if (profile_given && !dxl::parse_cm730_profile(args.get("cm730"), options.cm730_profile))
+    return Status::error("option --cm730: expected stock or nimbro, got '" + args.get("cm730") +
+                         "'");
   if (use_sim) {
     if (Status s = sim::read_world_options(args, world); !s) return s;
     world.control_period_ns = options.period_ns;
+    // The CM730 serves what its chips read: NimbRo's table goes with NimbRo's IMU chain.
+    const bool nimbro_imu = world.imu_kind() == sim::ImuKind::kCm730Nimbro;
+    if (!profile_given && nimbro_imu) options.cm730_profile = dxl::Cm730Profile::kNimbro;
+    if (options.cm730_profile == dxl::Cm730Profile::kNimbro && !nimbro_imu) {
+      if (args.has("imu"))
+        return Status::error(
+            "option --cm730 nimbro: the simulation's --imu must be cm730-nimbro, got '" +
+            args.get("imu") + "'");
+      world.use_imu(sim::ImuKind::kCm730Nimbro);
+    }
   }
   return {};
 }
@@ -266,9 +284,10 @@ int run_vbus(int argc, char** argv) {
   sigemptyset(&action.sa_mask);
   sigaction(SIGINT, &action, nullptr);
   sigaction(SIGTERM, &action, nullptr);
-  std::fprintf(stderr, "stride vbus: serving on %s -> %s (%s%s)\n", server->link_path().c_str(),
-               server->slave_path().c_str(), options.lockstep ? "lockstep" : "wall clock",
-               use_sim ? ", Simbody simulation" : "");
+  std::fprintf(stderr, "stride vbus: serving on %s -> %s (%s%s, %s CM730)\n",
+               server->link_path().c_str(), server->slave_path().c_str(),
+               options.lockstep ? "lockstep" : "wall clock", use_sim ? ", Simbody simulation" : "",
+               dxl::to_string(options.cm730_profile));
   const Status served = server->serve(*bus.responder, g_vbus_stop);
   report_counters(bus, args.has("json"));
   if (!served) {

@@ -63,7 +63,7 @@ TEST(StrideSimServo, BadInputNamesTheOptionAndExitsTwo) {
   EXPECT_NE(err.find("--servo-law: expected seed or identified"), std::string::npos) << err;
   err = run_stride("sim stand --imu perfect 2>&1 >/dev/null", code);
   EXPECT_EQ(code, 2);
-  EXPECT_NE(err.find("--imu: expected ideal or cm730"), std::string::npos) << err;
+  EXPECT_NE(err.find("--imu: expected ideal, cm730 or cm730-nimbro"), std::string::npos) << err;
 }
 
 // Another robot description: the igus model with a trunk 10 % heavier is what gets simulated.

@@ -350,7 +350,7 @@ TEST(TaskConfig, RobotFieldsReachTheWorldsAndNameTheFieldOnError) {
   EXPECT_EQ(error_of(d), "servo_law: expected seed or identified, got 'gazebo'");
   d = minimal();
   d["imu"] = 3;
-  EXPECT_EQ(error_of(d), "imu: expected ideal or cm730, got '3'");
+  EXPECT_EQ(error_of(d), "imu: expected ideal, cm730 or cm730-nimbro, got '3'");
   d = minimal();
   d["contact"] = "lawn";
   EXPECT_EQ(error_of(d), "contact: expected seed, turf, soft or hard, got 'lawn'");
@@ -413,8 +413,9 @@ TEST(TaskConfig, AWorldObjectTakesTheTablesOptions) {
   d["world"] = {{"gravity", 3.7}};
   EXPECT_EQ(error_of(d),
             "world.gravity: unknown world option (known: base, engine, physics_step_us, "
-            "servo_law, imu, contact, friction, urdf, noise, seed, friction_range, mass_range, "
-            "strength_range, latency_probability, contact_range, com_range, latency_ticks, push)");
+            "servo_law, imu, mag_disturbance, contact, friction, urdf, noise, seed, "
+            "friction_range, mass_range, strength_range, latency_probability, contact_range, "
+            "com_range, latency_ticks, push)");
   d["world"] = {{"friction", 9}};
   EXPECT_EQ(error_of(d), "world.friction: must be in 0.05..3, got 9");
   d["world"] = {{"push", {"3,up,1"}}};

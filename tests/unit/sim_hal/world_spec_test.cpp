@@ -151,7 +151,7 @@ TEST(WorldSpec, ASpecSurvivesItsJson) {
   EXPECT_EQ(a.pushes[0].direction_rad, b.pushes[0].direction_rad);
   // A bad value in an object leaves the spec as it was.
   EXPECT_EQ(read_world_spec({{"friction", 0.3}, {"imu", "gps"}}, "world", back).message(),
-            "world.imu: expected ideal or cm730, got 'gps'");
+            "world.imu: expected ideal, cm730 or cm730-nimbro, got 'gps'");
   EXPECT_EQ(to_json(back), j);
   EXPECT_EQ(read_world_spec({{"push", "1,left,1"}}, "world", back).message(),
             "world.push: must be a list of \"T,DIR,IMPULSE\" strings");

@@ -36,9 +36,13 @@ struct Cm730State {
   std::array<double, 3> accel_mps2{0.0, 0.0, 0.0};
   /// Angular rate [rad/s] about the torso x, y, z axes.
   std::array<double, 3> gyro_rad_s{0.0, 0.0, 0.0};
-  double voltage_v = 0.0;        ///< battery voltage [V]
-  std::uint8_t buttons = 0;      ///< button bit field
-  std::uint8_t error_flags = 0;  ///< Dynamixel status error bits of the CM730
+  /// Magnetic field [gauss] in the torso frame, when the CM730 has a magnetometer (NimbRo's
+  /// firmware, igus.md 6.5); zero otherwise.
+  std::array<double, 3> mag_gauss{0.0, 0.0, 0.0};
+  bool has_magnetometer = false;  ///< mag_gauss holds a reading
+  double voltage_v = 0.0;         ///< battery voltage [V]
+  std::uint8_t buttons = 0;       ///< button bit field
+  std::uint8_t error_flags = 0;   ///< Dynamixel status error bits of the CM730
   DeviceHealth health = DeviceHealth::kMissing;
 };
 

@@ -14,6 +14,10 @@
 //  - the register the controller reads is quantised to the CM730 control table's unit: the
 //    stock table that Stride's serial HAL reads (igus.md 6.4: 10 bits, 4 g / 512 per LSB,
 //    1800 deg/s / 512 per LSB), clipped to its range.
+// NimbRo's CM730 firmware (ImuChain::cm730_nimbro(), `--imu cm730-nimbro`, igus.md 6.5) reads
+// the same chips but reports signed 16-bit registers: gyro (pi/180) 500/65536 rad/s per LSB,
+// accelerometer 2*4*9.81/65536 m/s^2 per LSB, and adds a magnetometer (magnetometer_model.hpp).
+// Its sampling and averaging are taken to be the stock firmware's (not documented otherwise).
 // Bias: a fixed offset per episode (what remains after the robot's start-up calibration),
 // drawn by the world. Noise draws: three per chip sample, so the random stream depends only on
 // time, not on the options.
@@ -23,6 +27,7 @@
 
 #include <Eigen/Core>
 
+#include "stride/sim_hal/magnetometer_model.hpp"
 #include "stride/sim_hal/world_rng.hpp"
 
 namespace stride::sim {
@@ -45,6 +50,9 @@ struct ImuChain {
   double accel_register_lsb = 4.0 * 9.80665 / 512.0;                           ///< [m/s^2]
   double register_half_range = 512.0;  ///< LSBs either side of zero
   bool noise = false;                  ///< chip noise on (the draws happen either way)
+  MagnetometerSpec magnetometer{};     ///< present only with NimbRo's firmware
+  /// The chain with NimbRo's CM730 firmware: 16-bit registers at its scales, a magnetometer.
+  static ImuChain cm730_nimbro();
   /// The ideal sensor: every stage off, the reading is the true value at the period's end
   /// (SimWorld then adds ImuOptions' white noise per period, the model before the chain).
   static ImuChain ideal();

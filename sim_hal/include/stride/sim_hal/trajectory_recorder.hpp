@@ -6,7 +6,7 @@
 //    "com":[x,y,z],
 //    "joints":[20 present angles, servo order (Dynamixel ID 1..20), URDF angles, rad],
 //    "goals":[20 goal angles, rad],
-//    "imu":{"acc":[ax,ay,az],"gyro":[gx,gy,gz]},
+//    "imu":{"acc":[ax,ay,az],"gyro":[gx,gy,gz]} (+ "mag":[mx,my,mz] [gauss] with a magnetometer),
 //    "contacts":{"left":{"points":n,"force":[fx,fy,fz]},"right":{...},"other":n},
 //    "ball":{"p":[x,y,z],"v":[vx,vy,vz]}}
 // The first line is a header: {"format":"stride-trajectory","version":1,"joints":[names],

@@ -120,6 +120,12 @@ struct ImuOptions {
   void set_noise(bool on);
 };
 
+/// The IMU model by name (`--imu`): ideal, the stock CM730's chain (cm730) or the CM730 with
+/// NimbRo's firmware (cm730-nimbro: 16-bit registers and a magnetometer, imu_model.hpp).
+enum class ImuKind : std::uint8_t { kIdeal, kCm730, kCm730Nimbro };
+/// "ideal", "cm730" or "cm730-nimbro".
+const char* to_string(ImuKind kind);
+
 /// Which servo law drives the joints: the seed's (Gazebo figures, ServoModel) or the MX servo
 /// identified on a bench (MxServo: firmware duty law, DC motor with back-EMF, BAM's M6
 /// friction, backlash, the identified armature).
@@ -236,6 +242,10 @@ struct WorldOptions {
   void apply(WorldPreset preset);
   /// The IMU chain: the CM730's (true) or the ideal sensor, keeping the chain's noise switch.
   void use_cm730_imu(bool cm730);
+  /// The IMU chain of `kind`, keeping the chain's noise switch.
+  void use_imu(ImuKind kind);
+  /// Which of the named chains `imu.chain` is (kCm730 for a chain with no magnetometer).
+  ImuKind imu_kind() const;
   /// The thesis's world (WorldPreset::kSeed) with every other option at its default.
   static WorldOptions seed_world() {
     WorldOptions o;

@@ -54,8 +54,9 @@ struct WorldOptionInfo {
 };
 
 /// Every option of a world, in the order the help lists them: base, engine, physics_step_us,
-/// servo_law, imu, contact, friction, urdf, noise, seed, friction_range, mass_range,
-/// strength_range, latency_probability, contact_range, com_range, latency_ticks, push.
+/// servo_law, imu, mag_disturbance, contact, friction, urdf, noise, seed, friction_range,
+/// mass_range, strength_range, latency_probability, contact_range, com_range, latency_ticks,
+/// push.
 const std::vector<WorldOptionInfo>& world_option_table();
 /// The option of `key`, or null.
 const WorldOptionInfo* find_world_option(std::string_view key);
@@ -78,7 +79,8 @@ struct WorldSpec {
   EngineKind engine = EngineKind::kSimbody;
   std::int64_t physics_step_us = 2000;
   std::optional<ServoLaw> servo_law;        ///< unset: the base world's
-  std::optional<bool> imu_cm730;            ///< unset: the base world's (true: the CM730 chain)
+  std::optional<ImuKind> imu;               ///< unset: the base world's
+  std::optional<double> mag_disturbance;    ///< [gauss]; unset: MagnetometerSpec's
   std::optional<std::string> contact;       ///< "turf", "seed", "soft", "hard"; unset: the base's
   std::optional<double> friction;           ///< Coulomb coefficient; unset: the contact's
   std::filesystem::path urdf;               ///< empty: the igus model

@@ -18,10 +18,15 @@
 // the other (the step limits let a left step turn only left and a right step only right, so
 // the hold would rectify the swing into a turn). While a turn is commanded the reference follows
 // the robot (e = 0): the hold keeps the heading the robot has when the turn command returns to 0.
+// With a magnetometer (the CM730 with NimbRo's firmware) and walk.balance.heading_mag_time > 0,
+// e is instead the fused heading's change since the hold's reference (magnetic_heading.hpp):
+// the gyro's yaw corrected towards the magnetometer's, so a gyro bias does not turn the walk.
+// Without one, every figure is the gyro-only one above, to the bit.
 // Real-time: update() and correction() allocate nothing and do no I/O.
 #pragma once
 
 #include "stride/firmware/parameter_store.hpp"
+#include "stride/firmware/walk/magnetic_heading.hpp"
 #include "stride/hal/sensor_frame.hpp"
 
 namespace stride::fw::walk {
@@ -46,6 +51,10 @@ class HeadingHold {
   double heading_error() const noexcept { return error_; }
   /// Gyro yaw-rate bias estimated during the start blend [rad/s].
   double bias() const noexcept { return bias_samples_ > 0 ? bias_sum_ / bias_samples_ : 0.0; }
+  /// The gyro and magnetometer heading (used when the CM730 has a magnetometer).
+  const MagneticHeading& magnetic() const noexcept { return magnetic_; }
+  /// True when the latest update() used the magnetometer.
+  bool using_magnetometer() const noexcept { return using_magnetometer_; }
 
  private:
   const ParameterStore& store_;
@@ -60,6 +69,10 @@ class HeadingHold {
   int window_ticks_ = 0;
   double previous_mean_ = 0.0, step_pair_mean_ = 0.0;
   bool previous_mean_valid_ = false;
+  MagneticHeading magnetic_;
+  bool using_magnetometer_ = false;
+  bool reference_valid_ = false;
+  double reference_ = 0.0;  // fused heading when the hold began [rad]
 };
 
 }  // namespace stride::fw::walk

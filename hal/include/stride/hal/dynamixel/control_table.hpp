@@ -1,5 +1,6 @@
 // Control tables of the devices on the igus robot's bus, as data: MX-64 and MX-106 with the
-// protocol 1.0 firmware and the protocol 2.0 firmware, and the stock ROBOTIS CM730.
+// protocol 1.0 firmware and the protocol 2.0 firmware, the stock ROBOTIS CM730 and the CM730
+// with NimbRo's firmware (16-bit IMU registers and a magnetometer, igus.md 6.5).
 // Each register has a name, address, size, access, memory area, initial value and range
 // (igus.md sections 6.2-6.4; ROBOTIS e-manual MX pages). The named address constants below are
 // what code uses; the tables are what the virtual bus and `stride dxl` use.
@@ -47,6 +48,8 @@ const ControlTable& mx106_v1_table();
 const ControlTable& mx64_v2_table();
 const ControlTable& mx106_v2_table();
 const ControlTable& cm730_table();
+/// The CM730 with NimbRo's firmware (cm730_nimbro below).
+const ControlTable& cm730_nimbro_table();
 /// The table with this model number and protocol, or nullptr.
 const ControlTable* table_for_model(std::uint16_t model_number, Protocol protocol);
 
@@ -142,5 +145,40 @@ inline constexpr std::uint8_t kTableSize = 51;
 /// Model number the stock CM730 reports (0x7300).
 inline constexpr std::uint16_t kModel = 0x7300;
 }  // namespace cm730
+
+/// The CM730 with NimbRo's firmware (humanoid_op_ros CM_DXL_COM.h, igus.md 6.5): the same chips
+/// read at 16 bits, signed, plus a 3-axis magnetometer. The 21 bytes from BUTTON (30) that the
+/// stock table's bulk read takes cover BUTTON .. TEMPERATURE here too.
+/// Model number: 0x7301, as NimbRo's register description of this board ("CM730_NOP") names
+/// it; the stock board reports 0x7300, so the start-up model check tells the two apart.
+namespace cm730_nimbro {
+inline constexpr std::uint8_t kDxlPower = 24;
+inline constexpr std::uint8_t kButton = 30;
+inline constexpr std::uint8_t kBatteryVoltage = 31;  ///< 0.1 V
+inline constexpr std::uint8_t kGyroX = 32;
+inline constexpr std::uint8_t kGyroY = 34;
+inline constexpr std::uint8_t kGyroZ = 36;
+inline constexpr std::uint8_t kAccelX = 38;
+inline constexpr std::uint8_t kAccelY = 40;
+inline constexpr std::uint8_t kAccelZ = 42;
+inline constexpr std::uint8_t kMagX = 44;
+inline constexpr std::uint8_t kMagY = 46;
+inline constexpr std::uint8_t kMagZ = 48;
+inline constexpr std::uint8_t kTemperature = 50;
+inline constexpr std::uint8_t kTableSize = 51;
+inline constexpr std::uint16_t kModel = 0x7301;
+}  // namespace cm730_nimbro
+
+/// Which control table the CM730's firmware serves (the robot's choice: stride-fw --cm730).
+enum class Cm730Profile : std::uint8_t {
+  kStock,   ///< ROBOTIS firmware: 10-bit gyro and accelerometer, no magnetometer
+  kNimbro,  ///< NimbRo's firmware: 16-bit gyro and accelerometer, magnetometer
+};
+/// "stock" or "nimbro".
+const char* to_string(Cm730Profile profile);
+/// Reads "stock" or "nimbro"; false for anything else.
+bool parse_cm730_profile(std::string_view text, Cm730Profile& out);
+/// The profile's control table and model number.
+const ControlTable& cm730_table(Cm730Profile profile);
 
 }  // namespace stride::hal::dxl

@@ -16,7 +16,10 @@
 //    servo's torque off.
 //  - read(): one BULK_READ: CM730 21 bytes from 30 (button .. voltage), each servo 8 bytes from
 //    36 (position, speed, load, voltage, temperature); fills the SensorFrame with values,
-//    error flags and health.
+//    error flags and health. The CM730's bytes are decoded by its firmware's table
+//    (Options::cm730_profile): the stock ROBOTIS one (10-bit IMU) or NimbRo's (16-bit IMU and
+//    a magnetometer in the same 21 bytes, igus.md 6.5); start-up checks the CM730's model
+//    number against the profile, so a board with the other firmware is an error naming both.
 // Failure policy: a BULK_READ reply chain stops at the first device that does not answer, so
 // that device is blamed (consecutive_failures + 1) and moved to the end of the list; after
 // max_consecutive_failures it is skipped (health kMissing) and tried again every
@@ -34,6 +37,7 @@
 
 #include "stride/core/status.hpp"
 #include "stride/hal/dynamixel/byte_stream.hpp"
+#include "stride/hal/dynamixel/control_table.hpp"
 #include "stride/hal/dynamixel/packet_parser.hpp"
 #include "stride/hal/dynamixel/units.hpp"
 #include "stride/hal/robot.hpp"
@@ -47,6 +51,7 @@ class DynamixelRobot final : public Robot {
     std::array<ServoCalibration, kServoCount> calibration{};
     std::array<std::string, kServoCount> names{};  ///< joint names, for messages
     std::uint8_t status_return_level = 1;
+    Cm730Profile cm730_profile = Cm730Profile::kStock;  ///< the CM730 firmware's table
     std::int64_t margin_ns = 1'500'000;  ///< added to every transaction's computed time
     /// Start-up (start()) only: how long a ping or register read waits past its wire time.
     /// Outside the loop nothing is budgeted, so it is generous: a real device answers within

@@ -11,6 +11,9 @@
 // unit 0.229 rpm. Gains: Kp = P/8, Ki = I*1000/2048, Kd = D*4/1000 (1.0 firmware);
 // K_PP = P/128, K_PI = I/65536, K_PD = D/16 (2.0 firmware). CM730 IMU: accel
 // (raw - 512) * 4 g / 512, gyro (raw - 512) * 1800 deg/s / 512 (as NUbots converts it).
+// CM730 with NimbRo's firmware (igus.md 6.5, humanoid_op_ros cm730 driver): signed 16-bit
+// registers, gyro (pi/180) 500/65536 rad/s per LSB (+-250 deg/s), accel 2*4*9.81/65536 m/s^2
+// per LSB (+-4 g), magnetometer 1/820 gauss per LSB.
 #pragma once
 
 #include <cstdint>
@@ -99,6 +102,19 @@ double accel_from_raw(std::uint16_t raw);
 std::uint16_t accel_to_raw(double mps2);
 double gyro_from_raw(std::uint16_t raw);
 std::uint16_t gyro_to_raw(double rad_s);
+
+/// CM730 with NimbRo's firmware: signed 16-bit registers (igus.md 6.5).
+inline constexpr double kNimbroGyroPerLsb = kPi / 180.0 * 500.0 / 65536.0;  ///< [rad/s]
+inline constexpr double kNimbroAccelPerLsb = 2.0 * 4.0 * 9.81 / 65536.0;    ///< [m/s^2]
+inline constexpr double kNimbroMagPerLsb = 1.0 / 820.0;                     ///< [gauss]
+/// Register (two's complement 16 bits) -> SI; SI -> register, rounded and clamped to
+/// -32768..32767 (a non-finite value reads 0).
+double nimbro_gyro_from_raw(std::uint16_t raw);
+std::uint16_t nimbro_gyro_to_raw(double rad_s);
+double nimbro_accel_from_raw(std::uint16_t raw);
+std::uint16_t nimbro_accel_to_raw(double mps2);
+double nimbro_mag_from_raw(std::uint16_t raw);
+std::uint16_t nimbro_mag_to_raw(double gauss);
 
 }  // namespace units
 }  // namespace stride::hal::dxl

@@ -1,5 +1,6 @@
-// VirtualBus: an emulated Dynamixel protocol 1.0 bus with 20 MX-64/MX-106 servos and the stock
-// CM730 (ID 200), each with its control table (control_table.hpp) and behaviour:
+// VirtualBus: an emulated Dynamixel protocol 1.0 bus with 20 MX-64/MX-106 servos and the CM730
+// (ID 200) with the stock firmware or NimbRo's (Options::cm730_profile: 16-bit IMU registers and
+// a magnetometer), each with its control table (control_table.hpp) and behaviour:
 //  - PING, READ, WRITE, REG_WRITE, ACTION, RESET, SYNC_WRITE and the CM730-style BULK_READ;
 //  - status return level (0: ping only, 1: + reads, 2: all), return delay time (reported per
 //    reply in `reply_delay_us` so a server can wait it out), broadcast ID without replies;
@@ -38,6 +39,7 @@ class VirtualBus final : public BusResponder {
   struct Options {
     std::array<ServoCalibration, kServoCount> calibration{};  ///< per servo, index = id - 1
     bool lockstep = false;
+    Cm730Profile cm730_profile = Cm730Profile::kStock;  ///< the CM730's table
     std::int64_t period_ns = 10'000'000;  ///< physics step per BULK_READ in lockstep mode
     VirtualBusFaults faults{};
   };

@@ -34,6 +34,7 @@ struct PhysicsServoState {
 struct PhysicsImu {
   std::array<double, 3> accel_mps2{0.0, 0.0, units::kStandardGravity};  ///< torso frame
   std::array<double, 3> gyro_rad_s{0.0, 0.0, 0.0};
+  std::array<double, 3> mag_gauss{0.0, 0.0, 0.0};  ///< served by a CM730 with a magnetometer
 };
 
 class VirtualBusPhysics {
