@@ -135,5 +135,29 @@ TEST(ShippedPicks, WalkOmnidirectionalOutpacesIndOForwardBackwardAndTurning) {
   }
 }
 
+// The resampled speed-ramp run's fastest (issue 41: walk-ramp.json with speed levels, 66 genes,
+// resample, ground randomisation hard..soft; optimiser/RESULTS.md): on the soft ground, seed
+// 1, it walks backward 0.21 m/s and turns 0.83 rad/s without a fall, where the hand-set
+// stepping-turf-omni.json falls in both and walk-omnidirectional.json walks 0.12 m/s and turns
+// 0.19 rad/s (tests/bench/RESULTS.md, "Every shipped walk file on each ground").
+TEST(ShippedPicks, WalkOmniRobustWalksBackwardAndTurnsOnSoftGroundWhereTheHandSetFileFalls) {
+  const std::string soft = "walk --duration 20 --contact soft --seed 1 --params " + kConfig;
+  for (const char* args : {" --vx -1", " --vth 1"}) {
+    const nlohmann::json robust = stride_sim(soft + "walk-omni-robust.json" + args);
+    const nlohmann::json slow = stride_sim(soft + "walk-omnidirectional.json" + args);
+    const nlohmann::json hand_set = stride_sim(soft + "stepping-turf-omni.json" + args);
+    ASSERT_TRUE(robust.is_object() && slow.is_object() && hand_set.is_object());
+    EXPECT_FALSE(robust.at("fell").get<bool>()) << args;
+    EXPECT_TRUE(hand_set.at("fell").get<bool>()) << args;
+    const bool turning = std::string(args) == " --vth 1";
+    const char* measure = turning ? "turned_rad" : "distance_m";
+    const double sign = turning ? 1.0 : -1.0;
+    // Backward 1.7x, turning 4.4x walk-omnidirectional.json's (measured with 3 seeds).
+    EXPECT_GT(sign * robust.at(measure).get<double>(),
+              (turning ? 3.0 : 1.3) * sign * slow.at(measure).get<double>())
+        << args;
+  }
+}
+
 }  // namespace
 }  // namespace stride
