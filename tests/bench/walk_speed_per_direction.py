@@ -22,9 +22,9 @@ import json
 import math
 import os
 import statistics
-import subprocess
 import sys
-import tempfile
+
+from sim_trace import walk_trace
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
@@ -38,38 +38,11 @@ DIRECTIONS = [  # name, walk command, which coordinate, sign of progress
 ]
 
 
-def yaw_of(q):
-    w, x, y, z = q
-    return math.atan2(2 * (w * z + x * y), 1 - 2 * (y * y + z * z))
-
-
 def run_one(stride, params, engine, seed, command, coordinate, extra, t0=5.0, t1=20.0):
-    with tempfile.TemporaryDirectory() as tmp:
-        record = os.path.join(tmp, "trace.jsonl")
-        cmd = ["nice", stride, "sim", "walk"] + ([] if params == "defaults" else
-                                                   ["--params", params])
-        cmd += ["--servo-law", "identified", "--imu", "cm730", "--engine", engine, "--seed",
-                str(seed), "--duration", str(t1), "--json", "--record", record] + command + extra
-        out = subprocess.run(cmd, capture_output=True, text=True)
-        if out.returncode not in (0, 1):
-            raise RuntimeError(" ".join(cmd) + ": " + out.stderr.strip())
-        result = json.loads(out.stdout.strip().splitlines()[-1])
-        samples = []
-        with open(record) as f:
-            next(f)
-            for line in f:
-                j = json.loads(line)
-                samples.append((j["t"], j["torso"]["p"], yaw_of(j["torso"]["q"])))
-    yaw = 0.0
-    unwrapped = []
-    prev = None
-    for t, p, y in samples:
-        if prev is not None:
-            yaw += math.remainder(y - prev, 2 * math.pi)
-        else:
-            yaw = y
-        prev = y
-        unwrapped.append((t, p, yaw))
+    cmd = ["nice", stride, "sim", "walk"] + ([] if params == "defaults" else ["--params", params])
+    cmd += ["--servo-law", "identified", "--imu", "cm730", "--engine", engine, "--seed",
+            str(seed), "--duration", str(t1), "--json"] + command + extra
+    result, unwrapped = walk_trace(cmd)
 
     def at(t):
         return min(unwrapped, key=lambda s: abs(s[0] - t))

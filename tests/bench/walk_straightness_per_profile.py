@@ -22,9 +22,10 @@ import json
 import math
 import os
 import statistics
-import subprocess
 import sys
 import tempfile
+
+from sim_trace import walk_trace
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
@@ -43,33 +44,12 @@ PROFILES = [
 ]
 
 
-def yaw_of(q):
-    w, x, y, z = q
-    return math.atan2(2 * (w * z + x * y), 1 - 2 * (y * y + z * z))
-
-
 def run_one(stride, params, imu, seed, command, direction, extra, t0=1.0, t1=20.0):
-    with tempfile.TemporaryDirectory() as tmp:
-        record = os.path.join(tmp, "trace.jsonl")
-        cmd = ["nice", stride, "sim", "walk", "--engine", "simbody", "--imu", imu, "--seed",
-               str(seed), "--duration", str(t1), "--json", "--record", record] + command + extra
-        if params:
-            cmd += ["--params", params]
-        out = subprocess.run(cmd, capture_output=True, text=True)
-        if out.returncode not in (0, 1):
-            raise RuntimeError(" ".join(cmd) + ": " + out.stderr.strip())
-        result = json.loads(out.stdout.strip().splitlines()[-1])
-        samples = []
-        with open(record) as f:
-            next(f)
-            for line in f:
-                j = json.loads(line)
-                samples.append((j["t"], j["torso"]["p"], yaw_of(j["torso"]["q"])))
-    unwrapped, yaw, prev = [], 0.0, None
-    for t, p, y in samples:
-        yaw = y if prev is None else yaw + math.remainder(y - prev, 2 * math.pi)
-        prev = y
-        unwrapped.append((t, p, yaw))
+    cmd = ["nice", stride, "sim", "walk", "--engine", "simbody", "--imu", imu, "--seed",
+           str(seed), "--duration", str(t1), "--json"] + command + extra
+    if params:
+        cmd += ["--params", params]
+    result, unwrapped = walk_trace(cmd)
 
     def at(t):
         return min(unwrapped, key=lambda s: abs(s[0] - t))
