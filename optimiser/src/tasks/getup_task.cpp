@@ -7,7 +7,12 @@
 //          (sim::GetUpWatch); an episode that does not end standing counts duration_s + 10 s.
 //   Obj2 = peak |a| of the IMU [m/s^2] over the episode (after the first 0.25 s).
 //   c0   = -(episodes that do not end standing within duration_s) / episodes (g >= 0 feasible).
-// Each value is the mean of the two episodes. Obj2 is the peak acceleration rather than the
+// Each value is the mean of the two episodes. An episode ends as soon as its outcome is decided
+// (issue 42 point 4): once the robot has stood up by sim::StoodUpWatch's criterion (in Stand after
+// a get-up, upright, held 1 s: the `stood_up_s` of `stride sim getup`), and otherwise at
+// duration_s. So Obj2 is the peak up to that moment, and a robot that stood up and fell again
+// later would count as standing; standing still for 1 s after its get-up, none did in the runs.
+// Obj2 is the peak acceleration rather than the
 // peak servo load: the load register of the identified servo law is the PWM duty, which
 // saturates at 100 % whenever a joint is held against a stop or the ground, as every get-up
 // does when it pushes the body up, so its peak tells get-ups apart poorly; the IMU's peak is
@@ -33,19 +38,21 @@ class GetUpEpisode final : public TaskEpisode {
     sim::EpisodeOptions o;
     o.duration_s = config_.duration_s;
     o.stop_on_fall = false;  // it starts lying
+    o.stop_when = [this] { return watch_.stood_up_at_s().has_value(); };
     return o;
   }
   void before_step(const hal::SensorFrame&, hal::Tick, const sim::SimWorld&,
                    fw::Controller&) override {}
-  void after_step(const fw::Controller& controller, hal::Tick tick) override {
-    watch_.after_step(controller, tick);
+  void after_step(const fw::Controller& controller, const sim::SimWorld& world,
+                  hal::Tick tick) override {
+    watch_.after_step(controller, world, tick);
   }
   Status score(const sim::EpisodeResult& r, const sim::SimWorld& world,
                const fw::Controller& controller, EpisodeScore& out) override {
     const bool stood = sim::stands_at_end(world, r.status, controller);
     out.stood = stood ? 1 : 0;
-    out.get_up_attempts = watch_.attempts();
-    out.stand_time_s = stood ? std::max(0.0, watch_.stand_again_s()) : -1.0;
+    out.get_up_attempts = watch_.get_up().attempts();
+    out.stand_time_s = stood ? std::max(0.0, watch_.get_up().stand_again_s()) : -1.0;
     out.fell = !stood;
     const double time = stood ? out.stand_time_s : config_.duration_s + kNotStandingPenaltyS;
     out.objectives = {time, r.max_accel};
@@ -55,7 +62,7 @@ class GetUpEpisode final : public TaskEpisode {
 
  private:
   const TaskConfig& config_;
-  sim::GetUpWatch watch_;
+  sim::StoodUpWatch watch_;
 };
 
 class GetUpTask final : public TaskType {

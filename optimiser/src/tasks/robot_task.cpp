@@ -250,7 +250,7 @@ Status RobotTask::run_episode(const Genome& genome, const sim::WorldOptions& opt
     const auto before = Clock::now();
     hal::CommandFrame commands = controller.step(sensors, tick);
     controller_s += std::chrono::duration<double>(Clock::now() - before).count();
-    task_episode->after_step(controller, tick);
+    task_episode->after_step(controller, robot.world(), tick);
     return commands;
   };
   if (capture != nullptr) episode.on_tick = capture->observer();

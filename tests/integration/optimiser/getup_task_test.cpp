@@ -65,6 +65,8 @@ TEST(GetUpTask, OnTurfTheStartGenomeDoesNotStandAndIsInfeasible) {
   EXPECT_DOUBLE_EQ(s.objectives[0], config.duration_s + 10.0);
   EXPECT_EQ(s.constraints[0], -1.0);
   EXPECT_TRUE(s.fell);
+  // Never standing, both episodes run their whole duration.
+  EXPECT_NEAR(s.sim_time_s, 2.0 * config.duration_s, 0.011);
 }
 
 /// The genome of a parameter file (the config's genes, in order).
@@ -127,6 +129,9 @@ TEST(GetUpTask, TheDefaultScriptsAreTheShippedPickAndStandUpOnTurfOnBothEngines)
     EXPECT_EQ(picked.stood, 2) << sim::to_string(engine);
     EXPECT_GT(picked.stand_time_s, 0.0);
     EXPECT_LT(picked.stand_time_s, 12.0) << sim::to_string(engine);
+    // Each episode ends once the robot has stood for 1 s (StoodUpWatch), not at duration_s.
+    EXPECT_GT(picked.sim_time_s, 2.0 * (picked.stand_time_s + 1.0) - 0.011);
+    EXPECT_LT(picked.sim_time_s, 2.0 * (picked.stand_time_s + 1.5)) << sim::to_string(engine);
     if (engine == sim::EngineKind::kSimbody) {
       EXPECT_EQ(start.stood, 0);
     }

@@ -45,8 +45,10 @@ class TaskEpisode {
   /// (real-time: no allocation, no I/O).
   virtual void before_step(const hal::SensorFrame& sensors, hal::Tick tick,
                            const sim::SimWorld& world, fw::Controller& controller) = 0;
-  /// Every tick, after Controller::step (real-time, as before_step): what the task follows.
-  virtual void after_step(const fw::Controller& /*controller*/, hal::Tick /*tick*/) {}
+  /// Every tick, after Controller::step, with the world its sensors came from (real-time, as
+  /// before_step): what the task follows.
+  virtual void after_step(const fw::Controller& /*controller*/, const sim::SimWorld& /*world*/,
+                          hal::Tick /*tick*/) {}
   /// The finished episode's objectives, constraints and figures; `result` already counts a
   /// failed world as a fall at that moment. An error names what went wrong (a refused request).
   virtual Status score(const sim::EpisodeResult& result, const sim::SimWorld& world,
