@@ -1,5 +1,6 @@
 // Benchmark: the cost of one Controller::step (stand engine + safety layer; walk and script
-// engines are measured in their own benchmarks).
+// engines are measured in their own benchmarks), and of building a firmware from files already
+// loaded, as the optimiser does once per episode.
 #include <benchmark/benchmark.h>
 
 #include <memory>
@@ -24,6 +25,23 @@ void BM_ControllerStepStanding(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_ControllerStepStanding);
+
+void BM_FirmwareCreateFromLoadedFiles(benchmark::State& state) {
+  stride::fw::FirmwareFiles files;
+  if (!stride::fw::FirmwareFiles::load({}, files)) {
+    state.SkipWithError("firmware files did not load");
+    return;
+  }
+  for (auto _ : state) {
+    std::unique_ptr<stride::fw::Firmware> firmware;
+    if (!stride::fw::Firmware::create({}, files, firmware)) {
+      state.SkipWithError("firmware did not build");
+      return;
+    }
+    benchmark::DoNotOptimize(firmware.get());
+  }
+}
+BENCHMARK(BM_FirmwareCreateFromLoadedFiles)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 
