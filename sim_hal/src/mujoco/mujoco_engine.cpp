@@ -31,9 +31,11 @@ struct VfsDeleter {
   }
 };
 
-/// Test and benchmark hooks (mujoco_engine.hpp): compiles so far, and the old path.
+/// Test and benchmark hooks (mujoco_engine.hpp): compiles so far, the old path, the observer.
 std::atomic<std::int64_t> compiles{0};
 std::atomic<bool> always_compile{false};
+std::atomic<MujocoStepObserver> step_observer{nullptr};
+std::atomic<void*> step_observer_context{nullptr};
 
 /// True when two models have the same sizes (mjModel's leading block of counts, nq to nbuffer):
 /// an mjData made for one has the layout of one made for the other.
@@ -302,6 +304,8 @@ WorldStatus MujocoEngine::step(const std::vector<double>& joint_torque, std::str
     for (int k = 3; k < 6; ++k)
       d_->qfrc_applied[ball_dof_ + k] = -model_.ball.rolling_damping * d_->qvel[ball_dof_ + k];
   const Eigen::Vector3d v_before = vec3(d_->qvel + root_dof_);
+  if (const MujocoStepObserver observe = step_observer.load(std::memory_order_relaxed))
+    observe(m_.get(), d_.get(), step_observer_context.load(std::memory_order_relaxed));
   mj_step(m_.get(), d_.get());
   ++steps_;
   d_->time = static_cast<double>(steps_) * model_.step_s;  // no round-off drift
@@ -410,6 +414,11 @@ std::int64_t mujoco_compile_count() {
 
 void mujoco_set_always_compile(bool on) {
   always_compile.store(on, std::memory_order_relaxed);
+}
+
+void mujoco_set_step_observer(MujocoStepObserver observer, void* context) {
+  step_observer_context.store(context, std::memory_order_relaxed);
+  step_observer.store(observer, std::memory_order_relaxed);
 }
 
 }  // namespace stride::sim

@@ -47,5 +47,9 @@ std::int64_t mujoco_compile_count();
 /// the compiled model was kept (the old path, for the benchmark's side-by-side figure and the
 /// tests' reference bits). Process-wide; off by default.
 void mujoco_set_always_compile(bool on);
+/// Called by every MuJoCo engine's step() just before mj_step, the step's joint torques in
+/// d->qfrc_applied (bench_sim_hal_mujoco_bare records them). Process-wide; null: none (default).
+using MujocoStepObserver = void (*)(const mjModel* m, const mjData* d, void* context);
+void mujoco_set_step_observer(MujocoStepObserver observer, void* context);
 
 }  // namespace stride::sim
