@@ -1,13 +1,15 @@
-// The MuJoCo engine's speed over many short episodes, with its model compiled once per world
-// (the engine keeps the compiled mjModel while the episode's MJCF text repeats, and resets its
-// mjData) against the old path, a compile of the MJCF at every reset
-// (mujoco_set_always_compile), side by side in one run. Each round runs `episodes` episodes
-// (reset, then the Stand pose held for `length` seconds at P 32) on one world with each path,
-// in alternating order, and the ratio of their times is taken per round, so that the host's
-// drift cancels. Two worlds: no randomisation (the text repeats: one compile per world) and
-// the optimiser's default mass and friction randomisation (the text changes at every reset:
-// both paths compile every time). Reported: episodes per second and real-time factor of
-// each path (medians), and the median and quartiles of the per-round ratio new / old.
+// The MuJoCo engine's speed over many short episodes, with its model compiled once per model
+// structure (the engine keeps the compiled mjModel across resets and writes a randomised
+// episode's masses, trunk centre of mass, friction and ground into it) against the old path, a
+// compile of the episode's MJCF at every reset (mujoco_set_always_compile), side by side in one
+// run. Each round runs `episodes` episodes (reset, then the Stand pose held for `length`
+// seconds at P 32) on one world with each path, in alternating order, and the ratio of their
+// times is taken per round, so that the host's drift cancels. Two worlds: no randomisation and
+// the optimiser's default mass and friction randomisation with the trunk's centre of mass and
+// the ground drawn too. Reported: episodes per second and real-time factor of each path
+// (medians), and the median and quartiles of the per-round ratio old / new. Then one
+// randomised 5 s walk (the firmware walking forward) on each path: the torso's end position,
+// the time to walk 1 m and whether the state hashes are equal.
 // Run: build/release/bench/bench_sim_hal_mujoco_reset [rounds, default 9] [episodes, default 20]
 //      [length s, default 0.5]
 #include <algorithm>
@@ -19,10 +21,13 @@
 #include <vector>
 
 #include "mujoco/mujoco_engine.hpp"
+#include "stride/firmware/firmware.hpp"
+#include "stride/sim_hal/sim_robot.hpp"
 #include "stride/sim_hal/sim_world.hpp"
 
 namespace {
 
+namespace fw = stride::fw;
 namespace hal = stride::hal;
 namespace sim = stride::sim;
 using Clock = std::chrono::steady_clock;
@@ -56,6 +61,56 @@ double run(sim::SimWorld& world, int episodes, int periods, bool old_path) {
   return s;
 }
 
+/// A world with every per-reset draw of the optimiser's randomisation (masses, friction) and
+/// the trunk's centre of mass and the ground drawn too.
+sim::WorldOptions randomised_options() {
+  sim::WorldOptions options;
+  options.engine = sim::EngineKind::kMujoco;
+  options.randomise.mass_range = 0.05;
+  options.randomise.friction_range = 0.2;
+  options.randomise.com_range = 0.01;
+  options.randomise.contact_range = 0.5;
+  return options;
+}
+
+/// The end of one randomised walk.
+struct Walk {
+  Eigen::Vector3d torso = Eigen::Vector3d::Zero();
+  double time_to_1m_s = -1.0;
+  std::uint64_t hash = 0;
+};
+
+/// The firmware walking forward for 5 s on a world made on `old_path` and reset once more (the
+/// new path then writes the episode's values into the model it kept).
+Walk walk(bool old_path) {
+  sim::mujoco_set_always_compile(old_path);
+  std::unique_ptr<fw::Firmware> firmware;
+  if (!fw::Firmware::create({}, firmware)) std::exit(2);
+  sim::WorldOptions options = randomised_options();
+  options.seed = 7;
+  options.control_period_ns = firmware->period_ns();
+  std::unique_ptr<sim::SimWorld> world;
+  if (!sim::SimWorld::create(options, world) || !world->reset(sim::ResetSpec::standing()))
+    std::exit(2);
+  sim::SimRobot robot(std::move(world));
+  firmware->controller().request(fw::MotionRequest::walk(1.0, 0, 0));
+  Walk out;
+  const double x0 = robot.world().torso_pose().translation().x();
+  const double period_s = static_cast<double>(options.control_period_ns) * 1e-9;
+  for (hal::Tick tick = 0; static_cast<double>(tick) * period_s < 5.0;) {
+    hal::SensorFrame sensors;
+    robot.read(sensors);
+    robot.write(firmware->controller().step(sensors, tick));
+    robot.sleep_until(++tick);
+    if (out.time_to_1m_s < 0 && robot.world().torso_pose().translation().x() - x0 >= 1.0)
+      out.time_to_1m_s = static_cast<double>(tick) * period_s;
+  }
+  out.torso = robot.world().torso_pose().translation();
+  out.hash = robot.world().state_hash();
+  sim::mujoco_set_always_compile(false);
+  return out;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -69,10 +124,7 @@ int main(int argc, char** argv) {
   for (const bool randomised : {false, true}) {
     sim::WorldOptions options;
     options.engine = sim::EngineKind::kMujoco;
-    if (randomised) {  // the optimiser's defaults (optimiser/configs, TrialRandomisation)
-      options.randomise.mass_range = 0.05;
-      options.randomise.friction_range = 0.2;
-    }
+    if (randomised) options = randomised_options();
     std::unique_ptr<sim::SimWorld> world;
     if (const stride::Status s = sim::SimWorld::create(options, world); !s) {
       std::fprintf(stderr, "%s\n", s.message().c_str());
@@ -108,5 +160,12 @@ int main(int argc, char** argv) {
   std::printf(
       "(compiles: MJCF compiles of the new path / its resets; eps: episodes per second; "
       "ratio: time old / time new per round)\n");
+  const Walk a = walk(true), b = walk(false);
+  std::printf(
+      "randomised 5 s walk, old path / new path: torso (%.9f, %.9f, %.9f) / (%.9f, %.9f, %.9f) "
+      "m, largest difference %.3g m; 1 m walked at %.2f / %.2f s; state hashes %s\n",
+      a.torso.x(), a.torso.y(), a.torso.z(), b.torso.x(), b.torso.y(), b.torso.z(),
+      (a.torso - b.torso).cwiseAbs().maxCoeff(), a.time_to_1m_s, b.time_to_1m_s,
+      a.hash == b.hash ? "equal" : "differ");
   return 0;
 }

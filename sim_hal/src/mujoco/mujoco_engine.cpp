@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "contact_params.hpp"
+#include "episode_values.hpp"
 #include "mjcf_model.hpp"
 
 namespace stride::sim {
@@ -30,9 +31,11 @@ struct VfsDeleter {
   }
 };
 
-/// Test and benchmark hooks (mujoco_engine.hpp): compiles so far, and the old path.
+/// Test and benchmark hooks (mujoco_engine.hpp): compiles so far, the old path, the observer.
 std::atomic<std::int64_t> compiles{0};
 std::atomic<bool> always_compile{false};
+std::atomic<MujocoStepObserver> step_observer{nullptr};
+std::atomic<void*> step_observer_context{nullptr};
 
 /// True when two models have the same sizes (mjModel's leading block of counts, nq to nbuffer):
 /// an mjData made for one has the layout of one made for the other.
@@ -93,8 +96,15 @@ class MujocoEngine final : public PhysicsEngine {
   const mjModel* model() const { return m_.get(); }
 
  private:
+  /// Compiles `xml` into m_ (mjData kept when the sizes allow, unless `fresh_data`) and finds
+  /// the bodies, joints and geoms; xml_ is then `xml`, patchable_ false.
+  Status compile(std::string xml, bool fresh_data);
+  /// The contact parameters and the robot's mass of the model in m_.
+  Status finish_build();
+
   EngineModel model_;
-  std::string xml_;  ///< the MJCF m_ was compiled from (empty: none)
+  std::string xml_;         ///< the MJCF m_ was compiled from (empty: none)
+  bool patchable_ = false;  ///< xml_ is a nominal model's: m_ takes episode values
   std::unique_ptr<mjModel, ModelDeleter> m_;
   std::unique_ptr<mjData, DataDeleter> d_;
   std::vector<int> link_body_;  // per link: MuJoCo body id
@@ -128,28 +138,53 @@ Status MujocoEngine::build(const EngineModel& model) {
   static std::once_flag quiet;  // a global of MuJoCo: set once, whatever the threads
   std::call_once(quiet, [] { mju_user_warning = quiet_warning; });
 
-  // Compiled once per model: everything the compiler reads is in the MJCF text (the episode's
-  // randomised masses and friction among it), so the same text gives the same mjModel, bit for
-  // bit, and only the data is reset. The contact parameters are set again (they depend on the
-  // stiffnesses, which are not in the text, and on the compiled inverse weights, which are).
-  std::string xml = mujoco::write_mjcf(model);
-  if (m_ && d_ && xml == xml_ && !always_compile.load(std::memory_order_relaxed)) {
-    // mjData stays as the last episode left it: start() resets it (mj_resetData clears the
-    // whole buffer, as mj_makeData does), so the episode starts from a fresh engine's bits.
-    mujoco::set_contact_params(m_.get(), model);
-    return Status::ok();
-  }
-  // Another text (randomised masses or friction): compile it, but keep the mjData if the new
-  // model has the old one's sizes (the layout of mjData's buffer depends on nothing else, and
-  // start() clears it all). The old path (mujoco_set_always_compile) allocates it afresh.
+  // Compiled once per model structure: the MJCF of the model with the values drawn per reset
+  // at nominal ones (episode_values.hpp), the episode's values then written into the compiled
+  // model exactly as the compiler would have written them from the episode's own text. The
+  // contact parameters are set again (they depend on the stiffnesses, which are not in the
+  // text, and on the inverse weights, which follow the masses).
   const bool old_path = always_compile.load(std::memory_order_relaxed);
+  if (!old_path) {
+    std::string key = mujoco::write_mjcf(mujoco::nominal_model(model));
+    if (m_ && d_ && patchable_ && key == xml_ &&
+        mujoco::write_episode_values(m_.get(), d_.get(), model))
+      return finish_build();
+    std::string text = mujoco::write_mjcf(model);
+    if (m_ && d_ && !patchable_ && text == xml_)  // the last episode's own text again
+      return finish_build();
+    if (!(patchable_ && key == xml_) && compile(std::move(key), false) &&
+        mujoco::write_episode_values(m_.get(), d_.get(), model)) {
+      patchable_ = true;
+      return finish_build();
+    }
+    // A value the compiler would refuse or treat otherwise: compile the episode's own text
+    // (whose errors name the value).
+    if (Status s = compile(std::move(text), false); !s) return s;
+    return finish_build();
+  }
+  // The old path (mujoco_set_always_compile): the episode's text compiled, mjData afresh.
+  if (Status s = compile(mujoco::write_mjcf(model), true); !s) return s;
+  return finish_build();
+}
+
+Status MujocoEngine::finish_build() {
+  mujoco::set_contact_params(m_.get(), model_);
+  robot_mass_ = 0.0;
+  for (int b : link_body_) robot_mass_ += m_->body_mass[b];
+  return Status::ok();
+}
+
+Status MujocoEngine::compile(std::string xml, bool fresh_data) {
+  // Keep the mjData if the new model has the old one's sizes (the layout of mjData's buffer
+  // depends on nothing else, and start() clears it all, as mj_makeData does).
   std::unique_ptr<mjModel, ModelDeleter> old_model = std::move(m_);
   std::unique_ptr<mjData, DataDeleter> old_data = std::move(d_);
-  if (old_path) {
+  if (fresh_data) {
     old_data.reset();
     old_model.reset();
   }
   xml_.clear();
+  patchable_ = false;
   const char* file = "stride.xml";
   std::unique_ptr<mjVFS, VfsDeleter> vfs(new mjVFS);  // ~2 MB: not on the stack
   mj_defaultVFS(vfs.get());
@@ -170,15 +205,18 @@ Status MujocoEngine::build(const EngineModel& model) {
       if (c == '\n') c = ' ';
     return Status::error("MuJoCo engine: loading the generated MJCF failed: " + text);
   }
-  mujoco::set_contact_params(m_.get(), model);
   if (old_data && same_sizes(*old_model, *m_))
     d_ = std::move(old_data);
   else
     d_.reset(mj_makeData(m_.get()));
   old_data.reset();
   old_model.reset();
-  if (!d_) return Status::error("MuJoCo engine: allocating mjData failed");
+  if (!d_) {
+    m_.reset();
+    return Status::error("MuJoCo engine: allocating mjData failed");
+  }
 
+  const RobotModel& robot = *model_.robot;
   link_body_.assign(robot.links().size(), -1);
   for (std::size_t l = 0; l < robot.links().size(); ++l)
     link_body_[l] = mj_name2id(m_.get(), mjOBJ_BODY, ("l" + std::to_string(l)).c_str());
@@ -192,7 +230,7 @@ Status MujocoEngine::build(const EngineModel& model) {
   const int root = mj_name2id(m_.get(), mjOBJ_JOINT, "root");
   root_qpos_ = m_->jnt_qposadr[root];
   root_dof_ = m_->jnt_dofadr[root];
-  ball_body_ = model.ball.present ? mj_name2id(m_.get(), mjOBJ_BODY, "ball") : -1;
+  ball_body_ = model_.ball.present ? mj_name2id(m_.get(), mjOBJ_BODY, "ball") : -1;
   if (ball_body_ >= 0) {
     const int joint = mj_name2id(m_.get(), mjOBJ_JOINT, "ball");
     ball_qpos_ = m_->jnt_qposadr[joint];
@@ -205,8 +243,6 @@ Status MujocoEngine::build(const EngineModel& model) {
     for (int g = 0; g < m_->ngeom; ++g)
       if (m_->geom_bodyid[g] == link_body_[l])
         geom_link_[static_cast<std::size_t>(g)] = static_cast<int>(l);
-  robot_mass_ = 0.0;
-  for (int b : link_body_) robot_mass_ += m_->body_mass[b];
   xml_ = std::move(xml);
   return Status::ok();
 }
@@ -268,6 +304,8 @@ WorldStatus MujocoEngine::step(const std::vector<double>& joint_torque, std::str
     for (int k = 3; k < 6; ++k)
       d_->qfrc_applied[ball_dof_ + k] = -model_.ball.rolling_damping * d_->qvel[ball_dof_ + k];
   const Eigen::Vector3d v_before = vec3(d_->qvel + root_dof_);
+  if (const MujocoStepObserver observe = step_observer.load(std::memory_order_relaxed))
+    observe(m_.get(), d_.get(), step_observer_context.load(std::memory_order_relaxed));
   mj_step(m_.get(), d_.get());
   ++steps_;
   d_->time = static_cast<double>(steps_) * model_.step_s;  // no round-off drift
@@ -376,6 +414,11 @@ std::int64_t mujoco_compile_count() {
 
 void mujoco_set_always_compile(bool on) {
   always_compile.store(on, std::memory_order_relaxed);
+}
+
+void mujoco_set_step_observer(MujocoStepObserver observer, void* context) {
+  step_observer_context.store(context, std::memory_order_relaxed);
+  step_observer.store(observer, std::memory_order_relaxed);
 }
 
 }  // namespace stride::sim
