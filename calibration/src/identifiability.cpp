@@ -38,9 +38,20 @@ struct Simulated {
   std::vector<std::vector<std::vector<std::size_t>>> log_index;
 };
 
+/// The channel group of a channel: position, speed, load, gyro, accelerometer.
+std::size_t group_of(std::size_t channel) {
+  return channel < 3 * kServos ? channel / kServos : (channel < 3 * kServos + 3 ? 3 : 4);
+}
+
+/// Sums of squared residuals (simulated - logged) and sample counts per channel group.
+struct Residuals {
+  std::array<double, 5> sum_sq{};
+  std::array<double, 5> count{};
+};
+
 Status simulate(const std::vector<const fw::FlightLog*>& logs, const sim::WorldOptions& base,
-                const sim::WorldFile& world_file, const sim::ReplayOptions& replay,
-                Simulated& out) {
+                const sim::WorldFile& world_file, const sim::ReplayOptions& replay, Simulated& out,
+                Residuals* residuals = nullptr) {
   sim::WorldOptions world = base;
   world_file.apply_calibration(world);
   out.values.assign(logs.size(), {});
@@ -65,6 +76,23 @@ Status simulate(const std::vector<const fw::FlightLog*>& logs, const sim::WorldO
         for (std::size_t k = 0; k < 3; ++k) {
           row[3 * kServos + k] = t.sim_gyro[k][r];
           row[3 * kServos + 3 + k] = t.sim_accel[k][r];
+        }
+        if (residuals == nullptr) continue;
+        const hal::SensorFrame& logged = logs[l]->ticks[t.log_index[r]].sensors;
+        const auto add = [&residuals](std::size_t group, double d) {
+          residuals->sum_sq[group] += d * d;
+          residuals->count[group] += 1.0;
+        };
+        for (std::size_t i = 0; i < kServos; ++i) {
+          if (logged.servos[i].health != hal::DeviceHealth::kOk) continue;
+          add(0, row[i] - logged.servos[i].position_rad);
+          add(1, row[kServos + i] - logged.servos[i].speed_rad_s);
+          add(2, row[2 * kServos + i] - logged.servos[i].load);
+        }
+        if (logged.cm730.health != hal::DeviceHealth::kOk) continue;
+        for (std::size_t k = 0; k < 3; ++k) {
+          add(3, row[3 * kServos + k] - logged.cm730.gyro_rad_s[k]);
+          add(4, row[3 * kServos + 3 + k] - logged.cm730.accel_mps2[k]);
         }
       }
       out.values[l].push_back(std::move(v));
@@ -121,6 +149,41 @@ const CalibrationParameter& parameter(const std::string& name) {
   return calibration_parameters().front();  // names are checked by parse_fit_names
 }
 
+/// The covariance of the estimates (a small ridge keeps identical columns invertible) and their
+/// correlation.
+Eigen::MatrixXd invert(const Eigen::MatrixXd& fisher, Eigen::MatrixXd& correlation) {
+  const double largest = fisher.rows() > 0 ? fisher.diagonal().maxCoeff() : 0.0;
+  Eigen::MatrixXd regular = fisher;
+  regular.diagonal().array() += kRidge * std::max(largest, 1e-300);
+  const Eigen::MatrixXd covariance =
+      regular.ldlt().solve(Eigen::MatrixXd::Identity(regular.rows(), regular.cols()));
+  correlation = covariance;
+  for (Eigen::Index i = 0; i < covariance.rows(); ++i)
+    for (Eigen::Index j = 0; j < covariance.cols(); ++j)
+      correlation(i, j) = covariance(i, j) / std::sqrt(covariance(i, i) * covariance(j, j));
+  return covariance;
+}
+
+/// Value i's errors and most correlated partner under one Fisher matrix.
+void summarise(const Eigen::MatrixXd& fisher, const Eigen::MatrixXd& covariance,
+               const Eigen::MatrixXd& correlation, const std::vector<std::string>& names,
+               std::size_t i, double step, ValueErrors& out) {
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  const auto ii = static_cast<Eigen::Index>(i);
+  const double f = fisher(ii, ii);
+  out.alone_error = f > 0.0 ? step / std::sqrt(f) : kInf;
+  out.standard_error = f > 0.0 ? step * std::sqrt(covariance(ii, ii)) : kInf;
+  for (std::size_t j = 0; j < names.size(); ++j) {
+    const auto jj = static_cast<Eigen::Index>(j);
+    const double r = correlation(ii, jj);
+    if (j != i && f > 0.0 && fisher(jj, jj) > 0.0 &&
+        (out.partner.empty() || std::abs(r) > std::abs(out.correlation))) {
+      out.partner = names[j];
+      out.correlation = r;
+    }
+  }
+}
+
 }  // namespace
 
 SensorNoise sensor_noise(const sim::WorldOptions& world) {
@@ -170,7 +233,8 @@ Status analyse_identifiability(const std::vector<const fw::FlightLog*>& logs,
   }
 
   Simulated nominal;
-  if (Status s = simulate(logs, base, start, options.replay, nominal); !s) return s;
+  Residuals residuals;
+  if (Status s = simulate(logs, base, start, options.replay, nominal, &residuals); !s) return s;
   out.replays = 1;
   // The part of every row, in the nominal replay's layout.
   std::vector<int> row_part;
@@ -225,8 +289,25 @@ Status analyse_identifiability(const std::vector<const fw::FlightLog*>& logs,
     }
   }
 
-  // Fisher matrix per step of each value, and its diagonal per part.
-  out.fisher = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
+  // Fisher matrices per step of each value (sensor noise; replay floor: each channel group's
+  // noise raised to the RMS residual of the start world), and the first's diagonal per part.
+  std::array<double, kChannels> floor_factor{};  // (sigma_sensor / sigma_floor)^2
+  const std::array<double, 5> sensor = {out.noise.position_rad, out.noise.speed_rad_s,
+                                        out.noise.load, out.noise.gyro_rad_s, out.noise.accel_mps2};
+  std::array<double, 5> floor{};
+  for (std::size_t g = 0; g < 5; ++g) {
+    const double rms =
+        residuals.count[g] > 0 ? std::sqrt(residuals.sum_sq[g] / residuals.count[g]) : 0.0;
+    floor[g] = std::max(sensor[g], rms);
+  }
+  out.floor = {floor[0], floor[1], floor[2], floor[3], floor[4]};
+  for (std::size_t c = 0; c < kChannels; ++c) {
+    const std::size_t g = group_of(c);
+    floor_factor[c] = floor[g] > 0.0 ? std::pow(sensor[g] / floor[g], 2) : 0.0;
+  }
+  const auto size = static_cast<Eigen::Index>(n);
+  out.fisher = Eigen::MatrixXd::Zero(size, size);
+  out.fisher_floor = Eigen::MatrixXd::Zero(size, size);
   std::vector<std::vector<double>> part_diagonal(n, std::vector<double>(out.parts.size(), 0.0));
   for (std::size_t r = 0; r < rows; ++r) {
     const auto part = static_cast<std::size_t>(row_part[r]);
@@ -234,44 +315,34 @@ Status analyse_identifiability(const std::vector<const fw::FlightLog*>& logs,
       const float* a = columns[i].data() + r * kChannels;
       for (std::size_t j = i; j < n; ++j) {
         const float* b = columns[j].data() + r * kChannels;
-        double dot = 0.0;
-        for (std::size_t c = 0; c < kChannels; ++c) dot += static_cast<double>(a[c]) * b[c];
-        out.fisher(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) += dot;
+        double dot = 0.0, dot_floor = 0.0;
+        for (std::size_t c = 0; c < kChannels; ++c) {
+          const double ab = static_cast<double>(a[c]) * b[c];
+          dot += ab;
+          dot_floor += ab * floor_factor[c];
+        }
+        const auto ii = static_cast<Eigen::Index>(i), jj = static_cast<Eigen::Index>(j);
+        out.fisher(ii, jj) += dot;
+        out.fisher_floor(ii, jj) += dot_floor;
         if (i == j) part_diagonal[i][part] += dot;
       }
     }
   }
   out.fisher = out.fisher.selfadjointView<Eigen::Upper>();
-  const double largest = n > 0 ? out.fisher.diagonal().maxCoeff() : 0.0;
-  Eigen::MatrixXd regular = out.fisher;
-  regular.diagonal().array() += kRidge * std::max(largest, 1e-300);
-  const Eigen::MatrixXd covariance =
-      regular.ldlt().solve(Eigen::MatrixXd::Identity(regular.rows(), regular.cols()));
-  out.correlation = covariance;
-  for (Eigen::Index i = 0; i < covariance.rows(); ++i)
-    for (Eigen::Index j = 0; j < covariance.cols(); ++j)
-      out.correlation(i, j) = covariance(i, j) / std::sqrt(covariance(i, i) * covariance(j, j));
+  out.fisher_floor = out.fisher_floor.selfadjointView<Eigen::Upper>();
+  const Eigen::MatrixXd covariance = invert(out.fisher, out.correlation);
+  const Eigen::MatrixXd covariance_floor = invert(out.fisher_floor, out.correlation_floor);
 
-  constexpr double kInf = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < n; ++i) {
-    const auto ii = static_cast<Eigen::Index>(i);
     ValueIdentifiability v;
     v.name = options.names[i];
     v.step = parameter(v.name).step;
     for (double d : part_diagonal[i]) v.per_part.push_back(std::sqrt(d));
-    const double f = out.fisher(ii, ii);
-    v.total = std::sqrt(f);
-    v.alone_error = f > 0.0 ? v.step / std::sqrt(f) : kInf;
-    v.standard_error = f > 0.0 ? v.step * std::sqrt(covariance(ii, ii)) : kInf;
-    for (std::size_t j = 0; j < n; ++j) {
-      const double r = out.correlation(ii, static_cast<Eigen::Index>(j));
-      if (j != i && f > 0.0 &&
-          out.fisher(static_cast<Eigen::Index>(j), static_cast<Eigen::Index>(j)) > 0.0 &&
-          (v.partner.empty() || std::abs(r) > std::abs(v.correlation))) {
-        v.partner = options.names[j];
-        v.correlation = r;
-      }
-    }
+    const auto ii = static_cast<Eigen::Index>(i);
+    v.total = std::sqrt(out.fisher(ii, ii));
+    summarise(out.fisher, covariance, out.correlation, options.names, i, v.step, v.sensor);
+    summarise(out.fisher_floor, covariance_floor, out.correlation_floor, options.names, i, v.step,
+              v.floor);
     out.values.push_back(v);
   }
   return Status::ok();
@@ -284,9 +355,11 @@ std::vector<ConfoundedPair> confounded_pairs(const IdentifiabilityResult& result
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = i + 1; j < n; ++j) {
       if (result.values[i].total <= 0.0 || result.values[j].total <= 0.0) continue;
-      const double r =
-          result.correlation(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j));
-      if (std::abs(r) > threshold) out.push_back({result.values[i].name, result.values[j].name, r});
+      const auto ii = static_cast<Eigen::Index>(i), jj = static_cast<Eigen::Index>(j);
+      const double r = result.correlation(ii, jj), r_floor = result.correlation_floor(ii, jj);
+      const bool floor = std::abs(r_floor) > std::abs(r);
+      if (std::max(std::abs(r), std::abs(r_floor)) > threshold)
+        out.push_back({result.values[i].name, result.values[j].name, floor ? r_floor : r, floor});
     }
   std::sort(out.begin(), out.end(), [](const ConfoundedPair& a, const ConfoundedPair& b) {
     return std::abs(a.correlation) > std::abs(b.correlation);
@@ -325,31 +398,38 @@ std::string identifiability_table(const IdentifiabilityResult& r) {
   for (std::size_t s : r.part_samples) samples += s;
   add("identifiability: %zu values, %zu compared ticks, %d replays\n", r.values.size(), samples,
       r.replays);
-  add("noise per sample: position %.2e rad, speed %.2e rad/s, load %.2e, gyro %.2e rad/s, "
-      "accel %.2e m/s^2\n",
-      r.noise.position_rad, r.noise.speed_rad_s, r.noise.load, r.noise.gyro_rad_s,
-      r.noise.accel_mps2);
+  const auto noise_line = [&add](const char* what, const SensorNoise& n) {
+    add("%s: position %.2e rad, speed %.2e rad/s, load %.2e, gyro %.2e rad/s, accel %.2e m/s^2\n",
+        what, n.position_rad, n.speed_rad_s, n.load, n.gyro_rad_s, n.accel_mps2);
+  };
+  noise_line("sensor noise per sample", r.noise);
+  noise_line("replay floor (RMS residual in the start world, at least the noise)", r.floor);
   out +=
-      "evidence: sqrt of the chi-square one step of the value adds, in noise units, per part;\n"
-      "se: standard error fitted together (alone: with the others known); partner: the most\n"
-      "correlated estimate\n";
-  add("%-13s %7s", "value", "step");
+      "evidence: sqrt of the chi-square one step of the value adds, in sensor noise units, per\n"
+      "part; se: standard error fitted together, with the sensor noise (alone: with the others\n"
+      "known) and with the replay floor; partner: the most correlated estimate, corr: r\n";
+  add("%-13s %6s", "value", "step");
   for (std::size_t p = 0; p < r.parts.size(); ++p) add(" %14s", r.parts[p].c_str());
-  add(" %10s %10s %10s  %-13s %7s\n", "total", "se", "alone", "partner", "corr");
+  add(" %8s %9s %9s %-13s %6s %9s %-13s %6s\n", "total", "se", "alone", "partner", "corr",
+      "se floor", "partner", "corr");
   for (const ValueIdentifiability& v : r.values) {
-    add("%-13s %7.3g", v.name.c_str(), v.step);
+    add("%-13s %6.3g", v.name.c_str(), v.step);
     for (double e : v.per_part) add(" %14.3g", e);
-    add(" %10.3g %10.3g %10.3g  %-13s %+7.3f\n", v.total, v.standard_error, v.alone_error,
-        v.partner.empty() ? "-" : v.partner.c_str(), v.correlation);
+    add(" %8.3g %9.2g %9.2g %-13s %+6.2f %9.2g %-13s %+6.2f\n", v.total, v.sensor.standard_error,
+        v.sensor.alone_error, v.sensor.partner.empty() ? "-" : v.sensor.partner.c_str(),
+        v.sensor.correlation, v.floor.standard_error,
+        v.floor.partner.empty() ? "-" : v.floor.partner.c_str(), v.floor.correlation);
   }
-  out += "correlation of the estimates:\n";
+  out += "correlation of the estimates (upper: sensor noise, lower: replay floor):\n";
   add("%16s", "");
   for (std::size_t j = 0; j < r.values.size(); ++j) add(" %6zu", j + 1);
   out += "\n";
   for (std::size_t i = 0; i < r.values.size(); ++i) {
     add("%2zu %-13s", i + 1, r.values[i].name.c_str());
-    for (std::size_t j = 0; j < r.values.size(); ++j)
-      add(" %+6.2f", r.correlation(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)));
+    for (std::size_t j = 0; j < r.values.size(); ++j) {
+      const auto ii = static_cast<Eigen::Index>(i), jj = static_cast<Eigen::Index>(j);
+      add(" %+6.2f", j >= i ? r.correlation(ii, jj) : r.correlation_floor(ii, jj));
+    }
     out += "\n";
   }
   return out;

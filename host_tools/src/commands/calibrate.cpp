@@ -217,8 +217,9 @@ Status check_identifiability(const core::CliArgs& args,
   calibration::IdentifiabilityOptions analysis;
   analysis.names = options.fit;
   analysis.replay = options.replay;
-  std::fprintf(stderr, "identifiability of %zu values (about %zu replays of the logs)\n",
-               options.fit.size(), 2 * options.fit.size() + 1);
+  if (print)  // (a refusal is the only line on stderr)
+    std::fprintf(stderr, "identifiability of %zu values (about %zu replays of the logs)\n",
+                 options.fit.size(), 2 * options.fit.size() + 1);
   calibration::IdentifiabilityResult result;
   if (Status s = calibration::analyse_identifiability(logs, world, start, analysis, result); !s)
     return s;

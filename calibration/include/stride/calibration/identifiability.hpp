@@ -51,26 +51,36 @@ struct IdentifiabilityOptions {
   sim::ReplayOptions replay;       ///< window length and threads, as the fit's
 };
 
-struct ValueIdentifiability {
-  std::string name;
-  double step = 0.0;  ///< the reference change: the fit's step (calibration_parameters)
-  /// sqrt of the chi-square a change of one step makes in each part of the routine (in units
-  /// of the noise: 1 is as large as one sample's noise), then over the whole log.
-  std::vector<double> per_part;
-  double total = 0.0;
+/// A value's errors and most correlated partner under one Fisher matrix.
+struct ValueErrors {
   double standard_error = 0.0;  ///< fitted together with the others (value's unit)
   double alone_error = 0.0;     ///< fitted alone, the others known
   std::string partner;          ///< the value its estimate is most correlated with ("" alone)
   double correlation = 0.0;     ///< with that partner
 };
 
+struct ValueIdentifiability {
+  std::string name;
+  double step = 0.0;  ///< the reference change: the fit's step (calibration_parameters)
+  /// sqrt of the chi-square a change of one step makes in each part of the routine (in units
+  /// of the sensor noise: 1 is as large as one sample's noise), then over the whole log.
+  std::vector<double> per_part;
+  double total = 0.0;
+  ValueErrors sensor;  ///< with the sensor noise
+  ValueErrors floor;   ///< with the replay's error floor
+};
+
 struct IdentifiabilityResult {
   std::vector<std::string> parts;         ///< the routine's parts found in the logs
   std::vector<std::size_t> part_samples;  ///< compared ticks per part
   std::vector<ValueIdentifiability> values;
-  Eigen::MatrixXd fisher;       ///< per step of each value (dimensionless)
+  Eigen::MatrixXd fisher;       ///< per step of each value (dimensionless), sensor noise
   Eigen::MatrixXd correlation;  ///< of the estimates
-  SensorNoise noise;
+  /// The same with each channel group's noise raised to the RMS residual of the replays in the
+  /// start world (the replay's own error: placement at each window's start, divergence, and
+  /// whatever the start world gets wrong), which is what a fit sees as noise.
+  Eigen::MatrixXd fisher_floor, correlation_floor;
+  SensorNoise noise, floor;
   int replays = 0;
 };
 
@@ -83,8 +93,10 @@ Status analyse_identifiability(const std::vector<const fw::FlightLog*>& logs,
 struct ConfoundedPair {
   std::string first, second;
   double correlation = 0.0;
+  bool floor = false;  ///< found with the replay's error floor (else with the sensor noise)
 };
-/// The pairs whose estimates correlate beyond `threshold` (|r|), the strongest first.
+/// The pairs whose estimates correlate beyond `threshold` (|r|) with the sensor noise or with
+/// the replay's error floor (the stronger of the two), the strongest first.
 std::vector<ConfoundedPair> confounded_pairs(const IdentifiabilityResult& result, double threshold);
 /// What would tell two values apart (a measurement instead of a fit, or a part of the routine).
 std::string what_separates(const std::string& first, const std::string& second);
