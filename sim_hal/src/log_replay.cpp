@@ -236,12 +236,17 @@ Eigen::Quaterniond trunk_orientation(double roll, double pitch) {
                             Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX()));
 }
 
-void keep(ReplayTraces& t, double time_s, const hal::SensorFrame& logged,
+void keep(ReplayTraces& t, double time_s, std::size_t log_index, const hal::SensorFrame& logged,
           const hal::SensorFrame& sim, const TiltFilter& logged_tilt, const TiltFilter& sim_tilt) {
   t.time_s.push_back(time_s);
+  t.log_index.push_back(log_index);
   for (std::size_t i = 0; i < hal::kServoCount; ++i) {
     t.logged_position[i].push_back(static_cast<float>(logged.servos[i].position_rad));
     t.sim_position[i].push_back(static_cast<float>(sim.servos[i].position_rad));
+    t.logged_speed[i].push_back(static_cast<float>(logged.servos[i].speed_rad_s));
+    t.sim_speed[i].push_back(static_cast<float>(sim.servos[i].speed_rad_s));
+    t.logged_load[i].push_back(static_cast<float>(logged.servos[i].load));
+    t.sim_load[i].push_back(static_cast<float>(sim.servos[i].load));
   }
   t.logged_roll.push_back(static_cast<float>(logged_tilt.roll()));
   t.sim_roll.push_back(static_cast<float>(sim_tilt.roll()));
@@ -342,8 +347,8 @@ ReplayWindow replay_window(SimRobot& robot, const fw::FlightLog& log,
       ++sums.imu_samples;
     }
     if (options.keep_traces)
-      keep(window.traces, static_cast<double>(logged_tick.meta.tick) * period_s, logged, sim,
-           logged_tilt, sim_tilt);
+      keep(window.traces, static_cast<double>(logged_tick.meta.tick) * period_s, first + k + 1,
+           logged, sim, logged_tilt, sim_tilt);
   }
   window.ticks = sums.ticks;
   window.errors = sums.rms();

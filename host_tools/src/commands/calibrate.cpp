@@ -2,6 +2,9 @@
 // flight logs (calibration.hpp) and writes a world file (world_file.hpp) that --world and task
 // configs accept. Progress on stderr; Ctrl-C stops after the running evaluation and keeps the
 // progress file, which --resume continues from. Bad input: one line, exit 2, no output file.
+// Before fitting two or more values it measures their identifiability on the logs
+// (identifiability.hpp) and refuses a set two of whose estimates correlate beyond
+// --max-correlation; --identifiability prints that analysis and fits nothing.
 #include <algorithm>
 #include <atomic>
 #include <csignal>
@@ -12,6 +15,7 @@
 #include <vector>
 
 #include "stride/calibration/calibration.hpp"
+#include "stride/calibration/identifiability.hpp"
 #include "stride/core/atomic_file.hpp"
 #include "stride/core/cli_args.hpp"
 #include "stride/firmware/recorder/flight_log_reader.hpp"
@@ -48,6 +52,13 @@ void declare_options(core::CliArgs& args) {
               "(0: none)",
               true, "3");
   args.option("resume", "continue a stopped run from OUT.progress.jsonl", false);
+  args.option("identifiability",
+              "print the values' sensitivity per routine part, standard errors and correlations "
+              "on the logs, and fit nothing (--out not needed)",
+              false);
+  args.option("max-correlation",
+              "refuse to fit two values whose estimates correlate beyond this (|r|)", true, "0.95");
+  args.option("allow-confounded", "fit even values the logs cannot tell apart", false);
   args.option("servo-table", "the firmware's servo table (must be the logs')", true,
               fw::ServoTable::default_path().string());
   args.option("robot-description", "the firmware's rigid-body model (must be the logs')", true,
@@ -70,7 +81,11 @@ void print_help(const core::CliArgs& args) {
       "replay) over every window of every log, prints each fitted value with an uncertainty\n"
       "from re-fits on subsets of the windows, and writes a world file for --world and task\n"
       "configs. The world options give the world the logs are replayed in (default: the\n"
-      "faithful world, noise off); a world file there is the start of the fit.\n\n"
+      "faithful world, noise off); a world file there is the start of the fit.\n"
+      "Two or more values are first checked for identifiability on the logs (sensitivity by\n"
+      "finite differences, Fisher information with the sensor models' noise): a pair whose\n"
+      "estimates correlate beyond --max-correlation is refused, naming what would separate\n"
+      "them; --identifiability prints the analysis instead of fitting.\n\n"
       "Parameters (--fit; gyro_bias and accel_bias name three axes, all every one):\n%s\n%s",
       names.c_str(), args.help().c_str());
 }
@@ -78,8 +93,9 @@ void print_help(const core::CliArgs& args) {
 /// The logs, --out and --fit are required; --out must be a file in an existing folder.
 Status read_out(const core::CliArgs& args, std::filesystem::path& out) {
   if (args.positional().empty()) return Status::error("expected at least one flight log");
-  if (!args.has("out")) return Status::error("--out: the world file to write is required");
   if (!args.has("fit")) return Status::error("--fit: name the parameters to fit");
+  if (args.has("identifiability")) return {};
+  if (!args.has("out")) return Status::error("--out: the world file to write is required");
   out = args.get("out");
   std::error_code error;
   if (out.has_parent_path() && !std::filesystem::is_directory(out.parent_path(), error))
@@ -182,6 +198,51 @@ Status set_progress_file(const core::CliArgs& args, const std::filesystem::path&
   return {};
 }
 
+/// The identifiability of --fit's values on the logs: printed (--identifiability), or a
+/// refusal naming the first confounded pair (two or more values, no --allow-confounded).
+/// `done` is set when nothing is left to do.
+Status check_identifiability(const core::CliArgs& args,
+                             const calibration::CalibrationOptions& options,
+                             const std::vector<const fw::FlightLog*>& logs,
+                             const sim::WorldOptions& world, const sim::WorldFile& start,
+                             bool& done) {
+  const bool print = args.has("identifiability");
+  done = print;
+  double threshold = 0.95;
+  if (Status s = args.get_double("max-correlation", threshold); !s) return s;
+  if (!(threshold > 0.0 && threshold <= 1.0))
+    return Status::error("--max-correlation: must be in (0, 1], got " +
+                         args.get("max-correlation"));
+  if (!print && (options.fit.size() < 2 || args.has("allow-confounded"))) return {};
+  calibration::IdentifiabilityOptions analysis;
+  analysis.names = options.fit;
+  analysis.replay = options.replay;
+  if (print)  // (a refusal is the only line on stderr)
+    std::fprintf(stderr, "identifiability of %zu values (about %zu replays of the logs)\n",
+                 options.fit.size(), 2 * options.fit.size() + 1);
+  calibration::IdentifiabilityResult result;
+  if (Status s = calibration::analyse_identifiability(logs, world, start, analysis, result); !s)
+    return s;
+  if (print) {
+    std::printf("%s", calibration::identifiability_table(result).c_str());
+    return {};
+  }
+  for (const calibration::ValueIdentifiability& v : result.values)
+    if (v.total <= 0.0)
+      return Status::error("--fit: " + v.name +
+                           " does not change the replayed logs at all: leave it out (or "
+                           "--allow-confounded)");
+  const auto pairs = calibration::confounded_pairs(result, threshold);
+  if (pairs.empty()) return {};
+  char text[200];
+  std::snprintf(text, sizeof text,
+                "--fit: %s and %s cannot be told apart on these logs (correlation %+.3f, beyond "
+                "%.2f): ",
+                pairs[0].first.c_str(), pairs[0].second.c_str(), pairs[0].correlation, threshold);
+  return Status::error(text + calibration::what_separates(pairs[0].first, pairs[0].second) +
+                       "; or fit one of them (--allow-confounded fits both)");
+}
+
 /// Each fitted value with its start and uncertainty, then the objective and the errors.
 void print_fit(const calibration::CalibrationResult& result, const std::filesystem::path& out) {
   std::printf("%-14s %10s %10s %12s  %s\n", "parameter", "start", "fitted", "uncertainty", "unit");
@@ -228,14 +289,20 @@ int run_calibrate(int argc, char** argv) {
     log_ptrs.push_back(&log);
     windows += sim::count_windows(log, options.replay.window_s);
   }
-  if (options.subsets > 0 && windows < static_cast<std::size_t>(options.subsets))
+  if (!args.has("identifiability") && options.subsets > 0 &&
+      windows < static_cast<std::size_t>(options.subsets))
     return errors.bad_input("--subsets: " + std::to_string(options.subsets) +
                             " subsets need at least " + std::to_string(options.subsets) +
                             " windows; the logs have " + std::to_string(windows) + " of " +
                             args.get("window") + " s");
   if (Status s = set_measured_values(args, options, log_ptrs, world, start); !s)
     return errors.bad_input(s.message());
-  if (Status s = set_progress_file(args, out, options); !s) return errors.bad_input(s.message());
+  if (!args.has("identifiability"))
+    if (Status s = set_progress_file(args, out, options); !s) return errors.bad_input(s.message());
+  bool done = false;
+  if (Status s = check_identifiability(args, options, log_ptrs, world, start, done); !s)
+    return errors.bad_input(s.message());
+  if (done) return 0;
   const bool fit_voltage =
       std::find(options.fit.begin(), options.fit.end(), "voltage") != options.fit.end();
 

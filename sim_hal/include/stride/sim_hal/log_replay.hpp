@@ -87,8 +87,10 @@ struct ReplayErrors {
 
 /// The traces of one window (one entry per compared tick), logged and simulated.
 struct ReplayTraces {
-  std::vector<double> time_s;  ///< log time of the compared sensors
+  std::vector<double> time_s;          ///< log time of the compared sensors
+  std::vector<std::size_t> log_index;  ///< index in FlightLog::ticks of the compared sensors
   std::array<std::vector<float>, hal::kServoCount> logged_position, sim_position;
+  std::array<std::vector<float>, hal::kServoCount> logged_speed, sim_speed, logged_load, sim_load;
   std::vector<float> logged_roll, sim_roll, logged_pitch, sim_pitch;
   std::array<std::vector<float>, 3> logged_gyro, sim_gyro, logged_accel, sim_accel;
 };
