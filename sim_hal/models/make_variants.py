@@ -7,9 +7,9 @@ task config's `urdf` field.
 
     python3 sim_hal/models/make_variants.py OUT_DIR     # writes OUT_DIR/<variant>.urdf
 """
+import argparse
 import os
 import re
-import sys
 import xml.etree.ElementTree as ET
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -49,9 +49,9 @@ def variants():
 
 
 def main():
-    if len(sys.argv) != 2:
-        sys.exit('usage: make_variants.py OUT_DIR')
-    out = sys.argv[1]
+    ap = argparse.ArgumentParser(description=__doc__.split('\n')[0])
+    ap.add_argument('out_dir', help='folder for the variants (made if missing)')
+    out = ap.parse_args().out_dir
     os.makedirs(out, exist_ok=True)
     for name, change in variants():
         tree = ET.parse(os.path.join(HERE, 'igus_op.urdf'))
