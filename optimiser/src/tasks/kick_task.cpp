@@ -1,6 +1,7 @@
 // The kick task (the seed's kick evaluator, igus.md 4.4 and 7.3): the script episode of
-// `stride sim kick` (sim::KickRequest: standing, the ball before the right foot, the script
-// requested at kick_at_s), scored as the seed does:
+// `stride sim kick` (sim::KickRequest: standing, the ball before the kicking foot, the right or
+// for kick_left the left, sim::kick_ball_position; the script requested at kick_at_s), scored as
+// the seed does:
 //   Obj1 = max field-plane sway sqrt(ax^2 + ay^2) [m/s^2] (1000 if fell),
 //   Obj2 = 1 / ball distance, distance clamped to [0.001, 10] m (1000 if fell).
 //   c0 = fell ? -10 : 0; c1 = -(|integral of gyro z| - limit) when over the limit.
@@ -90,8 +91,9 @@ class KickTask final : public TaskType {
     return text;
   }
   bool uses_ball() const override { return true; }
-  sim::ResetSpec reset_spec(const TaskConfig&, int) const override {
-    return sim::kick_reset_spec({0.25, -0.06, std::nan("")});  // before the right foot
+  sim::ResetSpec reset_spec(const TaskConfig& config, int) const override {
+    // Before the kicking foot: the right, or the left for kick_left (as `stride sim kick`).
+    return sim::kick_reset_spec(sim::kick_ball_position(config.script));
   }
   std::unique_ptr<TaskEpisode> start_episode(const TaskConfig& config, int, double period_s,
                                              const sim::SimWorld&) const override {
