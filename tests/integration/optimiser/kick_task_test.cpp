@@ -8,6 +8,7 @@
 #include <memory>
 #include <string>
 
+#include "stride/optimiser/tasks/kick_settings.hpp"
 #include "stride/optimiser/tasks/robot_task.hpp"
 #include "stride/optimiser/tasks/task_type.hpp"
 #include "stride/sim_hal/sim_world.hpp"
@@ -20,7 +21,7 @@ const std::string kConfigs = std::string(STRIDE_SOURCE_DIR) + "/optimiser/config
 TaskConfig kick_config(const std::string& script) {
   TaskConfig c;
   EXPECT_TRUE(load_task_config(kConfigs + "kick.json", c));
-  c.script = script;
+  c.own_settings<KickSettings>().script = script;
   return c;
 }
 

@@ -12,8 +12,10 @@
 #include <nlohmann/json.hpp>
 
 #include "stride/optimiser/run/optimisation_run.hpp"
+#include "stride/optimiser/tasks/kick_settings.hpp"
 #include "stride/optimiser/tasks/robot_task.hpp"
 #include "stride/optimiser/tasks/task_config.hpp"
+#include "stride/optimiser/tasks/walk_settings.hpp"
 #include "stride/sim_hal/world_spec.hpp"
 #include "temp_dir.hpp"
 
@@ -80,11 +82,20 @@ void expect_same(const TaskConfig& a, const TaskConfig& b) {
     EXPECT_EQ(a.genes[i].start, b.genes[i].start) << "genes[" << i << "]";
   }
   EXPECT_EQ(a.duration_s, b.duration_s);
-  EXPECT_EQ(a.goal_distance_m, b.goal_distance_m);
-  EXPECT_EQ(a.walk_vx, b.walk_vx);
-  EXPECT_EQ(a.script, b.script);
-  EXPECT_EQ(a.kick_at_s, b.kick_at_s);
-  EXPECT_EQ(a.yaw_drift_limit_rad, b.yaw_drift_limit_rad);
+  // The task's own settings: whole (a defaulted ==, so a field added is compared), and named.
+  EXPECT_TRUE(a.own == b.own) << "the task's own settings";
+  EXPECT_EQ(a.own.empty(), b.own.empty());
+  if (const KickSettings* k = a.own.get<KickSettings>()) {
+    const KickSettings& r = b.own_settings<KickSettings>();
+    EXPECT_EQ(k->script, r.script);
+    EXPECT_EQ(k->kick_at_s, r.kick_at_s);
+    EXPECT_EQ(k->yaw_drift_limit_rad, r.yaw_drift_limit_rad);
+  }
+  if (const WalkSettings* w = a.own.get<WalkSettings>()) {
+    const WalkSettings& r = b.own_settings<WalkSettings>();
+    EXPECT_EQ(w->goal_distance_m, r.goal_distance_m);
+    EXPECT_EQ(w->walk_vx, r.walk_vx);
+  }
   EXPECT_EQ(a.max_drift_ratio, b.max_drift_ratio);
   EXPECT_EQ(a.max_heading_change_deg, b.max_heading_change_deg);
   EXPECT_EQ(a.max_turn_translation_m, b.max_turn_translation_m);
@@ -150,13 +161,13 @@ TEST(TaskConfig, EveryTaskSettingAwayFromItsDefaultSurvivesRunJson) {
     expect_same(config, reread);
   };
   through("kick.json", [](TaskConfig& c) {
-    c.script = "kick_left";
-    c.kick_at_s = 1.5;
-    c.yaw_drift_limit_rad = 3.25;
+    KickSettings& k = c.own_settings<KickSettings>();
+    k.script = "kick_left";
+    k.kick_at_s = 1.5;
+    k.yaw_drift_limit_rad = 3.25;
   });
   through("walk.json", [](TaskConfig& c) {
-    c.goal_distance_m = 1.75;
-    c.walk_vx = 0.625;
+    c.own_settings<WalkSettings>() = {1.75, 0.625};
     c.max_drift_ratio = 0.2;
     c.max_heading_change_deg = -1.0;  // off: null
   });
@@ -166,6 +177,49 @@ TEST(TaskConfig, EveryTaskSettingAwayFromItsDefaultSurvivesRunJson) {
     c.max_heading_change_deg = 12.5;
     c.max_turn_translation_m = 0.15;
   });
+}
+
+TEST(TaskConfig, ARunJsonHoldsOnlyItsOwnTasksSettings) {
+  const auto written = [](const std::string& file) {
+    TaskConfig config;
+    EXPECT_TRUE(load_task_config(kConfigs / file, config));
+    const test::TempDir tmp;
+    return through_run_json(config, tmp.path());
+  };
+  const json walk = written("walk.json");
+  EXPECT_TRUE(walk.contains("goal_distance_m"));
+  EXPECT_TRUE(walk.contains("walk_vx"));
+  for (const char* kick_field : {"script", "kick_at_s", "yaw_drift_limit_rad"})
+    EXPECT_FALSE(walk.contains(kick_field)) << kick_field;
+  const json kick = written("kick.json");
+  EXPECT_EQ(kick.at("script"), "kick_right");
+  for (const char* walk_field : {"goal_distance_m", "walk_vx"})
+    EXPECT_FALSE(kick.contains(walk_field)) << walk_field;
+}
+
+TEST(TaskConfig, AnOldRunJsonWithEveryTasksFieldsStillLoads) {
+  // Before the tasks owned their settings, every run.json held every task's fields.
+  json doc;
+  std::ifstream(kConfigs / "walk.json") >> doc;
+  doc["script"] = "kick_right";
+  doc["kick_at_s"] = 1.0;
+  doc["yaw_drift_limit_rad"] = 6.66;
+  doc["walk_vx"] = 0.75;
+  TaskConfig c;
+  ASSERT_TRUE(parse_task_config(doc, c));
+  EXPECT_EQ(c.own_settings<WalkSettings>().walk_vx, 0.75);
+  EXPECT_EQ(c.own.get<KickSettings>(), nullptr);
+  std::ifstream(kConfigs / "kick.json") >> doc;
+  doc["goal_distance_m"] = 2.5;
+  doc["walk_vx"] = 1.0;
+  doc["kick_at_s"] = 2.0;
+  ASSERT_TRUE(parse_task_config(doc, c));
+  EXPECT_EQ(c.own_settings<KickSettings>().kick_at_s, 2.0);
+  // A task's own setting is still checked; another task's is not read.
+  doc["kick_at_s"] = 9.0;
+  const Status s = parse_task_config(doc, c);
+  ASSERT_FALSE(s);
+  EXPECT_EQ(s.message(), "kick_at_s: must be in [0, duration_s)");
 }
 
 TEST(TaskConfig, EveryRampSettingSurvivesRunJson) {
