@@ -38,6 +38,12 @@ ResetSpec kick_reset_spec(const Eigen::Vector3d& ball_position) {
   return spec;
 }
 
+Eigen::Vector3d kick_ball_position(const std::string& script) {
+  Eigen::Vector3d ball = KickEpisodeOptions{}.ball_position;  // before the right foot
+  if (script == "kick_left") ball.y() = -ball.y();
+  return ball;
+}
+
 Status check_kick_script(const fw::Firmware& firmware, const std::string& script) {
   if (script.empty() || script.size() >= 32 ||
       firmware.params().list("script." + script + ".frame").empty()) {

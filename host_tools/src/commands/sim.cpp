@@ -412,7 +412,7 @@ int run_sim(int argc, char** argv) {
       return errors.bad_input("--script: no script '" + kick.script +
                               "' in the firmware's scripts");
     kick.duration_s = r.duration;
-    if (kick.script == "kick_left") kick.ball_position.y() = -kick.ball_position.y();
+    kick.ball_position = sim::kick_ball_position(kick.script);
     kick.firmware = fw_options;
     kick.episode = episode;
     ran = sim::run_kick_episode(r.world, kick, result, &robot_ptr);

@@ -70,8 +70,13 @@ std::string settings_table_html(const RunData& data) {
   for (const char* k : {"seed", "popSize", "generations", "realCrossProb", "realMutProb", "etaC",
                         "etaM", "seedMutationFraction"})
     if (settings.contains(k)) rows.emplace_back(k, scalar_text(settings[k]));
-  for (const char* k : {"duration_s", "goal_distance_m", "walk_vx", "script", "kick_at_s",
-                        "yaw_drift_limit_rad", "trials", "aggregate", "trial_seed"})
+  // The shared episode settings and the run's own task's settings only (an older run.json holds
+  // every task's).
+  std::vector<std::string> keys = {"duration_s"};
+  if (const TaskType* type = find_task_type(data.task))
+    for (std::string_view k : type->settings_fields()) keys.emplace_back(k);
+  for (const char* k : {"trials", "aggregate", "trial_seed"}) keys.emplace_back(k);
+  for (const std::string& k : keys)
     if (task.contains(k)) rows.emplace_back(k, scalar_text(task[k]));
   if (task.contains("genes") && task["genes"].is_array())
     rows.emplace_back("genes", std::to_string(task["genes"].size()));

@@ -96,9 +96,9 @@ Status write_report_html(const fs::path& dir, const RobotTask& task, ReportOutco
   if (type != nullptr) scene.goal_m = type->replay_goal_m(config);
   double end = 0.0;
   for (const auto& r : replays) end = std::max(end, end_of(r));
+  const double action_s = type != nullptr ? type->action_at_s(config) : 0.0;  // the kick
   const std::vector<double> times =
-      ball ? strip_times(std::max(config.kick_at_s,
-                                  first_ball_motion_s(replays, config.kick_at_s + 1.0) - 1.5),
+      ball ? strip_times(std::max(action_s, first_ball_motion_s(replays, action_s + 1.0) - 1.5),
                          0.25, 9, end)
            : strip_times(std::min(4.0, end / 3), 0.25, 9, end);
 

@@ -1,13 +1,16 @@
 // The kick task (the seed's kick evaluator, igus.md 4.4 and 7.3): the script episode of
-// `stride sim kick` (sim::KickRequest: standing, the ball before the right foot, the script
-// requested at kick_at_s), scored as the seed does:
+// `stride sim kick` (sim::KickRequest: standing, the ball before the kicking foot, the right or
+// for kick_left the left, sim::kick_ball_position; the script requested at kick_at_s), scored as
+// the seed does:
 //   Obj1 = max field-plane sway sqrt(ax^2 + ay^2) [m/s^2] (1000 if fell),
 //   Obj2 = 1 / ball distance, distance clamped to [0.001, 10] m (1000 if fell).
 //   c0 = fell ? -10 : 0; c1 = -(|integral of gyro z| - limit) when over the limit.
+// Its own settings (kick_settings.hpp): script, kick_at_s, yaw_drift_limit_rad.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 
+#include "stride/optimiser/tasks/kick_settings.hpp"
 #include "stride/optimiser/tasks/task_type.hpp"
 #include "stride/sim_hal/script_episodes.hpp"
 
@@ -16,17 +19,23 @@ namespace stride::opt {
 namespace {
 
 constexpr double kFallPenalty = 1000.0;
+/// The episode's goal distance (EpisodeResult::time_to_goal_s only; the kick has no goal): the
+/// walk's default, which the kick's episodes have always had.
+constexpr double kKickGoalDistanceM = 2.5;
 /// A validation kick succeeds when the ball moves at least this far [m].
 constexpr double kKickSuccessDistanceM = 0.5;
 
 class KickEpisode final : public TaskEpisode {
  public:
   KickEpisode(const TaskConfig& config, double period_s)
-      : config_(config), period_s_(period_s), kick_(config.script, config.kick_at_s, period_s) {}
+      : config_(config),
+        kick_settings_(config.own_settings<KickSettings>()),
+        period_s_(period_s),
+        kick_(kick_settings_.script, kick_settings_.kick_at_s, period_s) {}
   sim::EpisodeOptions options() const override {
     sim::EpisodeOptions o;
     o.duration_s = config_.duration_s;
-    o.goal_distance_m = config_.goal_distance_m;
+    o.goal_distance_m = kKickGoalDistanceM;
     o.stop_on_fall = true;
     return o;
   }
@@ -39,20 +48,20 @@ class KickEpisode final : public TaskEpisode {
   Status score(const sim::EpisodeResult& r, const sim::SimWorld&, const fw::Controller& controller,
                EpisodeScore& out) override {
     if (controller.motion().refused_requests() > 0)
-      return Status::error("kick script '" + config_.script + "' refused");
+      return Status::error("kick script '" + kick_settings_.script + "' refused");
     const double d = std::clamp(r.ball_distance_m, 0.001, 10.0);
     double sway = r.max_fps;
     if (r.fell || sway <= 0.0 || sway > kFallPenalty) sway = kFallPenalty;
     out.objectives = {sway, r.fell ? kFallPenalty : 1.0 / d};
     const double yaw = std::abs(yaw_integral_);
-    out.constraints = {r.fell ? -10.0 : 0.0, yaw > config_.yaw_drift_limit_rad
-                                                 ? -(yaw - config_.yaw_drift_limit_rad)
-                                                 : 0.0};
+    const double limit = kick_settings_.yaw_drift_limit_rad;
+    out.constraints = {r.fell ? -10.0 : 0.0, yaw > limit ? -(yaw - limit) : 0.0};
     return {};
   }
 
  private:
   const TaskConfig& config_;
+  const KickSettings& kick_settings_;
   double period_s_;
   sim::KickRequest kick_;
   double yaw_integral_ = 0.0;
@@ -90,8 +99,37 @@ class KickTask final : public TaskType {
     return text;
   }
   bool uses_ball() const override { return true; }
-  sim::ResetSpec reset_spec(const TaskConfig&, int) const override {
-    return sim::kick_reset_spec({0.25, -0.06, std::nan("")});  // before the right foot
+  sim::ResetSpec reset_spec(const TaskConfig& config, int) const override {
+    // Before the kicking foot: the right, or the left for kick_left (as `stride sim kick`).
+    return sim::kick_reset_spec(
+        sim::kick_ball_position(config.own_settings<KickSettings>().script));
+  }
+  std::vector<std::string_view> settings_fields() const override {
+    return {"script", "kick_at_s", "yaw_drift_limit_rad"};
+  }
+  Status parse_settings(const nlohmann::json& doc, const TaskConfig& config,
+                        OwnSettings& out) const override {
+    KickSettings k;
+    if (doc.contains("script")) {
+      if (!doc.at("script").is_string()) return Status::error("script: must be a string");
+      k.script = doc.at("script").get<std::string>();
+    }
+    if (Status s = read_config_number(doc, "kick_at_s", k.kick_at_s); !s) return s;
+    if (!(k.kick_at_s >= 0.0 && k.kick_at_s < config.duration_s))
+      return Status::error("kick_at_s: must be in [0, duration_s)");
+    if (Status s = read_config_number(doc, "yaw_drift_limit_rad", k.yaw_drift_limit_rad); !s)
+      return s;
+    out.as<KickSettings>() = k;
+    return {};
+  }
+  void write_settings(const TaskConfig& config, nlohmann::json& doc) const override {
+    const KickSettings& k = config.own_settings<KickSettings>();
+    doc["script"] = k.script;
+    doc["kick_at_s"] = k.kick_at_s;
+    doc["yaw_drift_limit_rad"] = k.yaw_drift_limit_rad;
+  }
+  double action_at_s(const TaskConfig& config) const override {
+    return config.own_settings<KickSettings>().kick_at_s;
   }
   std::unique_ptr<TaskEpisode> start_episode(const TaskConfig& config, int, double period_s,
                                              const sim::SimWorld&) const override {

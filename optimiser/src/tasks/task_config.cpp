@@ -1,5 +1,6 @@
 // Task configuration parsing with field-naming errors: a config object into a TaskConfig, one
-// section at a time. Reading it from a file and writing it back: task_config_file.cpp.
+// section at a time; the task's own settings by its type (TaskType::parse_settings). Reading it
+// from a file and writing it back: task_config_file.cpp.
 #include "stride/optimiser/tasks/task_config.hpp"
 
 #include <cmath>
@@ -70,11 +71,6 @@ const char* const kKnownFields[] = {"task",
                                     "starts",
                                     "genes",
                                     "duration_s",
-                                    "goal_distance_m",
-                                    "walk_vx",
-                                    "script",
-                                    "kick_at_s",
-                                    "yaw_drift_limit_rad",
                                     "max_drift_ratio",
                                     "max_heading_change_deg",
                                     "max_turn_translation_m",
@@ -327,23 +323,11 @@ Status parse_genes(const nlohmann::json& doc, TaskConfig& c) {
   return {};
 }
 
-/// The episode: its length and goal, the walk command, the kick, the straightness limits.
+/// The episode: its length and the straightness limits (the task's own settings: its type's).
 Status parse_episode(const nlohmann::json& doc, TaskConfig& c) {
   if (Status s = number(doc, "duration_s", c.duration_s, false); !s) return s;
   if (!(c.duration_s > 0.0 && c.duration_s <= 600.0))
     return Status::error("duration_s: must be in (0, 600]");
-  if (Status s = number(doc, "goal_distance_m", c.goal_distance_m, false); !s) return s;
-  if (!(c.goal_distance_m > 0.0)) return Status::error("goal_distance_m: must be positive");
-  if (Status s = number(doc, "walk_vx", c.walk_vx, false); !s) return s;
-  if (!(c.walk_vx >= -1.0 && c.walk_vx <= 1.0)) return Status::error("walk_vx: must be in [-1, 1]");
-  if (doc.contains("script")) {
-    if (!doc.at("script").is_string()) return Status::error("script: must be a string");
-    c.script = doc.at("script").get<std::string>();
-  }
-  if (Status s = number(doc, "kick_at_s", c.kick_at_s, false); !s) return s;
-  if (!(c.kick_at_s >= 0.0 && c.kick_at_s < c.duration_s))
-    return Status::error("kick_at_s: must be in [0, duration_s)");
-  if (Status s = number(doc, "yaw_drift_limit_rad", c.yaw_drift_limit_rad, false); !s) return s;
   // Straightness limits: a number >= 0, or null (off).
   for (auto [name, target] : {std::pair{"max_drift_ratio", &c.max_drift_ratio},
                               {"max_heading_change_deg", &c.max_heading_change_deg},
@@ -452,11 +436,16 @@ Status parse_hypervolume_box(const nlohmann::json& doc, TaskConfig& c) {
 
 }  // namespace
 
+Status read_config_number(const nlohmann::json& doc, const std::string& field, double& out) {
+  return number(doc, field, out, false);
+}
+
 Status parse_task_config(const nlohmann::json& doc, TaskConfig& out) {
   if (!doc.is_object()) return Status::error("config: must be a JSON object");
   for (const auto& [key, value] : doc.items()) {
     bool known = false;
     for (const char* k : kKnownFields) known = known || key == k;
+    known = known || is_task_settings_field(key);  // any task's: an old run.json holds all
     if (!known) return Status::error(key + ": unknown field");
   }
   TaskConfig c;
@@ -477,6 +466,7 @@ Status parse_task_config(const nlohmann::json& doc, TaskConfig& out) {
   if (Status s = parse_robot(doc, c); !s) return s;
   if (Status s = parse_validate(doc, c); !s) return s;
   if (Status s = parse_hypervolume_box(doc, c); !s) return s;
+  if (Status s = type->parse_settings(doc, c, c.own); !s) return s;
   out = std::move(c);
   return {};
 }

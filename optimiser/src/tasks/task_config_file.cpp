@@ -1,5 +1,6 @@
 // A task config read from its file (a relative robot description, world or parameter file is
-// relative to the config) and written back as JSON (the task record in a run's run.json).
+// relative to the config) and written back as JSON (the task record in a run's run.json; the
+// task's own settings by its type).
 #include <filesystem>
 #include <string>
 
@@ -8,6 +9,7 @@
 #include "stride/core/json_file.hpp"
 #include "stride/optimiser/tasks/speed_ramp.hpp"
 #include "stride/optimiser/tasks/task_config.hpp"
+#include "stride/optimiser/tasks/task_type.hpp"
 #include "stride/sim_hal/world_file.hpp"
 #include "stride/sim_hal/world_spec.hpp"
 
@@ -60,11 +62,6 @@ nlohmann::json to_json(const TaskConfig& c) {
                       {"seed_fraction", c.settings.seed_mutation_fraction},
                       {"genes", genes},
                       {"duration_s", c.duration_s},
-                      {"goal_distance_m", c.goal_distance_m},
-                      {"walk_vx", c.walk_vx},
-                      {"script", c.script},
-                      {"kick_at_s", c.kick_at_s},
-                      {"yaw_drift_limit_rad", c.yaw_drift_limit_rad},
                       {"trials", c.trials},
                       {"aggregate", c.aggregate == Aggregate::kMean ? "mean" : "worst"},
                       {"trial_seed", c.trial_seed},
@@ -110,6 +107,8 @@ nlohmann::json to_json(const TaskConfig& c) {
                {"ramp_s", c.omni.ramp_s},
                {"hold_s", c.omni.hold_s},
                {"stop_s", c.omni.stop_s}};
+  // The task's own settings, and no other task's (written by its type).
+  if (const TaskType* type = find_task_type(c.task)) type->write_settings(c, j);
   if (!c.hv_ideal.empty()) {
     j["hypervolume_ideal"] = c.hv_ideal;
     j["hypervolume_nadir"] = c.hv_nadir;

@@ -37,14 +37,17 @@ std::string task_type_list() {
   return list;
 }
 
-std::string TaskType::outcome_note(const TaskConfig& config, const EpisodeScore& s,
-                                   double end_s) const {
+bool is_task_settings_field(std::string_view field) {
+  for (TaskTypeGetter get : kTasks)
+    for (std::string_view own : get().settings_fields())
+      if (own == field) return true;
+  return false;
+}
+
+std::string TaskType::outcome_note(const TaskConfig&, const EpisodeScore& s, double end_s) const {
   char text[160];
   if (s.fell)
     std::snprintf(text, sizeof text, "fell at %.2f s", end_s);
-  else if (s.time_to_goal_s >= 0)
-    std::snprintf(text, sizeof text, "reached %.3g m at %.2f s", config.goal_distance_m,
-                  s.time_to_goal_s);
   else
     std::snprintf(text, sizeof text, "%.2f m in %.3g s, goal not reached", s.distance_m, end_s);
   return text;

@@ -7,12 +7,14 @@
 //   Straightness at the goal (or the episode's end), from ground truth (walk_measures.hpp):
 //   c1 = min(0, 1 - (|lateral drift| / max(forward, 0.25 m)) / max_drift_ratio),
 //   c2 = min(0, 1 - |heading change| / max_heading_change_deg); a limit of null is off.
+// Its own settings (walk_settings.hpp): goal_distance_m, walk_vx.
 #include <algorithm>
 #include <cstdio>
 #include <numbers>
 
 #include "stride/firmware/motion_request.hpp"
 #include "stride/optimiser/tasks/task_type.hpp"
+#include "stride/optimiser/tasks/walk_settings.hpp"
 
 namespace stride::opt {
 
@@ -21,13 +23,13 @@ namespace {
 class WalkEpisode final : public TaskEpisode {
  public:
   WalkEpisode(const TaskConfig& config, const sim::SimWorld& world)
-      : config_(config), start_(world.ground_truth()) {
+      : config_(config), walk_(config.own_settings<WalkSettings>()), start_(world.ground_truth()) {
     yaw_.reset(torso_yaw(start_.torso));
   }
   sim::EpisodeOptions options() const override {
     sim::EpisodeOptions o;
     o.duration_s = config_.duration_s;
-    o.goal_distance_m = config_.goal_distance_m;
+    o.goal_distance_m = walk_.goal_distance_m;
     o.stop_on_fall = true;
     o.stop_at_goal = true;
     return o;
@@ -36,7 +38,7 @@ class WalkEpisode final : public TaskEpisode {
                    fw::Controller& controller) override {
     yaw_.update(torso_yaw(world.torso_pose()));
     if (!requested_) {
-      controller.request(fw::MotionRequest::walk(config_.walk_vx, 0.0, 0.0));
+      controller.request(fw::MotionRequest::walk(walk_.walk_vx, 0.0, 0.0));
       requested_ = true;
     }
   }
@@ -50,7 +52,7 @@ class WalkEpisode final : public TaskEpisode {
     out.lateral_drift_m = t.off_axis_m;
     out.heading_change_rad = t.heading_change_rad;
     const double heading_limit = config_.max_heading_change_deg * std::numbers::pi / 180.0;
-    const double missing = std::max(0.0, config_.goal_distance_m - r.distance_m);
+    const double missing = std::max(0.0, walk_.goal_distance_m - r.distance_m);
     const double time = r.time_to_goal_s ? *r.time_to_goal_s : config_.duration_s + 10.0 * missing;
     out.objectives = {time, r.max_accel};
     const double lost = r.fell ? std::max(0.0, config_.duration_s - r.fall_time_s) : 0.0;
@@ -65,6 +67,7 @@ class WalkEpisode final : public TaskEpisode {
 
  private:
   const TaskConfig& config_;
+  const WalkSettings& walk_;
   const sim::GroundTruth start_;
   YawTracker yaw_;
   bool requested_ = false;
@@ -100,7 +103,34 @@ class WalkTask final : public TaskType {
     return score.time_to_goal_s >= 0.0;
   }
   std::optional<double> replay_goal_m(const TaskConfig& config) const override {
-    return config.goal_distance_m;
+    return config.own_settings<WalkSettings>().goal_distance_m;
+  }
+  std::string outcome_note(const TaskConfig& config, const EpisodeScore& s,
+                           double end_s) const override {
+    if (s.fell || s.time_to_goal_s < 0) return TaskType::outcome_note(config, s, end_s);
+    char text[96];
+    std::snprintf(text, sizeof text, "reached %.3g m at %.2f s",
+                  config.own_settings<WalkSettings>().goal_distance_m, s.time_to_goal_s);
+    return text;
+  }
+  std::vector<std::string_view> settings_fields() const override {
+    return {"goal_distance_m", "walk_vx"};
+  }
+  Status parse_settings(const nlohmann::json& doc, const TaskConfig&,
+                        OwnSettings& out) const override {
+    WalkSettings w;
+    if (Status s = read_config_number(doc, "goal_distance_m", w.goal_distance_m); !s) return s;
+    if (!(w.goal_distance_m > 0.0)) return Status::error("goal_distance_m: must be positive");
+    if (Status s = read_config_number(doc, "walk_vx", w.walk_vx); !s) return s;
+    if (!(w.walk_vx >= -1.0 && w.walk_vx <= 1.0))
+      return Status::error("walk_vx: must be in [-1, 1]");
+    out.as<WalkSettings>() = w;
+    return {};
+  }
+  void write_settings(const TaskConfig& config, nlohmann::json& doc) const override {
+    const WalkSettings& w = config.own_settings<WalkSettings>();
+    doc["goal_distance_m"] = w.goal_distance_m;
+    doc["walk_vx"] = w.walk_vx;
   }
   std::unique_ptr<TaskEpisode> start_episode(const TaskConfig& config, int, double,
                                              const sim::SimWorld& world) const override {

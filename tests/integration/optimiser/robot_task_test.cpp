@@ -21,6 +21,7 @@
 
 #include "read_file.hpp"
 #include "stride/optimiser/tasks/robot_task.hpp"
+#include "stride/optimiser/tasks/walk_settings.hpp"
 #include "temp_dir.hpp"
 
 namespace stride::opt {
@@ -144,7 +145,7 @@ TEST(RobotTask, TheSeedsWorldAndWalkByNameAndBaseParameters) {
 // within the straightness constraints, with a margin for the validation's noisier worlds.
 TEST(RobotTask, TheDemoConfigsIndOReachesTheGoalInItsWorld) {
   const TaskConfig c = load("walk-demo.json");
-  EXPECT_EQ(c.goal_distance_m, 2.5);
+  EXPECT_EQ(c.own_settings<WalkSettings>().goal_distance_m, 2.5);
   const RobotTask task(c);
   EpisodeScore s;
   ASSERT_TRUE(task.run_trial(task.start_genome(), 0, s));

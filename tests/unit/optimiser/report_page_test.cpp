@@ -84,6 +84,24 @@ TEST(ReportChart, ShownGenerationsRunFromFirstToLast) {
   EXPECT_TRUE(shown_generations(0).empty());
 }
 
+TEST(ReportSettings, TheTableListsOnlyTheRunsOwnTasksSettings) {
+  // An older walk run.json holds every task's fields; the table shows the walk's only.
+  RunData data;
+  data.task = "walk";
+  data.run["task"] = {{"duration_s", 40.0},         {"goal_distance_m", 2.5}, {"walk_vx", 1.0},
+                      {"script", "kick_right"},     {"kick_at_s", 1.0},       {"trials", 1},
+                      {"yaw_drift_limit_rad", 6.66}};
+  std::string html = settings_table_html(data);
+  for (const char* shown : {"duration_s", "goal_distance_m", "walk_vx", "trials"})
+    EXPECT_NE(html.find(shown), std::string::npos) << shown;
+  for (const char* hidden : {"script", "kick_at_s", "yaw_drift_limit_rad"})
+    EXPECT_EQ(html.find(hidden), std::string::npos) << hidden;
+  data.task = "kick";
+  html = settings_table_html(data);
+  EXPECT_NE(html.find("kick_at_s"), std::string::npos);
+  EXPECT_EQ(html.find("goal_distance_m"), std::string::npos);
+}
+
 TEST(ReportRunData, DamagedAndMissingPiecesBecomeWarnings) {
   test::TempDir tmp;
   tmp.write("run.json", R"({"problem":"walk","start":{"reals":[0.5]}})");

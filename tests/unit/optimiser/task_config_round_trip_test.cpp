@@ -1,7 +1,8 @@
 // Task configs through run.json (issue 44 point 1): every shipped config, written as
 // `stride optimise` writes run.json and read back as --resume and `stride validate` read it,
-// keeps every value its file gives; every ramp setting survives the trip, and an issue-32 ramp
-// (a normalised increment) still loads.
+// keeps every value its file gives and reads back field by field as it was loaded; every task
+// setting set away from its default survives the trip (so that a field the writer drops is seen
+// even where the defaults would hide it); an issue-32 ramp (a normalised increment) still loads.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -11,8 +12,11 @@
 #include <nlohmann/json.hpp>
 
 #include "stride/optimiser/run/optimisation_run.hpp"
+#include "stride/optimiser/tasks/kick_settings.hpp"
 #include "stride/optimiser/tasks/robot_task.hpp"
 #include "stride/optimiser/tasks/task_config.hpp"
+#include "stride/optimiser/tasks/walk_settings.hpp"
+#include "stride/sim_hal/world_spec.hpp"
 #include "temp_dir.hpp"
 
 namespace stride::opt {
@@ -65,6 +69,64 @@ void expect_contains(const json& original, const json& written, const std::strin
   }
 }
 
+/// Every field of the config read back equals the loaded config's, named when it does not (the
+/// world through its JSON, which names its fields).
+void expect_same(const TaskConfig& a, const TaskConfig& b) {
+  EXPECT_EQ(a.task, b.task);
+  EXPECT_TRUE(a.settings == b.settings) << "NSGA-II settings";
+  ASSERT_EQ(a.genes.size(), b.genes.size());
+  for (std::size_t i = 0; i < a.genes.size(); ++i) {
+    EXPECT_EQ(a.genes[i].parameter, b.genes[i].parameter) << "genes[" << i << "]";
+    EXPECT_EQ(a.genes[i].min, b.genes[i].min) << "genes[" << i << "]";
+    EXPECT_EQ(a.genes[i].max, b.genes[i].max) << "genes[" << i << "]";
+    EXPECT_EQ(a.genes[i].start, b.genes[i].start) << "genes[" << i << "]";
+  }
+  EXPECT_EQ(a.duration_s, b.duration_s);
+  // The task's own settings: whole (a defaulted ==, so a field added is compared), and named.
+  EXPECT_TRUE(a.own == b.own) << "the task's own settings";
+  EXPECT_EQ(a.own.empty(), b.own.empty());
+  if (const KickSettings* k = a.own.get<KickSettings>()) {
+    const KickSettings& r = b.own_settings<KickSettings>();
+    EXPECT_EQ(k->script, r.script);
+    EXPECT_EQ(k->kick_at_s, r.kick_at_s);
+    EXPECT_EQ(k->yaw_drift_limit_rad, r.yaw_drift_limit_rad);
+  }
+  if (const WalkSettings* w = a.own.get<WalkSettings>()) {
+    const WalkSettings& r = b.own_settings<WalkSettings>();
+    EXPECT_EQ(w->goal_distance_m, r.goal_distance_m);
+    EXPECT_EQ(w->walk_vx, r.walk_vx);
+  }
+  EXPECT_EQ(a.max_drift_ratio, b.max_drift_ratio);
+  EXPECT_EQ(a.max_heading_change_deg, b.max_heading_change_deg);
+  EXPECT_EQ(a.max_turn_translation_m, b.max_turn_translation_m);
+  EXPECT_EQ(a.omni.start_s, b.omni.start_s);
+  EXPECT_EQ(a.omni.ramp_s, b.omni.ramp_s);
+  EXPECT_EQ(a.omni.hold_s, b.omni.hold_s);
+  EXPECT_EQ(a.omni.stop_s, b.omni.stop_s);
+  EXPECT_EQ(to_json(a.ramp), to_json(b.ramp));  // every field (EveryRampSettingSurvivesRunJson)
+  EXPECT_EQ(a.trials, b.trials);
+  EXPECT_EQ(a.aggregate, b.aggregate);
+  EXPECT_EQ(a.trial_seed, b.trial_seed);
+  EXPECT_EQ(a.randomisation.imu_noise, b.randomisation.imu_noise);
+  EXPECT_EQ(a.randomisation.friction_range, b.randomisation.friction_range);
+  EXPECT_EQ(a.randomisation.mass_range, b.randomisation.mass_range);
+  EXPECT_EQ(a.randomisation.strength_range, b.randomisation.strength_range);
+  EXPECT_EQ(a.randomisation.contact_range, b.randomisation.contact_range);
+  EXPECT_EQ(a.randomisation.com_range, b.randomisation.com_range);
+  EXPECT_EQ(a.engines, b.engines);
+  EXPECT_EQ(sim::to_json(a.world), sim::to_json(b.world));
+  EXPECT_EQ(a.base_params, b.base_params);
+  ASSERT_EQ(a.starts.size(), b.starts.size());
+  for (std::size_t i = 0; i < a.starts.size(); ++i) {
+    EXPECT_EQ(a.starts[i].firmware_defaults, b.starts[i].firmware_defaults)
+        << "starts[" << i << "]";
+    EXPECT_EQ(a.starts[i].values, b.starts[i].values) << "starts[" << i << "]";
+  }
+  EXPECT_EQ(a.validate_seeds, b.validate_seeds);
+  EXPECT_EQ(a.hv_ideal, b.hv_ideal);
+  EXPECT_EQ(a.hv_nadir, b.hv_nadir);
+}
+
 TEST(TaskConfig, EveryShippedConfigKeepsEveryValueThroughRunJson) {
   int configs = 0;
   for (const auto& entry : std::filesystem::directory_iterator(kConfigs)) {
@@ -79,10 +141,85 @@ TEST(TaskConfig, EveryShippedConfigKeepsEveryValueThroughRunJson) {
     const json written = through_run_json(loaded, tmp.path());
     expect_contains(original, written, "");
     ASSERT_TRUE(parse_task_config(written, reread));
+    expect_same(loaded, reread);
     // What the reader rebuilds writes the same record again (nothing lost on a second trip).
     EXPECT_EQ(to_json(reread), written);
   }
   EXPECT_EQ(configs, 8);
+}
+
+TEST(TaskConfig, EveryTaskSettingAwayFromItsDefaultSurvivesRunJson) {
+  // Each task's own settings set away from their defaults, so that a setting the writer drops
+  // (and the reader then defaults) is seen even where no shipped config gives it.
+  const auto through = [](const std::string& file, const auto& change) {
+    SCOPED_TRACE(file);
+    TaskConfig config, reread;
+    ASSERT_TRUE(load_task_config(kConfigs / file, config));
+    change(config);
+    const test::TempDir tmp;
+    ASSERT_TRUE(parse_task_config(through_run_json(config, tmp.path()), reread));
+    expect_same(config, reread);
+  };
+  through("kick.json", [](TaskConfig& c) {
+    KickSettings& k = c.own_settings<KickSettings>();
+    k.script = "kick_left";
+    k.kick_at_s = 1.5;
+    k.yaw_drift_limit_rad = 3.25;
+  });
+  through("walk.json", [](TaskConfig& c) {
+    c.own_settings<WalkSettings>() = {1.75, 0.625};
+    c.max_drift_ratio = 0.2;
+    c.max_heading_change_deg = -1.0;  // off: null
+  });
+  through("walk-omni.json", [](TaskConfig& c) {
+    c.omni = {3.0, 0.5, 6.0, 1.5};
+    c.max_drift_ratio = -1.0;
+    c.max_heading_change_deg = 12.5;
+    c.max_turn_translation_m = 0.15;
+  });
+}
+
+TEST(TaskConfig, ARunJsonHoldsOnlyItsOwnTasksSettings) {
+  const auto written = [](const std::string& file) {
+    TaskConfig config;
+    EXPECT_TRUE(load_task_config(kConfigs / file, config));
+    const test::TempDir tmp;
+    return through_run_json(config, tmp.path());
+  };
+  const json walk = written("walk.json");
+  EXPECT_TRUE(walk.contains("goal_distance_m"));
+  EXPECT_TRUE(walk.contains("walk_vx"));
+  for (const char* kick_field : {"script", "kick_at_s", "yaw_drift_limit_rad"})
+    EXPECT_FALSE(walk.contains(kick_field)) << kick_field;
+  const json kick = written("kick.json");
+  EXPECT_EQ(kick.at("script"), "kick_right");
+  for (const char* walk_field : {"goal_distance_m", "walk_vx"})
+    EXPECT_FALSE(kick.contains(walk_field)) << walk_field;
+}
+
+TEST(TaskConfig, AnOldRunJsonWithEveryTasksFieldsStillLoads) {
+  // Before the tasks owned their settings, every run.json held every task's fields.
+  json doc;
+  std::ifstream(kConfigs / "walk.json") >> doc;
+  doc["script"] = "kick_right";
+  doc["kick_at_s"] = 1.0;
+  doc["yaw_drift_limit_rad"] = 6.66;
+  doc["walk_vx"] = 0.75;
+  TaskConfig c;
+  ASSERT_TRUE(parse_task_config(doc, c));
+  EXPECT_EQ(c.own_settings<WalkSettings>().walk_vx, 0.75);
+  EXPECT_EQ(c.own.get<KickSettings>(), nullptr);
+  std::ifstream(kConfigs / "kick.json") >> doc;
+  doc["goal_distance_m"] = 2.5;
+  doc["walk_vx"] = 1.0;
+  doc["kick_at_s"] = 2.0;
+  ASSERT_TRUE(parse_task_config(doc, c));
+  EXPECT_EQ(c.own_settings<KickSettings>().kick_at_s, 2.0);
+  // A task's own setting is still checked; another task's is not read.
+  doc["kick_at_s"] = 9.0;
+  const Status s = parse_task_config(doc, c);
+  ASSERT_FALSE(s);
+  EXPECT_EQ(s.message(), "kick_at_s: must be in [0, duration_s)");
 }
 
 TEST(TaskConfig, EveryRampSettingSurvivesRunJson) {

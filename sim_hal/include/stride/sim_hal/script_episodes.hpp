@@ -34,6 +34,11 @@ namespace stride::sim {
 /// resting on the grass).
 ResetSpec kick_reset_spec(const Eigen::Vector3d& ball_position);
 
+/// Where a kick episode places the ball for `script`: before the right foot (0.25, -0.06, NaN
+/// z: resting on the grass), mirrored before the left foot for kick_left. `stride sim kick` and
+/// the optimiser's kick task both place it here.
+Eigen::Vector3d kick_ball_position(const std::string& script);
+
 /// Whether the firmware has a kick script of that name (the error names it).
 Status check_kick_script(const fw::Firmware& firmware, const std::string& script);
 

@@ -2,7 +2,8 @@
 //
 // A task config names the task (a TaskType: "walk", "walk-omni", "kick", "getup"), the NSGA-II
 // inputs (seed, pop, generations, pc, pm, etaC, etaM, seed_fraction), the genome as parameter names
-// with bounds and start values (the firmware's current values, Ind_O), the episode settings and the
+// with bounds and start values (the firmware's current values, Ind_O), the episode settings (the
+// task type's own ones parsed by the type: TaskConfig::own, task_settings.hpp) and the
 // robust evaluation (trials under seeded randomised worlds, on one or more physics engines,
 // aggregated by mean or worst) and the validation that follows a run (`stride validate`,
 // validation.hpp). Every error names the offending field, e.g. "genes[3].max: must be greater than
@@ -21,6 +22,7 @@
 #include "stride/core/status.hpp"
 #include "stride/optimiser/nsga2/settings.hpp"
 #include "stride/optimiser/tasks/speed_ramp.hpp"
+#include "stride/optimiser/tasks/task_settings.hpp"
 #include "stride/sim_hal/world_spec.hpp"
 
 namespace stride::opt {
@@ -75,12 +77,22 @@ struct TaskConfig {
   Nsga2Settings settings;
   std::vector<TaskGene> genes;
   // Episode.
-  double duration_s = 40.0;           ///< walk: time limit; kick: episode length
-  double goal_distance_m = 2.5;       ///< walk
-  double walk_vx = 1.0;               ///< walk: normalised forward command
-  std::string script = "kick_right";  ///< kick
-  double kick_at_s = 1.0;             ///< kick
-  double yaw_drift_limit_rad = 6.66;  ///< kick constraint (seed: |integral of gyro z| > 6.66)
+  double duration_s = 40.0;  ///< walk: time limit; kick and getup: episode length
+  /// The task type's own settings (task_settings.hpp: e.g. WalkSettings, KickSettings), parsed
+  /// and written by the type (TaskType::parse_settings, write_settings); none for a task that
+  /// has none. own_settings<T>() reads them.
+  OwnSettings own;
+  /// The task's own settings as a T (the type's defaults if the config holds none of that type).
+  template <class T>
+  const T& own_settings() const {
+    static const T defaults{};
+    const T* s = own.get<T>();
+    return s != nullptr ? *s : defaults;
+  }
+  template <class T>
+  T& own_settings() {
+    return own.as<T>();
+  }
   // Straightness (walk and walk-omni; a negative value switches the constraint off, written
   // as null in JSON): lateral drift at most max_drift_ratio of the distance walked, heading
   // change at most max_heading_change_deg; walk-omni's turns translate at most
@@ -139,5 +151,8 @@ Status parse_task_config(const nlohmann::json& doc, TaskConfig& out);
 Status load_task_config(const std::filesystem::path& path, TaskConfig& out);
 /// The config as JSON (recorded in run.json, read back by --resume).
 nlohmann::json to_json(const TaskConfig& config);
+/// A config's optional finite number `field` into `out` (absent: `out` unchanged); the error
+/// names the field. For a task type's own settings (TaskType::parse_settings).
+Status read_config_number(const nlohmann::json& doc, const std::string& field, double& out);
 
 }  // namespace stride::opt

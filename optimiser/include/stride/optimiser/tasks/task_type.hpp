@@ -6,7 +6,8 @@
 //     (TaskEpisode::before_step) and how the finished episode scores (TaskEpisode::score);
 //   - the objectives' labels and units, the constraints, the picks' names;
 //   - the validation's success test, gate objective and plain-language words;
-//   - the report's outcome note.
+//   - the report's outcome note;
+//   - its own settings (TaskConfig::own): their config fields, read and written by the type.
 // A new task is one file that defines a TaskType, one line in task_registry.cpp and a config.
 //
 // Real-time rule: before_step runs inside the lockstep episode, once per 10 ms control tick; it
@@ -108,6 +109,20 @@ class TaskType {
   virtual std::int64_t trial_physics_step_us() const { return kTrialPhysicsStepUs; }
   /// How episode `episode` of a world starts (default: standing, the ball before the right foot).
   virtual sim::ResetSpec reset_spec(const TaskConfig& config, int episode) const;
+  /// The config fields that are the task's own settings (TaskConfig::own): read by
+  /// parse_settings, written by write_settings, listed by the report.
+  virtual std::vector<std::string_view> settings_fields() const { return {}; }
+  /// Reads the task's own settings from the config's fields into `out` (`config`: the shared
+  /// part, already read); the error names the field. Fields of other tasks are left alone.
+  virtual Status parse_settings(const nlohmann::json& /*doc*/, const TaskConfig& /*config*/,
+                                OwnSettings& /*out*/) const {
+    return {};
+  }
+  /// Writes the task's own settings as the config's fields into the task record `doc`.
+  virtual void write_settings(const TaskConfig& /*config*/, nlohmann::json& /*doc*/) const {}
+  /// When the task's action starts [s] (the kick: kick_at_s), where the report's strip of a
+  /// ball task begins looking for the ball's motion.
+  virtual double action_at_s(const TaskConfig& /*config*/) const { return 0.0; }
   /// Checks the config's task-specific settings beyond what parse_task_config checks.
   virtual Status check(const TaskConfig& config) const;
   /// The episode, once the world is reset (its start state readable in `world`).
@@ -120,5 +135,8 @@ class TaskType {
 const TaskType* find_task_type(std::string_view name);
 /// "walk, walk-omni, kick or getup": for error messages.
 std::string task_type_list();
+/// Whether `field` is one of some task type's own settings (settings_fields()): a config (an
+/// old run.json holds every task's) may give it for another task.
+bool is_task_settings_field(std::string_view field);
 
 }  // namespace stride::opt
