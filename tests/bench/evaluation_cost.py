@@ -5,7 +5,7 @@ table gives each one's evaluations per second and their ratio per round (median 
 Speed on these hosts drifts within minutes, so only the ratio of neighbouring runs counts.
 
   python3 tests/bench/evaluation_cost.py --old OLD/stride [--new build/release/bin/stride]
-      [--rounds 3] [--tasks walk,ramp,ramp2,getup] [--json OUT]
+      [--rounds 3] [--tasks walk,ramp,ramp2,getup] [--configs DIR] [--json OUT]
 
 OLD is a release build of the previous main, for example:
   git worktree add /tmp/prev <commit> && cmake -S /tmp/prev --preset release \
@@ -19,7 +19,9 @@ Also measured with the new build in the same run:
 
 The tasks are the shipped configs cut short (populations and generations below), so that a
 round takes a few minutes; the ratio of whole runs is what the full configs would see as long
-as the episodes are alike. Each run is `stride optimise --no-validate --jobs 2` in a fresh
+as the episodes are alike. Both builds run the same configs: this tree's optimiser/configs, or
+--configs DIR (the old tree's, when the old build cannot read today's; the new build reads every
+older config). Each run is `stride optimise --no-validate --jobs 2` in a fresh
 directory; evaluations/s = evaluations / (sum of the generations' wall_s).
 """
 import argparse
@@ -107,6 +109,8 @@ def main():
     ap.add_argument("--new", default=os.path.join(ROOT, "build", "release", "bin", "stride"))
     ap.add_argument("--rounds", type=int, default=3)
     ap.add_argument("--tasks", default="walk,ramp,ramp2,getup")
+    ap.add_argument("--configs", default=CONFIGS,
+                    help="the shipped configs both builds run (default: this tree's)")
     ap.add_argument("--json", help="write every figure here")
     a = ap.parse_args()
     for b in (a.old, a.new):
@@ -125,7 +129,7 @@ def main():
             print(f"round {k + 1} of {a.rounds}", file=sys.stderr)
             for t in tasks:
                 name, shorten, _ = TASKS[t]
-                with open(os.path.join(CONFIGS, name)) as f:
+                with open(os.path.join(a.configs, name)) as f:
                     config = json.load(f)
                 shorten(config)
                 # Alternate which build goes first, so that a drifting host favours neither.
@@ -137,7 +141,7 @@ def main():
                 figures[t]["new"].append(rate["new"])
                 figures[t]["ratio"].append(rate["new"] / rate["old"])
                 print(f"  {t}: old {rate['old']:.2f}/s, new {rate['new']:.2f}/s", file=sys.stderr)
-            with open(os.path.join(CONFIGS, "walk.json")) as f:
+            with open(os.path.join(a.configs, "walk.json")) as f:
                 config = json.load(f)
             walk_task(config)
             one = run_optimise(a.new, config, 1, workdir)
