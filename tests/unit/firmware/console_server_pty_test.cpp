@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <chrono>
 #include <memory>
 #include <random>
 #include <thread>
@@ -112,18 +113,21 @@ TEST_F(ConsoleServerPty, SurvivesBinaryNoiseAndOverlongLines) {
   std::uniform_int_distribution<int> byte(0, 255);
   std::string noise(64 * 1024, '\0');
   for (char& c : noise) c = static_cast<char>(byte(rng));
-  std::atomic<bool> reading{true};
+  // The server's echo is drained while the noise goes in (a full pty would stop it), until it
+  // reports the overlong line written after the noise: it has then read all of the noise, on a
+  // loaded host too (a fixed wait of 300 ms was not always enough under ASan).
+  const std::string overlong = "err line-too-long line longer than 1024 bytes discarded";
   std::string discarded;
   std::thread drain([&] {
-    while (reading.load()) (void)pty.read_for(discarded, 20ms);
+    const auto deadline = std::chrono::steady_clock::now() + 20s;
+    while (discarded.find(overlong) == std::string::npos &&
+           std::chrono::steady_clock::now() < deadline)
+      (void)pty.read_for(discarded, 20ms);
   });
-  ASSERT_TRUE(pty.write(noise));
-  ASSERT_TRUE(pty.write(std::string(5000, 'x') + "\r"));
-  std::this_thread::sleep_for(300ms);
-  reading = false;
+  EXPECT_TRUE(pty.write(noise));  // EXPECT: the drain is joined whatever happens
+  EXPECT_TRUE(pty.write(std::string(5000, 'x') + "\r"));
   drain.join();
-  EXPECT_NE(discarded.find("err line-too-long line longer than 1024 bytes discarded"),
-            std::string::npos);
+  EXPECT_NE(discarded.find(overlong), std::string::npos);
   EXPECT_GE(server_->counters().overlong_lines.load(), 1u);
   EXPECT_GT(server_->counters().noise_bytes.load(), 10000u);
   // After the noise a Ctrl-C clears any partial line and the console answers normally.
