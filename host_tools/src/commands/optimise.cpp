@@ -265,6 +265,7 @@ Status config_problem(const stride::core::CliArgs& args, Settings& s,
     std::vector<stride::sim::EngineKind> engines;
     if (auto st = stride::sim::read_engine_list(args, "engine", engines); !st) return st;
     task.engines = engines;
+    opt::apply_task_trial_step(task);  // a default step is the one these engines allow
   }
   s.config.settings = task.settings;
   if (auto st = read_settings(args, 0, s); !st) return st;

@@ -149,9 +149,15 @@ Status validation_worlds(const RobotTask& task, const ValidationOptions& options
   if (engines.empty())
     for (sim::EngineKind e : kAllEngines)
       if (!contains(config.engines, e)) engines.push_back(e);
+  const TaskType* type = find_task_type(config.task);
   for (sim::EngineKind e : engines) {
     ValidationWorld w{std::string("engine ") + sim::to_string(e), base, seeds};
     w.options.engine = e;
+    // At most the step the task allows on that engine (a Simbody run's 2.5 ms is 2 ms on MuJoCo,
+    // TaskType::trial_physics_step_us): the other engine checks the walk, not its own step.
+    if (type != nullptr)
+      w.options.physics_step_ns =
+          std::min(w.options.physics_step_ns, type->trial_physics_step_us(e) * 1000);
     out.push_back(std::move(w));
   }
   out.push_back({"fresh seeds", base, seeds});

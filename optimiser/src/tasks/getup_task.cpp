@@ -102,7 +102,7 @@ class GetUpTask final : public TaskType {
   }
   int episodes_per_world() const override { return 2; }
   /// 2 ms: at 2.5 ms the front side stood up 3.5 % sooner on Simbody (tests/bench/RESULTS.md).
-  std::int64_t trial_physics_step_us() const override { return 2000; }
+  std::int64_t trial_physics_step_us(sim::EngineKind) const override { return 2000; }
   sim::ResetSpec reset_spec(const TaskConfig&, int episode) const override {
     return sim::lying_reset_spec(episode == 0);
   }

@@ -3,6 +3,7 @@
 // from a file and writing it back: task_config_file.cpp.
 #include "stride/optimiser/tasks/task_config.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <system_error>
 
@@ -170,15 +171,15 @@ Status parse_robot(const nlohmann::json& doc, TaskConfig& c) {
     if (doc.contains(key))
       if (Status s = spec.set(key, option_text(doc.at(key)), key); !s) return s;
   // The trials' physics step: unless the config gives one, the faithful world's trials step at
-  // the task's trial_physics_step_us(), the largest step at which its results hold. The
-  // seed's world and a world file keep the table's default.
+  // the task's trial_physics_step_us() on its engines, the largest step at which its results
+  // hold on all of them. The seed's world and a world file keep the table's default.
   const bool step_given =
       doc.contains("physics_step_us") || (doc.contains("world") && doc.at("world").is_object() &&
                                           doc.at("world").contains("physics_step_us"));
-  const TaskType* type = find_task_type(c.task);
-  if (!step_given && spec.base == sim::WorldPreset::kFaithful && !spec.file && type != nullptr)
-    spec.physics_step_us = type->trial_physics_step_us();
+  c.trial_step_from_task = !step_given && spec.base == sim::WorldPreset::kFaithful &&
+                           !spec.file && find_task_type(c.task) != nullptr;
   c.world = std::move(spec);
+  apply_task_trial_step(c);
   if (doc.contains("params")) {
     nlohmann::json values = doc.at("params");
     if (values.is_string()) {
@@ -438,6 +439,21 @@ Status parse_hypervolume_box(const nlohmann::json& doc, TaskConfig& c) {
 
 Status read_config_number(const nlohmann::json& doc, const std::string& field, double& out) {
   return number(doc, field, out, false);
+}
+
+std::int64_t task_trial_step_us(const TaskConfig& config) {
+  const TaskType* type = find_task_type(config.task);
+  if (type == nullptr) return kTrialPhysicsStepUs;
+  std::int64_t step = 0;
+  for (const sim::EngineKind engine : config.engines) {
+    const std::int64_t allowed = type->trial_physics_step_us(engine);
+    step = step == 0 ? allowed : std::min(step, allowed);
+  }
+  return step > 0 ? step : type->trial_physics_step_us(sim::EngineKind::kSimbody);
+}
+
+void apply_task_trial_step(TaskConfig& config) {
+  if (config.trial_step_from_task) config.world.physics_step_us = task_trial_step_us(config);
 }
 
 Status parse_task_config(const nlohmann::json& doc, TaskConfig& out) {

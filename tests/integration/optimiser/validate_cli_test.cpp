@@ -80,6 +80,7 @@ TEST(ValidateCli, TinyWalkRunValidatesTheSameForAnyThreadCountAndReportShowsIt) 
   ASSERT_EQ(worlds.size(), 6u);
   EXPECT_EQ(worlds[0]["name"], "engine mujoco");
   EXPECT_EQ(worlds[0]["engine"], "mujoco");
+  EXPECT_EQ(worlds[0]["physics_step_us"], 2000);  // the step the walk allows on MuJoCo
   EXPECT_EQ(worlds[1]["name"], "fresh seeds");
   EXPECT_EQ(worlds[2]["name"], "wider randomisation");
   EXPECT_DOUBLE_EQ(worlds[2]["friction_range"].get<double>(), 0.3);

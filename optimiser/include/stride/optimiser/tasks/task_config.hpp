@@ -63,14 +63,19 @@ struct OmniTiming {
   double total_s() const { return start_s + 6.0 * (ramp_s + hold_s + stop_s); }
 };
 
-/// The physics step of a walk or kick optimisation's trials in the faithful world when the
-/// config gives none [us] (TaskType::trial_physics_step_us): the largest step at which the
-/// faithful robot's results held within the validation gate on both engines
-/// (tests/bench/RESULTS.md, "The step the model allows": per-direction speeds within the seeds'
-/// spread, time to 2.5 m and the kick within 2 %; 5 ms shifted the sideways and turning speeds
-/// by 10-35 % on MuJoCo). The get-up keeps 2000 (at 2500 its front side stood up 3.5 % sooner
-/// on Simbody); `stride sim` keeps 2000.
+/// The physics step of a walk or kick optimisation's trials on Simbody in the faithful world
+/// when the config gives none [us] (TaskType::trial_physics_step_us): the largest step at which
+/// the faithful robot's results held within the validation gate (tests/bench/RESULTS.md, "The
+/// step the model allows": per-direction speeds within the seeds' spread, on every ground and
+/// robot variant, time to 2.5 m and the kick within 2 %; 5 ms moved the backward speed by 5 %).
+/// The get-up keeps 2000 (at 2500 its front side stood up 3.5 % sooner on Simbody); `stride
+/// sim` keeps 2000.
 inline constexpr std::int64_t kTrialPhysicsStepUs = 2500;
+/// The same on MuJoCo [us]: at 2500 the fast omnidirectional walk (walk-omni-robust.json) fell
+/// walking forward in 1-2 of 3 seeds on the soft and hard grounds and two robot variants, where
+/// at 2000 it fell nowhere (tests/bench/RESULTS.md). A run whose trials include MuJoCo steps
+/// every trial at this step (one step per run: task_trial_step_us).
+inline constexpr std::int64_t kTrialPhysicsStepUsMujoco = 2000;
 
 struct TaskConfig {
   std::string task;  ///< a TaskType's name (task_type.hpp): "walk", "walk-omni", "kick", "getup"
@@ -119,10 +124,14 @@ struct TaskConfig {
   /// noise and randomisation ranges are the trials' (trial_seed, randomisation), so a config
   /// that sets them in `world` is an error naming the field. A relative path (a URDF, a world
   /// file) is relative to the config file. Its physics step, unless the config gives one, is
-  /// the task type's trial_physics_step_us() in the faithful world (the table's 2000 us in the
-  /// seed's world or a
-  /// world file); run.json always holds the step a run used.
+  /// the task type's trial_physics_step_us() for the run's engines in the faithful world (the
+  /// smallest of them: task_trial_step_us; the table's 2000 us in the seed's world or a world
+  /// file); run.json always holds the step a run used.
   sim::WorldSpec world;
+  /// The step in `world` is the task's default for `engines` (the config gave none): a change
+  /// of engines (`stride optimise --engine`) sets it again (apply_task_trial_step). Not in
+  /// run.json, which holds the step itself.
+  bool trial_step_from_task = false;
   /// Parameter values every episode's firmware takes before the genome (config `params`: a
   /// parameter file's path, relative to the config, or an object {name: number}); genes
   /// override them. Sorted by name. E.g. firmware/config/seed-walk.json with `"world": "seed"`
@@ -149,6 +158,13 @@ struct TaskConfig {
 Status parse_task_config(const nlohmann::json& doc, TaskConfig& out);
 /// Reads and parses a file; the error names the file and the field.
 Status load_task_config(const std::filesystem::path& path, TaskConfig& out);
+/// The trials' physics step the config's task type allows on every one of its engines [us]:
+/// the smallest of TaskType::trial_physics_step_us over `engines` (kTrialPhysicsStepUs for an
+/// unknown task).
+std::int64_t task_trial_step_us(const TaskConfig& config);
+/// Sets world.physics_step_us to task_trial_step_us() if the step is the task's default
+/// (trial_step_from_task), after a change of engines.
+void apply_task_trial_step(TaskConfig& config);
 /// The config as JSON (recorded in run.json, read back by --resume).
 nlohmann::json to_json(const TaskConfig& config);
 /// A config's optional finite number `field` into `out` (absent: `out` unchanged); the error

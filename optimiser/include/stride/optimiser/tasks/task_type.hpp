@@ -104,9 +104,11 @@ class TaskType {
   /// Episodes per world (the get-up: from the front and from the back); their objectives and
   /// constraints are averaged, and a world's score is that average.
   virtual int episodes_per_world() const { return 1; }
-  /// The physics step of the task's trials in the faithful world when the config gives none
-  /// [us] (TaskConfig::world): the largest at which the task's results held.
-  virtual std::int64_t trial_physics_step_us() const { return kTrialPhysicsStepUs; }
+  /// The physics step of the task's trials on `engine` in the faithful world when the config
+  /// gives none [us] (TaskConfig::world): the largest at which the task's results held there.
+  virtual std::int64_t trial_physics_step_us(sim::EngineKind engine) const {
+    return engine == sim::EngineKind::kMujoco ? kTrialPhysicsStepUsMujoco : kTrialPhysicsStepUs;
+  }
   /// How episode `episode` of a world starts (default: standing, the ball before the right foot).
   virtual sim::ResetSpec reset_spec(const TaskConfig& config, int episode) const;
   /// The config fields that are the task's own settings (TaskConfig::own): read by
