@@ -13,7 +13,7 @@ namespace stride::opt {
 RampLevel measure_ramp_level(const PlanarPose& direction_start, const PlanarPose& window_start,
                              const PlanarPose& end, const std::array<double, 3>& axis,
                              const TaskConfig& config) {
-  const double window = config.ramp.measure_s;
+  const double window = config.own_settings<RampSettings>().timing.measure_s;
   const bool turn = axis[2] != 0.0;
   const Translation t =
       measure_translation(window_start, end, turn ? 1.0 : axis[0], turn ? 0.0 : axis[1]);
@@ -39,26 +39,26 @@ RampLevel measure_ramp_level(const PlanarPose& direction_start, const PlanarPose
 }
 
 int RampDirection::level_at(double t) const {
-  const RampTiming& r = config_.ramp;
+  const RampTiming& r = ramp_;
   return t < r.start_s ? 0 : 1 + static_cast<int>((t - r.start_s) / r.hold_s);
 }
 
 double RampDirection::level_speed(int level) const {
-  const RampTiming& r = config_.ramp;
+  const RampTiming& r = ramp_;
   if (r.normalised()) return std::min(1.0, level * r.increment);
   return level * (axis_[2] != 0.0 ? r.increment_radps : r.increment_mps);
 }
 
 bool RampDirection::window_begun(int level, double t) const {
-  const RampTiming& r = config_.ramp;
+  const RampTiming& r = ramp_;
   const double level_end = r.start_s + level * r.hold_s;
   return t >= level_end - r.measure_s - 1e-9;
 }
 
 double RampDirection::begin_level(int level, const fw::walk::WalkParameters& walk) {
-  if (level > config_.ramp.max_levels) ended_ = true;
+  if (level > ramp_.max_levels) ended_ = true;
   if (ended_) return 0.0;
-  if (config_.ramp.normalised()) return level_speed(level);
+  if (ramp_.normalised()) return level_speed(level);
   const std::optional<double> command = command_for_speed(walk, axis_, level_speed(level));
   if (!command) {
     ended_ = beyond_walk_limits_ = true;
@@ -74,7 +74,7 @@ void RampDirection::end_level(int level, const RampLevel& figures) {
     return;
   }
   if (figures.speed <= best_.speed) {  // no faster: the direction ends after `patience` such
-    if (++levels_without_gain_ >= config_.ramp.patience) ended_ = true;
+    if (++levels_without_gain_ >= ramp_.patience) ended_ = true;
     return;
   }
   levels_without_gain_ = 0;

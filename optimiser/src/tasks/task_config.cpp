@@ -74,8 +74,6 @@ const char* const kKnownFields[] = {"task",
                                     "max_drift_ratio",
                                     "max_heading_change_deg",
                                     "max_turn_translation_m",
-                                    "omni",
-                                    "ramp",
                                     "trials",
                                     "aggregate",
                                     "trial_seed",
@@ -342,27 +340,6 @@ Status parse_episode(const nlohmann::json& doc, TaskConfig& c) {
   return {};
 }
 
-/// omni: the walk-omni task's command timing.
-Status parse_omni(const nlohmann::json& doc, TaskConfig& c) {
-  if (doc.contains("omni")) {
-    const auto& o = doc.at("omni");
-    if (!o.is_object()) return Status::error("omni: must be an object");
-    for (const auto& [key, value] : o.items())
-      if (key != "start_s" && key != "ramp_s" && key != "hold_s" && key != "stop_s")
-        return Status::error("omni." + key + ": unknown field");
-    for (auto [name, target] : {std::pair{"start_s", &c.omni.start_s},
-                                {"ramp_s", &c.omni.ramp_s},
-                                {"hold_s", &c.omni.hold_s},
-                                {"stop_s", &c.omni.stop_s}}) {
-      if (Status s = number(o, name, *target, false, "omni."); !s) return s;
-      if (!(*target >= 0.0 && *target <= 60.0))
-        return Status::error(std::string("omni.") + name + ": must be in [0, 60]");
-    }
-    if (!(c.omni.hold_s >= 1.0)) return Status::error("omni.hold_s: must be at least 1 s");
-  }
-  return {};
-}
-
 /// trials, aggregate, trial_seed and the randomisation of the trial worlds.
 Status parse_trials(const nlohmann::json& doc, TaskConfig& c) {
   std::int64_t v = 0;
@@ -458,9 +435,6 @@ Status parse_task_config(const nlohmann::json& doc, TaskConfig& out) {
   if (Status s = parse_genes(doc, c); !s) return s;
   if (Status s = parse_starts(doc, c); !s) return s;
   if (Status s = parse_episode(doc, c); !s) return s;
-  if (Status s = parse_omni(doc, c); !s) return s;
-  if (doc.contains("ramp"))
-    if (Status s = parse_ramp(doc.at("ramp"), c.ramp); !s) return s;
   if (Status s = parse_trials(doc, c); !s) return s;
   if (Status s = parse_engines(doc, c.engines); !s) return s;
   if (Status s = parse_robot(doc, c); !s) return s;

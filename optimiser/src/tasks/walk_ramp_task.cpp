@@ -1,6 +1,6 @@
-// The speed-ramp walk task (issue 32 point 1; settings in speed_ramp.hpp, the ramp of one
-// direction in ramp_direction.hpp): the top speed of each direction, as the Bit-Bots search for it,
-// one episode per direction.
+// The speed-ramp walk task (issue 32 point 1; its own settings in speed_ramp.hpp, config `ramp`;
+// the ramp of one direction in ramp_direction.hpp): the top speed of each direction, as the
+// Bit-Bots search for it, one episode per direction.
 //   Obj1 = -(v_f + v_b + 2 v_side + 0.2 w_turn) [m/s], each v the direction's best speed held,
 //          v_side and w_turn the means of both sides (the Bit-Bots' score): each episode scores
 //          -6 w_d v_d (w = 1, 1, 1, 1, 0.1, 0.1), so that the world's mean is the sum.
@@ -37,7 +37,7 @@ class RampEpisode final : public TaskEpisode {
         ramp_(config, axis_) {}
   sim::EpisodeOptions options() const override {
     sim::EpisodeOptions o;
-    o.duration_s = config_.ramp.episode_s();
+    o.duration_s = config_.own_settings<RampSettings>().timing.episode_s();
     o.goal_distance_m = 1e9;
     o.stop_on_fall = true;
     o.stop_when = [this] { return ramp_.ended(); };
@@ -134,6 +134,18 @@ class WalkRampTask final : public TaskType {
   }
   bool measures_directions() const override { return true; }
   int episodes_per_world() const override { return kOmniSegments; }
+  std::vector<std::string_view> settings_fields() const override { return {"ramp"}; }
+  Status parse_settings(const nlohmann::json& doc, const TaskConfig&,
+                        OwnSettings& out) const override {
+    RampSettings r;
+    if (doc.contains("ramp"))
+      if (Status s = parse_ramp(doc.at("ramp"), r.timing); !s) return s;
+    out.as<RampSettings>() = r;
+    return {};
+  }
+  void write_settings(const TaskConfig& config, nlohmann::json& doc) const override {
+    doc["ramp"] = to_json(config.own_settings<RampSettings>().timing);
+  }
   std::unique_ptr<TaskEpisode> start_episode(const TaskConfig& config, int episode, double period_s,
                                              const sim::SimWorld&) const override {
     return std::make_unique<RampEpisode>(config, episode, period_s);

@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "stride/optimiser/tasks/robot_task.hpp"
+#include "stride/optimiser/tasks/speed_ramp.hpp"
 
 namespace stride::opt {
 namespace {
@@ -133,7 +134,7 @@ TEST(WalkRampTask, IssueThirtyTwosNormalisedRampStillGivesItsFigures) {
   doc["physics_step_us"] = 2000;
   TaskConfig config;
   ASSERT_TRUE(parse_task_config(doc, config));
-  ASSERT_TRUE(config.ramp.normalised());
+  ASSERT_TRUE(config.own_settings<RampSettings>().timing.normalised());
   const RobotTask task(config);
   const EpisodeScore s = run_directions(task, task.start_genome());
   expect_top_speeds(s, {0.1497, 0.0312, 0.0114, 0.0097, 0.1987, 0.1843}, config);

@@ -20,13 +20,13 @@ constexpr double kDeg = std::numbers::pi / 180.0;
 /// 3 s, 10 levels, patience 2, drift ratio 0.1, heading 10 deg, turn translation 0.1 m.
 TaskConfig ramp_config() {
   TaskConfig c;
-  c.ramp.start_s = 2.0;
-  c.ramp.increment_mps = 0.05;
-  c.ramp.increment_radps = 0.2;
-  c.ramp.hold_s = 4.0;
-  c.ramp.measure_s = 3.0;
-  c.ramp.max_levels = 10;
-  c.ramp.patience = 2;
+  c.own_settings<RampSettings>().timing.start_s = 2.0;
+  c.own_settings<RampSettings>().timing.increment_mps = 0.05;
+  c.own_settings<RampSettings>().timing.increment_radps = 0.2;
+  c.own_settings<RampSettings>().timing.hold_s = 4.0;
+  c.own_settings<RampSettings>().timing.measure_s = 3.0;
+  c.own_settings<RampSettings>().timing.max_levels = 10;
+  c.own_settings<RampSettings>().timing.patience = 2;
   c.max_drift_ratio = 0.1;
   c.max_heading_change_deg = 10.0;
   c.max_turn_translation_m = 0.1;
@@ -73,14 +73,14 @@ TEST(RampDirection, LevelsRiseEveryHoldFromTheStartWithTheirSpeedAndWindow) {
   EXPECT_TRUE(ramp.window_begun(2, 7.0));
   // After max_levels the direction ends (the walk could command more).
   TaskConfig fast = c;
-  fast.ramp.increment_mps = 0.01;
+  fast.own_settings<RampSettings>().timing.increment_mps = 0.01;
   RampDirection slow(fast, kForward);
   EXPECT_GT(slow.begin_level(10, fast_walk()), 0.0);
   EXPECT_FALSE(slow.ended());
   EXPECT_EQ(slow.begin_level(11, fast_walk()), 0.0);
   EXPECT_TRUE(slow.ended());
   EXPECT_FALSE(slow.beyond_walk_limits());
-  EXPECT_DOUBLE_EQ(c.ramp.episode_s(), 42.0);
+  EXPECT_DOUBLE_EQ(c.own_settings<RampSettings>().timing.episode_s(), 42.0);
 }
 
 TEST(RampDirection, ALevelCommandsItsSpeedWithTheWalksLimitsAndEndsBeyondThem) {
@@ -123,7 +123,8 @@ TEST(RampDirection, ALevelCommandsItsSpeedWithTheWalksLimitsAndEndsBeyondThem) {
 
 TEST(RampDirection, ANormalisedRampCommandsItsShareWhateverTheWalk) {
   TaskConfig c = ramp_config();
-  c.ramp.increment = 0.1;  // issue 32's ramp, as its run.json files give it
+  c.own_settings<RampSettings>().timing.increment =
+      0.1;  // issue 32's ramp, as its run.json files give it
   RampDirection ramp(c, kLeft);
   const fw::walk::WalkParameters ind_o = fw::walk::default_walk_parameters();
   EXPECT_DOUBLE_EQ(ramp.level_speed(7), 0.7);
@@ -131,7 +132,7 @@ TEST(RampDirection, ANormalisedRampCommandsItsShareWhateverTheWalk) {
   EXPECT_DOUBLE_EQ(ramp.begin_level(7, ind_o), 0.7);
   EXPECT_DOUBLE_EQ(ramp.begin_level(10, ind_o), 1.0);
   EXPECT_FALSE(ramp.ended());
-  c.ramp.max_levels = 13;
+  c.own_settings<RampSettings>().timing.max_levels = 13;
   EXPECT_DOUBLE_EQ(ramp.begin_level(13, ind_o), 1.0);  // never beyond full scale
   EXPECT_FALSE(ramp.beyond_walk_limits());
 }
@@ -139,7 +140,7 @@ TEST(RampDirection, ANormalisedRampCommandsItsShareWhateverTheWalk) {
 /// The levels a direction measures before it ends, for these speeds and this patience.
 int levels_until_end(const std::vector<double>& speeds, int patience, double& best) {
   TaskConfig c = ramp_config();
-  c.ramp.patience = patience;
+  c.own_settings<RampSettings>().timing.patience = patience;
   RampDirection ramp(c, kForward);
   int level = 0;
   for (const double speed : speeds) {

@@ -9,6 +9,7 @@
 #include "stride/optimiser/run/run_report.hpp"
 #include "stride/optimiser/tasks/robot_task.hpp"
 #include "stride/optimiser/tasks/task_config.hpp"
+#include "stride/optimiser/tasks/walk_omni_settings.hpp"
 #include "temp_dir.hpp"
 
 namespace stride::opt {
@@ -67,8 +68,8 @@ TEST(TaskConfig, WalkOmniConfigHasTheWalkGenesWidenedAndTheBalanceGains) {
   for (std::size_t i = 46; i < omni.genes.size(); ++i)
     EXPECT_EQ(omni.genes[i].parameter.rfind("walk.balance.", 0), 0u) << omni.genes[i].parameter;
   EXPECT_EQ(omni.genes.back().parameter, "walk.balance.heading_rate_gain");
-  EXPECT_DOUBLE_EQ(omni.omni.hold_s, 8.0);
-  EXPECT_DOUBLE_EQ(omni.omni.total_s(), 4.0 + 6 * 11.0);
+  EXPECT_DOUBLE_EQ(omni.own_settings<OmniSettings>().timing.hold_s, 8.0);
+  EXPECT_DOUBLE_EQ(omni.own_settings<OmniSettings>().timing.total_s(), 4.0 + 6 * 11.0);
   const RobotTask task(omni);
   EXPECT_EQ(task.shape().constraints, 4);
   EXPECT_EQ(task.shape().objectives, 2);
@@ -157,11 +158,15 @@ TEST(TaskConfig, ErrorsNameTheField) {
   d["max_heading_change_deg"] = nullptr;  // off
   EXPECT_EQ(error_of(d), "ok");
   d = minimal();
+  d["task"] = "walk-omni";  // its own setting: read by walk-omni, accepted and not read by walk
   d["omni"] = {{"hold_s", 0.5}};
   EXPECT_EQ(error_of(d), "omni.hold_s: must be at least 1 s");
-  d = minimal();
   d["omni"] = {{"pause_s", 1.0}};
   EXPECT_EQ(error_of(d), "omni.pause_s: unknown field");
+  d["omni"] = {{"start_s", "soon"}};
+  EXPECT_EQ(error_of(d), "omni.start_s: must be a number");
+  d["task"] = "walk";
+  EXPECT_EQ(error_of(d), "ok");
 }
 
 TEST(TaskConfig, StraightnessLimitsRoundTripIncludingOff) {

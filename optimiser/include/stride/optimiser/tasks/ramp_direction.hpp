@@ -8,6 +8,7 @@
 #include <array>
 
 #include "stride/firmware/walk/walk_parameters.hpp"
+#include "stride/optimiser/tasks/speed_ramp.hpp"
 #include "stride/optimiser/tasks/task_config.hpp"
 #include "stride/optimiser/tasks/walk_measures.hpp"
 
@@ -38,7 +39,7 @@ class RampDirection {
  public:
   /// `axis`: the direction's normalised command (omni_command).
   RampDirection(const TaskConfig& config, const std::array<double, 3>& axis)
-      : config_(config), axis_(axis) {}
+      : config_(config), ramp_(config.own_settings<RampSettings>().timing), axis_(axis) {}
   /// The level at `t` [s] from the episode's start: 0 before ramp.start_s, then 1, 2, ...
   int level_at(double t) const;
   /// The speed `level` asks for: level * increment_mps [m/s] for a translation, level *
@@ -68,6 +69,7 @@ class RampDirection {
 
  private:
   const TaskConfig& config_;
+  const RampTiming& ramp_;  ///< the walk-ramp task's own settings' (RampSettings)
   std::array<double, 3> axis_;
   int levels_without_gain_ = 0;
   bool ended_ = false, counted_ = false, crooked_first_ = false, beyond_walk_limits_ = false;
