@@ -12,8 +12,9 @@ namespace stride::opt {
 
 RampLevel measure_ramp_level(const PlanarPose& direction_start, const PlanarPose& window_start,
                              const PlanarPose& end, const std::array<double, 3>& axis,
-                             const TaskConfig& config) {
-  const double window = config.own_settings<RampSettings>().timing.measure_s;
+                             const RampSettings& ramp) {
+  const StraightnessLimits& limits = ramp.straightness;
+  const double window = ramp.timing.measure_s;
   const bool turn = axis[2] != 0.0;
   const Translation t =
       measure_translation(window_start, end, turn ? 1.0 : axis[0], turn ? 0.0 : axis[1]);
@@ -22,7 +23,7 @@ RampLevel measure_ramp_level(const PlanarPose& direction_start, const PlanarPose
     level.speed = (end.yaw - window_start.yaw) * (axis[2] > 0.0 ? 1.0 : -1.0) / window;
     level.translation_m = t.distance_m;
     level.straight =
-        config.max_turn_translation_m < 0.0 || level.translation_m <= config.max_turn_translation_m;
+        limits.max_turn_translation_m < 0.0 || level.translation_m <= limits.max_turn_translation_m;
   } else {
     level.speed = t.along_m / window;
     // Straightness over the direction so far (from its first level's start): a window of a
@@ -30,9 +31,9 @@ RampLevel measure_ramp_level(const PlanarPose& direction_start, const PlanarPose
     const Translation so_far = measure_translation(direction_start, end, axis[0], axis[1]);
     level.drift_ratio = so_far.off_axis_m / std::max(std::abs(so_far.along_m), kRampDriftFloorM);
     level.heading_change_rad = so_far.heading_change_rad;
-    const double heading_limit = config.max_heading_change_deg * std::numbers::pi / 180.0;
+    const double heading_limit = limits.max_heading_change_deg * std::numbers::pi / 180.0;
     level.straight =
-        (config.max_drift_ratio < 0.0 || level.drift_ratio <= config.max_drift_ratio) &&
+        (limits.max_drift_ratio < 0.0 || level.drift_ratio <= limits.max_drift_ratio) &&
         (heading_limit < 0.0 || level.heading_change_rad <= heading_limit);
   }
   return level;

@@ -71,9 +71,6 @@ const char* const kKnownFields[] = {"task",
                                     "starts",
                                     "genes",
                                     "duration_s",
-                                    "max_drift_ratio",
-                                    "max_heading_change_deg",
-                                    "max_turn_translation_m",
                                     "trials",
                                     "aggregate",
                                     "trial_seed",
@@ -321,22 +318,11 @@ Status parse_genes(const nlohmann::json& doc, TaskConfig& c) {
   return {};
 }
 
-/// The episode: its length and the straightness limits (the task's own settings: its type's).
+/// The episode's length (the task's own settings: its type's).
 Status parse_episode(const nlohmann::json& doc, TaskConfig& c) {
   if (Status s = number(doc, "duration_s", c.duration_s, false); !s) return s;
   if (!(c.duration_s > 0.0 && c.duration_s <= 600.0))
     return Status::error("duration_s: must be in (0, 600]");
-  // Straightness limits: a number >= 0, or null (off).
-  for (auto [name, target] : {std::pair{"max_drift_ratio", &c.max_drift_ratio},
-                              {"max_heading_change_deg", &c.max_heading_change_deg},
-                              {"max_turn_translation_m", &c.max_turn_translation_m}}) {
-    if (doc.contains(name) && doc.at(name).is_null()) {
-      *target = -1.0;
-      continue;
-    }
-    if (Status s = number(doc, name, *target, false); !s) return s;
-    if (*target < 0.0) return Status::error(std::string(name) + ": must be >= 0 or null (off)");
-  }
   return {};
 }
 

@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <iterator>
 
 #include "stride/firmware/motion_request.hpp"
 #include "stride/optimiser/tasks/ramp_command.hpp"
@@ -30,14 +31,14 @@ constexpr std::array<double, kOmniSegments> kWeights = {1.0, 1.0, 1.0, 1.0, 0.1,
 class RampEpisode final : public TaskEpisode {
  public:
   RampEpisode(const TaskConfig& config, int direction, double period_s)
-      : config_(config),
-        direction_(direction),
+      : direction_(direction),
         period_s_(period_s),
+        settings_(config.own_settings<RampSettings>()),
         axis_(omni_command(static_cast<OmniDirection>(direction))),
-        ramp_(config, axis_) {}
+        ramp_(settings_, axis_) {}
   sim::EpisodeOptions options() const override {
     sim::EpisodeOptions o;
-    o.duration_s = config_.own_settings<RampSettings>().timing.episode_s();
+    o.duration_s = settings_.timing.episode_s();
     o.goal_distance_m = 1e9;
     o.stop_on_fall = true;
     o.stop_when = [this] { return ramp_.ended(); };
@@ -92,12 +93,12 @@ class RampEpisode final : public TaskEpisode {
     window_open_ = false;
     const PlanarPose end = walking_frame(world.ground_truth(), yaw_);
     ramp_.end_level(level_,
-                    measure_ramp_level(direction_start_, window_start_, end, axis_, config_));
+                    measure_ramp_level(direction_start_, window_start_, end, axis_, settings_));
   }
 
-  const TaskConfig& config_;
   int direction_;
   double period_s_;
+  const RampSettings& settings_;
   std::array<double, 3> axis_;
   RampDirection ramp_;
   fw::walk::WalkParameters walk_;  ///< as the genome set them (parameters_applied)
@@ -134,17 +135,24 @@ class WalkRampTask final : public TaskType {
   }
   bool measures_directions() const override { return true; }
   int episodes_per_world() const override { return kOmniSegments; }
-  std::vector<std::string_view> settings_fields() const override { return {"ramp"}; }
+  std::vector<std::string_view> settings_fields() const override {
+    std::vector<std::string_view> fields = {"ramp"};
+    fields.insert(fields.end(), std::begin(kStraightnessFields), std::end(kStraightnessFields));
+    return fields;
+  }
   Status parse_settings(const nlohmann::json& doc, const TaskConfig&,
                         OwnSettings& out) const override {
     RampSettings r;
     if (doc.contains("ramp"))
       if (Status s = parse_ramp(doc.at("ramp"), r.timing); !s) return s;
+    if (Status s = parse_straightness(doc, r.straightness); !s) return s;
     out.as<RampSettings>() = r;
     return {};
   }
   void write_settings(const TaskConfig& config, nlohmann::json& doc) const override {
-    doc["ramp"] = to_json(config.own_settings<RampSettings>().timing);
+    const RampSettings& r = config.own_settings<RampSettings>();
+    doc["ramp"] = to_json(r.timing);
+    write_straightness(r.straightness, doc);
   }
   std::unique_ptr<TaskEpisode> start_episode(const TaskConfig& config, int episode, double period_s,
                                              const sim::SimWorld&) const override {

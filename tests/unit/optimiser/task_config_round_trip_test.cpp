@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <string_view>
 
 #include <nlohmann/json.hpp>
 
@@ -71,6 +72,13 @@ void expect_contains(const json& original, const json& written, const std::strin
   }
 }
 
+/// The straightness limits a walking task's settings hold, field by field.
+void expect_same(const StraightnessLimits& a, const StraightnessLimits& b) {
+  EXPECT_EQ(a.max_drift_ratio, b.max_drift_ratio);
+  EXPECT_EQ(a.max_heading_change_deg, b.max_heading_change_deg);
+  EXPECT_EQ(a.max_turn_translation_m, b.max_turn_translation_m);
+}
+
 /// Every field of the config read back equals the loaded config's, named when it does not (the
 /// world through its JSON, which names its fields).
 void expect_same(const TaskConfig& a, const TaskConfig& b) {
@@ -97,6 +105,7 @@ void expect_same(const TaskConfig& a, const TaskConfig& b) {
     const WalkSettings& r = b.own_settings<WalkSettings>();
     EXPECT_EQ(w->goal_distance_m, r.goal_distance_m);
     EXPECT_EQ(w->walk_vx, r.walk_vx);
+    expect_same(w->straightness, r.straightness);
   }
   if (const OmniSettings* o = a.own.get<OmniSettings>()) {
     const OmniTiming& r = b.own_settings<OmniSettings>().timing;
@@ -104,13 +113,12 @@ void expect_same(const TaskConfig& a, const TaskConfig& b) {
     EXPECT_EQ(o->timing.ramp_s, r.ramp_s);
     EXPECT_EQ(o->timing.hold_s, r.hold_s);
     EXPECT_EQ(o->timing.stop_s, r.stop_s);
+    expect_same(o->straightness, b.own_settings<OmniSettings>().straightness);
   }
   if (const RampSettings* p = a.own.get<RampSettings>()) {  // every field, named
     EXPECT_EQ(to_json(p->timing), to_json(b.own_settings<RampSettings>().timing));
+    expect_same(p->straightness, b.own_settings<RampSettings>().straightness);
   }
-  EXPECT_EQ(a.max_drift_ratio, b.max_drift_ratio);
-  EXPECT_EQ(a.max_heading_change_deg, b.max_heading_change_deg);
-  EXPECT_EQ(a.max_turn_translation_m, b.max_turn_translation_m);
   EXPECT_EQ(a.trials, b.trials);
   EXPECT_EQ(a.aggregate, b.aggregate);
   EXPECT_EQ(a.trial_seed, b.trial_seed);
@@ -174,18 +182,18 @@ TEST(TaskConfig, EveryTaskSettingAwayFromItsDefaultSurvivesRunJson) {
     k.yaw_drift_limit_rad = 3.25;
   });
   through("walk.json", [](TaskConfig& c) {
-    c.own_settings<WalkSettings>() = {1.75, 0.625};
-    c.max_drift_ratio = 0.2;
-    c.max_heading_change_deg = -1.0;  // off: null
+    WalkSettings& w = c.own_settings<WalkSettings>();
+    w.goal_distance_m = 1.75;
+    w.walk_vx = 0.625;
+    w.straightness = {0.2, -1.0, 0.05};  // heading off: null
   });
   through("walk-omni.json", [](TaskConfig& c) {
     c.own_settings<OmniSettings>().timing = {3.0, 0.5, 6.0, 1.5};
-    c.max_drift_ratio = -1.0;
-    c.max_heading_change_deg = 12.5;
-    c.max_turn_translation_m = 0.15;
+    c.own_settings<OmniSettings>().straightness = {-1.0, 12.5, 0.15};
   });
   through("walk-ramp.json", [](TaskConfig& c) {
     c.own_settings<RampSettings>().timing = {1.5, 0.03, 0.15, 0.125, 5.0, 2.5, 12, 5};
+    c.own_settings<RampSettings>().straightness = {0.15, 7.5, -1.0};
   });
 }
 
@@ -203,8 +211,15 @@ TEST(TaskConfig, ARunJsonHoldsOnlyItsOwnTasksSettings) {
     EXPECT_FALSE(walk.contains(kick_field)) << kick_field;
   const json kick = written("kick.json");
   EXPECT_EQ(kick.at("script"), "kick_right");
-  for (const char* walk_field : {"goal_distance_m", "walk_vx", "omni", "ramp"})
+  for (const char* walk_field : {"goal_distance_m", "walk_vx", "omni", "ramp", "max_drift_ratio",
+                                 "max_heading_change_deg", "max_turn_translation_m"})
     EXPECT_FALSE(kick.contains(walk_field)) << walk_field;
+  // The straightness limits: the walking tasks' own (walk, walk-omni, walk-ramp), no other's.
+  for (const char* file : {"walk.json", "walk-omni.json", "walk-ramp.json"})
+    for (std::string_view field : kStraightnessFields)
+      EXPECT_TRUE(written(file).contains(std::string(field))) << file << ": " << field;
+  for (std::string_view field : kStraightnessFields)
+    EXPECT_FALSE(written("getup.json").contains(std::string(field))) << field;
   EXPECT_FALSE(walk.contains("omni"));
   EXPECT_FALSE(walk.contains("ramp"));
   EXPECT_TRUE(written("walk-omni.json").contains("omni"));
@@ -230,6 +245,8 @@ TEST(TaskConfig, AnOldRunJsonWithEveryTasksFieldsStillLoads) {
   doc["goal_distance_m"] = 2.5;
   doc["walk_vx"] = 1.0;
   doc["kick_at_s"] = 2.0;
+  doc["max_drift_ratio"] = -0.5;  // the walking tasks' (one they would refuse): not read
+  doc["omni"] = {{"pause_s", 1.0}};
   ASSERT_TRUE(parse_task_config(doc, c));
   EXPECT_EQ(c.own_settings<KickSettings>().kick_at_s, 2.0);
   // A task's own setting is still checked; another task's is not read.

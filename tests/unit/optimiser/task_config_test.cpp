@@ -10,6 +10,7 @@
 #include "stride/optimiser/tasks/robot_task.hpp"
 #include "stride/optimiser/tasks/task_config.hpp"
 #include "stride/optimiser/tasks/walk_omni_settings.hpp"
+#include "stride/optimiser/tasks/walk_settings.hpp"
 #include "temp_dir.hpp"
 
 namespace stride::opt {
@@ -43,8 +44,8 @@ TEST(TaskConfig, WalkConfigIsTheSeedsTable71With46Genes) {
   EXPECT_EQ(task.shape().reals.size(), 46u);
   // fell, lateral drift, heading change (issue 22: straightness on by default).
   EXPECT_EQ(task.shape().constraints, 3);
-  EXPECT_DOUBLE_EQ(c.max_drift_ratio, 0.1);
-  EXPECT_DOUBLE_EQ(c.max_heading_change_deg, 10.0);
+  EXPECT_DOUBLE_EQ(c.own_settings<WalkSettings>().straightness.max_drift_ratio, 0.1);
+  EXPECT_DOUBLE_EQ(c.own_settings<WalkSettings>().straightness.max_heading_change_deg, 10.0);
   EXPECT_EQ(task.start_genome().reals[0], c.genes[0].start);
 }
 
@@ -175,13 +176,13 @@ TEST(TaskConfig, StraightnessLimitsRoundTripIncludingOff) {
   d["max_turn_translation_m"] = 0.2;
   TaskConfig a, b;
   ASSERT_TRUE(parse_task_config(d, a));
-  EXPECT_LT(a.max_drift_ratio, 0.0);
-  EXPECT_DOUBLE_EQ(a.max_heading_change_deg, 10.0);
+  EXPECT_LT(a.own_settings<WalkSettings>().straightness.max_drift_ratio, 0.0);
+  EXPECT_DOUBLE_EQ(a.own_settings<WalkSettings>().straightness.max_heading_change_deg, 10.0);
   const nlohmann::json j = to_json(a);
   EXPECT_TRUE(j["max_drift_ratio"].is_null());
   ASSERT_TRUE(parse_task_config(j, b));
-  EXPECT_LT(b.max_drift_ratio, 0.0);
-  EXPECT_DOUBLE_EQ(b.max_turn_translation_m, 0.2);
+  EXPECT_LT(b.own_settings<WalkSettings>().straightness.max_drift_ratio, 0.0);
+  EXPECT_DOUBLE_EQ(b.own_settings<WalkSettings>().straightness.max_turn_translation_m, 0.2);
 }
 
 // Issue 21: the engines a genome is scored on, and the validation's seed count.

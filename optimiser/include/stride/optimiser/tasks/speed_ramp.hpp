@@ -1,6 +1,6 @@
 // The speed-ramp walk task's settings (task "walk-ramp", issue 32 point 1; the task itself is
-// optimiser/src/tasks/walk_ramp_task.cpp, which parses and writes them: config field `ramp`),
-// its own settings held in TaskConfig::own (RampSettings).
+// optimiser/src/tasks/walk_ramp_task.cpp, which parses and writes them: config field `ramp` and
+// the straightness limits), its own settings held in TaskConfig::own (RampSettings).
 //
 // Per direction (forward, backward, left, right, turn left, turn right; one episode each, from
 // standing): after start_s standing, level k = 1, 2, ... asks for a speed of k * increment_mps
@@ -23,6 +23,7 @@
 #include <nlohmann/json.hpp>
 
 #include "stride/core/status.hpp"
+#include "stride/optimiser/tasks/straightness_limits.hpp"
 
 namespace stride::opt {
 
@@ -44,6 +45,7 @@ struct RampTiming {
 /// The walk-ramp task's own settings (TaskConfig::own).
 struct RampSettings {
   RampTiming timing;  ///< config `ramp`
+  StraightnessLimits straightness;
   bool operator==(const RampSettings&) const = default;
 };
 

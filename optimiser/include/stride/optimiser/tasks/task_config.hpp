@@ -80,13 +80,6 @@ struct TaskConfig {
   T& own_settings() {
     return own.as<T>();
   }
-  // Straightness (walk and walk-omni; a negative value switches the constraint off, written
-  // as null in JSON): lateral drift at most max_drift_ratio of the distance walked, heading
-  // change at most max_heading_change_deg; walk-omni's turns translate at most
-  // max_turn_translation_m.
-  double max_drift_ratio = 0.1;
-  double max_heading_change_deg = 10.0;
-  double max_turn_translation_m = 0.1;
   // Robust evaluation.
   int trials = 1;  ///< 1: the nominal world; K > 1: K seeded randomised worlds
   Aggregate aggregate = Aggregate::kMean;

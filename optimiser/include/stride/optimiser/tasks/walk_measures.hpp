@@ -121,6 +121,7 @@ bool every_segment_measured(const OmniSegments& segments);
 /// Obj1 of the walk-omni task from the segments' speeds (see the header comment).
 double omni_speed_objective(const OmniSegments& segments);
 /// Constraints c1..c3 of the walk-omni task (c0, the fall, is the caller's).
-std::array<double, 3> omni_constraints(const OmniSegments& segments, const TaskConfig& config);
+std::array<double, 3> omni_constraints(const OmniSegments& segments,
+                                       const StraightnessLimits& limits);
 
 }  // namespace stride::opt

@@ -1,6 +1,8 @@
 // The walk-omni task's own settings (walk_omni_task.cpp parses and writes them: config field
-// `omni` {start_s, ramp_s, hold_s, stop_s}), held in TaskConfig::own.
+// `omni` {start_s, ramp_s, hold_s, stop_s} and the straightness limits), held in TaskConfig::own.
 #pragma once
+
+#include "stride/optimiser/tasks/straightness_limits.hpp"
 
 namespace stride::opt {
 
@@ -19,6 +21,7 @@ struct OmniTiming {
 
 struct OmniSettings {
   OmniTiming timing;  ///< config `omni`
+  StraightnessLimits straightness;
   bool operator==(const OmniSettings&) const = default;
 };
 
