@@ -72,11 +72,6 @@ const char* const kKnownFields[] = {"task",
                                     "starts",
                                     "genes",
                                     "duration_s",
-                                    "max_drift_ratio",
-                                    "max_heading_change_deg",
-                                    "max_turn_translation_m",
-                                    "omni",
-                                    "ramp",
                                     "trials",
                                     "aggregate",
                                     "trial_seed",
@@ -324,43 +319,11 @@ Status parse_genes(const nlohmann::json& doc, TaskConfig& c) {
   return {};
 }
 
-/// The episode: its length and the straightness limits (the task's own settings: its type's).
+/// The episode's length (the task's own settings: its type's).
 Status parse_episode(const nlohmann::json& doc, TaskConfig& c) {
   if (Status s = number(doc, "duration_s", c.duration_s, false); !s) return s;
   if (!(c.duration_s > 0.0 && c.duration_s <= 600.0))
     return Status::error("duration_s: must be in (0, 600]");
-  // Straightness limits: a number >= 0, or null (off).
-  for (auto [name, target] : {std::pair{"max_drift_ratio", &c.max_drift_ratio},
-                              {"max_heading_change_deg", &c.max_heading_change_deg},
-                              {"max_turn_translation_m", &c.max_turn_translation_m}}) {
-    if (doc.contains(name) && doc.at(name).is_null()) {
-      *target = -1.0;
-      continue;
-    }
-    if (Status s = number(doc, name, *target, false); !s) return s;
-    if (*target < 0.0) return Status::error(std::string(name) + ": must be >= 0 or null (off)");
-  }
-  return {};
-}
-
-/// omni: the walk-omni task's command timing.
-Status parse_omni(const nlohmann::json& doc, TaskConfig& c) {
-  if (doc.contains("omni")) {
-    const auto& o = doc.at("omni");
-    if (!o.is_object()) return Status::error("omni: must be an object");
-    for (const auto& [key, value] : o.items())
-      if (key != "start_s" && key != "ramp_s" && key != "hold_s" && key != "stop_s")
-        return Status::error("omni." + key + ": unknown field");
-    for (auto [name, target] : {std::pair{"start_s", &c.omni.start_s},
-                                {"ramp_s", &c.omni.ramp_s},
-                                {"hold_s", &c.omni.hold_s},
-                                {"stop_s", &c.omni.stop_s}}) {
-      if (Status s = number(o, name, *target, false, "omni."); !s) return s;
-      if (!(*target >= 0.0 && *target <= 60.0))
-        return Status::error(std::string("omni.") + name + ": must be in [0, 60]");
-    }
-    if (!(c.omni.hold_s >= 1.0)) return Status::error("omni.hold_s: must be at least 1 s");
-  }
   return {};
 }
 
@@ -474,9 +437,6 @@ Status parse_task_config(const nlohmann::json& doc, TaskConfig& out) {
   if (Status s = parse_genes(doc, c); !s) return s;
   if (Status s = parse_starts(doc, c); !s) return s;
   if (Status s = parse_episode(doc, c); !s) return s;
-  if (Status s = parse_omni(doc, c); !s) return s;
-  if (doc.contains("ramp"))
-    if (Status s = parse_ramp(doc.at("ramp"), c.ramp); !s) return s;
   if (Status s = parse_trials(doc, c); !s) return s;
   if (Status s = parse_engines(doc, c.engines); !s) return s;
   if (Status s = parse_robot(doc, c); !s) return s;

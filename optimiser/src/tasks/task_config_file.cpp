@@ -7,7 +7,6 @@
 #include <nlohmann/json.hpp>
 
 #include "stride/core/json_file.hpp"
-#include "stride/optimiser/tasks/speed_ramp.hpp"
 #include "stride/optimiser/tasks/task_config.hpp"
 #include "stride/optimiser/tasks/task_type.hpp"
 #include "stride/sim_hal/world_file.hpp"
@@ -98,15 +97,6 @@ nlohmann::json to_json(const TaskConfig& c) {
     j["starts"] = starts;
   }
   j["world"] = sim::to_json(c.world);  // a world file by value, as the params
-  auto limit = [](double v) { return v < 0.0 ? nlohmann::json(nullptr) : nlohmann::json(v); };
-  j["max_drift_ratio"] = limit(c.max_drift_ratio);
-  j["max_heading_change_deg"] = limit(c.max_heading_change_deg);
-  j["max_turn_translation_m"] = limit(c.max_turn_translation_m);
-  j["ramp"] = to_json(c.ramp);
-  j["omni"] = {{"start_s", c.omni.start_s},
-               {"ramp_s", c.omni.ramp_s},
-               {"hold_s", c.omni.hold_s},
-               {"stop_s", c.omni.stop_s}};
   // The task's own settings, and no other task's (written by its type).
   if (const TaskType* type = find_task_type(c.task)) type->write_settings(c, j);
   if (!c.hv_ideal.empty()) {

@@ -164,9 +164,10 @@ double omni_speed_objective(const OmniSegments& s) {
            0.2 * turning);
 }
 
-std::array<double, 3> omni_constraints(const OmniSegments& segments, const TaskConfig& config) {
+std::array<double, 3> omni_constraints(const OmniSegments& segments,
+                                       const StraightnessLimits& limits) {
   std::array<double, 3> c{0.0, 0.0, 0.0};
-  const double heading_limit = config.max_heading_change_deg * std::numbers::pi / 180.0;
+  const double heading_limit = limits.max_heading_change_deg * std::numbers::pi / 180.0;
   // Each segment adds at most 1 to a constraint's violation, and a segment not reached adds 1:
   // falling earlier never lowers the violation.
   auto term = [](bool measured, double violation) {
@@ -175,13 +176,13 @@ std::array<double, 3> omni_constraints(const OmniSegments& segments, const TaskC
   for (int k = 0; k < kOmniSegments; ++k) {
     const OmniSegment& s = segments[k];
     if (is_turn(k)) {
-      const double limit = config.max_turn_translation_m;
+      const double limit = limits.max_turn_translation_m;
       if (limit > 0.0) c[2] += term(s.measured, limit_violation(s.translation_m / limit, 1.0));
     } else {
-      if (config.max_drift_ratio >= 0.0)
-        c[0] += term(s.measured, limit_violation(s.drift_ratio, config.max_drift_ratio) /
-                                     std::max(config.max_drift_ratio, 0.01));
-      if (config.max_heading_change_deg > 0.0)
+      if (limits.max_drift_ratio >= 0.0)
+        c[0] += term(s.measured, limit_violation(s.drift_ratio, limits.max_drift_ratio) /
+                                     std::max(limits.max_drift_ratio, 0.01));
+      if (limits.max_heading_change_deg > 0.0)
         c[1] += term(s.measured, limit_violation(s.heading_change_rad / heading_limit, 1.0));
     }
   }

@@ -1,6 +1,6 @@
-// The speed-ramp walk task (issue 32 point 1; settings in speed_ramp.hpp, the ramp of one
-// direction in ramp_direction.hpp): the top speed of each direction, as the Bit-Bots search for it,
-// one episode per direction.
+// The speed-ramp walk task (issue 32 point 1; its own settings in speed_ramp.hpp, config `ramp`;
+// the ramp of one direction in ramp_direction.hpp): the top speed of each direction, as the
+// Bit-Bots search for it, one episode per direction.
 //   Obj1 = -(v_f + v_b + 2 v_side + 0.2 w_turn) [m/s], each v the direction's best speed held,
 //          v_side and w_turn the means of both sides (the Bit-Bots' score): each episode scores
 //          -6 w_d v_d (w = 1, 1, 1, 1, 0.1, 0.1), so that the world's mean is the sum.
@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <iterator>
 
 #include "stride/firmware/motion_request.hpp"
 #include "stride/optimiser/tasks/ramp_command.hpp"
@@ -30,14 +31,14 @@ constexpr std::array<double, kOmniSegments> kWeights = {1.0, 1.0, 1.0, 1.0, 0.1,
 class RampEpisode final : public TaskEpisode {
  public:
   RampEpisode(const TaskConfig& config, int direction, double period_s)
-      : config_(config),
-        direction_(direction),
+      : direction_(direction),
         period_s_(period_s),
+        settings_(config.own_settings<RampSettings>()),
         axis_(omni_command(static_cast<OmniDirection>(direction))),
-        ramp_(config, axis_) {}
+        ramp_(settings_, axis_) {}
   sim::EpisodeOptions options() const override {
     sim::EpisodeOptions o;
-    o.duration_s = config_.ramp.episode_s();
+    o.duration_s = settings_.timing.episode_s();
     o.goal_distance_m = 1e9;
     o.stop_on_fall = true;
     o.stop_when = [this] { return ramp_.ended(); };
@@ -92,12 +93,12 @@ class RampEpisode final : public TaskEpisode {
     window_open_ = false;
     const PlanarPose end = walking_frame(world.ground_truth(), yaw_);
     ramp_.end_level(level_,
-                    measure_ramp_level(direction_start_, window_start_, end, axis_, config_));
+                    measure_ramp_level(direction_start_, window_start_, end, axis_, settings_));
   }
 
-  const TaskConfig& config_;
   int direction_;
   double period_s_;
+  const RampSettings& settings_;
   std::array<double, 3> axis_;
   RampDirection ramp_;
   fw::walk::WalkParameters walk_;  ///< as the genome set them (parameters_applied)
@@ -134,6 +135,25 @@ class WalkRampTask final : public TaskType {
   }
   bool measures_directions() const override { return true; }
   int episodes_per_world() const override { return kOmniSegments; }
+  std::vector<std::string_view> settings_fields() const override {
+    std::vector<std::string_view> fields = {"ramp"};
+    fields.insert(fields.end(), std::begin(kStraightnessFields), std::end(kStraightnessFields));
+    return fields;
+  }
+  Status parse_settings(const nlohmann::json& doc, const TaskConfig&,
+                        OwnSettings& out) const override {
+    RampSettings r;
+    if (doc.contains("ramp"))
+      if (Status s = parse_ramp(doc.at("ramp"), r.timing); !s) return s;
+    if (Status s = parse_straightness(doc, r.straightness); !s) return s;
+    out.as<RampSettings>() = r;
+    return {};
+  }
+  void write_settings(const TaskConfig& config, nlohmann::json& doc) const override {
+    const RampSettings& r = config.own_settings<RampSettings>();
+    doc["ramp"] = to_json(r.timing);
+    write_straightness(r.straightness, doc);
+  }
   std::unique_ptr<TaskEpisode> start_episode(const TaskConfig& config, int episode, double period_s,
                                              const sim::SimWorld&) const override {
     return std::make_unique<RampEpisode>(config, episode, period_s);

@@ -7,9 +7,10 @@
 //   Straightness at the goal (or the episode's end), from ground truth (walk_measures.hpp):
 //   c1 = min(0, 1 - (|lateral drift| / max(forward, 0.25 m)) / max_drift_ratio),
 //   c2 = min(0, 1 - |heading change| / max_heading_change_deg); a limit of null is off.
-// Its own settings (walk_settings.hpp): goal_distance_m, walk_vx.
+// Its own settings (walk_settings.hpp): goal_distance_m, walk_vx, the straightness limits.
 #include <algorithm>
 #include <cstdio>
+#include <iterator>
 #include <numbers>
 
 #include "stride/firmware/motion_request.hpp"
@@ -51,16 +52,17 @@ class WalkEpisode final : public TaskEpisode {
     const Translation t = measure_translation(a, b, 1.0, 0.0);
     out.lateral_drift_m = t.off_axis_m;
     out.heading_change_rad = t.heading_change_rad;
-    const double heading_limit = config_.max_heading_change_deg * std::numbers::pi / 180.0;
+    const StraightnessLimits& limits = walk_.straightness;
+    const double heading_limit = limits.max_heading_change_deg * std::numbers::pi / 180.0;
     const double missing = std::max(0.0, walk_.goal_distance_m - r.distance_m);
     const double time = r.time_to_goal_s ? *r.time_to_goal_s : config_.duration_s + 10.0 * missing;
     out.objectives = {time, r.max_accel};
     const double lost = r.fell ? std::max(0.0, config_.duration_s - r.fall_time_s) : 0.0;
     out.constraints = {
         r.fell ? -(1.0 + lost / config_.duration_s) : 0.0,
-        config_.max_drift_ratio > 0.0
-            ? limit_violation(t.drift_ratio() / config_.max_drift_ratio, 1.0)
-            : limit_violation(t.drift_ratio(), config_.max_drift_ratio),
+        limits.max_drift_ratio > 0.0
+            ? limit_violation(t.drift_ratio() / limits.max_drift_ratio, 1.0)
+            : limit_violation(t.drift_ratio(), limits.max_drift_ratio),
         heading_limit > 0.0 ? limit_violation(t.heading_change_rad / heading_limit, 1.0) : 0.0};
     return {};
   }
@@ -114,7 +116,9 @@ class WalkTask final : public TaskType {
     return text;
   }
   std::vector<std::string_view> settings_fields() const override {
-    return {"goal_distance_m", "walk_vx"};
+    std::vector<std::string_view> fields = {"goal_distance_m", "walk_vx"};
+    fields.insert(fields.end(), std::begin(kStraightnessFields), std::end(kStraightnessFields));
+    return fields;
   }
   Status parse_settings(const nlohmann::json& doc, const TaskConfig&,
                         OwnSettings& out) const override {
@@ -124,6 +128,7 @@ class WalkTask final : public TaskType {
     if (Status s = read_config_number(doc, "walk_vx", w.walk_vx); !s) return s;
     if (!(w.walk_vx >= -1.0 && w.walk_vx <= 1.0))
       return Status::error("walk_vx: must be in [-1, 1]");
+    if (Status s = parse_straightness(doc, w.straightness); !s) return s;
     out.as<WalkSettings>() = w;
     return {};
   }
@@ -131,6 +136,7 @@ class WalkTask final : public TaskType {
     const WalkSettings& w = config.own_settings<WalkSettings>();
     doc["goal_distance_m"] = w.goal_distance_m;
     doc["walk_vx"] = w.walk_vx;
+    write_straightness(w.straightness, doc);
   }
   std::unique_ptr<TaskEpisode> start_episode(const TaskConfig& config, int, double,
                                              const sim::SimWorld& world) const override {

@@ -21,6 +21,7 @@
 
 #include "read_file.hpp"
 #include "stride/optimiser/tasks/robot_task.hpp"
+#include "stride/optimiser/tasks/walk_omni_settings.hpp"
 #include "stride/optimiser/tasks/walk_settings.hpp"
 #include "temp_dir.hpp"
 
@@ -374,7 +375,7 @@ TEST(RobotTask, WalkOmniScoresEverySegmentOfIndO) {
               a.objectives[1], a.constraints[0], a.constraints[1], a.constraints[2],
               a.constraints[3], a.fell ? 1 : 0);
   EXPECT_DOUBLE_EQ(a.objectives[0], omni_speed_objective(a.omni));
-  const auto c13 = omni_constraints(a.omni, c);
+  const auto c13 = omni_constraints(a.omni, c.own_settings<OmniSettings>().straightness);
   EXPECT_EQ(a.constraints[1], c13[0]);
   EXPECT_EQ(a.constraints[2], c13[1]);
   EXPECT_EQ(a.constraints[3], c13[2]);

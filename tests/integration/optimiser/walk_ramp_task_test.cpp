@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "stride/optimiser/tasks/robot_task.hpp"
+#include "stride/optimiser/tasks/speed_ramp.hpp"
 
 namespace stride::opt {
 namespace {
@@ -54,6 +55,7 @@ EpisodeScore run_directions(const RobotTask& task, const Genome& genome) {
 
 void expect_top_speeds(const EpisodeScore& s, const double (&top_speed)[kOmniSegments],
                        const TaskConfig& config) {
+  const StraightnessLimits& limits = config.own_settings<RampSettings>().straightness;
   for (int d = 0; d < kOmniSegments; ++d) {
     const OmniSegment& seg = s.omni[static_cast<std::size_t>(d)];
     const char* name = to_string(static_cast<OmniDirection>(d));
@@ -62,10 +64,10 @@ void expect_top_speeds(const EpisodeScore& s, const double (&top_speed)[kOmniSeg
     if (!seg.measured) continue;
     // The level counted was within the config's limits.
     if (d < 4) {
-      EXPECT_LE(seg.drift_ratio, config.max_drift_ratio) << name;
-      EXPECT_LE(seg.heading_change_rad, config.max_heading_change_deg * M_PI / 180.0) << name;
+      EXPECT_LE(seg.drift_ratio, limits.max_drift_ratio) << name;
+      EXPECT_LE(seg.heading_change_rad, limits.max_heading_change_deg * M_PI / 180.0) << name;
     } else {
-      EXPECT_LE(seg.translation_m, config.max_turn_translation_m) << name;
+      EXPECT_LE(seg.translation_m, limits.max_turn_translation_m) << name;
     }
   }
 }
@@ -133,7 +135,7 @@ TEST(WalkRampTask, IssueThirtyTwosNormalisedRampStillGivesItsFigures) {
   doc["physics_step_us"] = 2000;
   TaskConfig config;
   ASSERT_TRUE(parse_task_config(doc, config));
-  ASSERT_TRUE(config.ramp.normalised());
+  ASSERT_TRUE(config.own_settings<RampSettings>().timing.normalised());
   const RobotTask task(config);
   const EpisodeScore s = run_directions(task, task.start_genome());
   expect_top_speeds(s, {0.1497, 0.0312, 0.0114, 0.0097, 0.1987, 0.1843}, config);

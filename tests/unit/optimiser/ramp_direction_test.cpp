@@ -18,18 +18,18 @@ constexpr double kDeg = std::numbers::pi / 180.0;
 
 /// walk-ramp.json's settings: start 2 s, 0.05 m/s and 0.2 rad/s per level, hold 4 s, measure
 /// 3 s, 10 levels, patience 2, drift ratio 0.1, heading 10 deg, turn translation 0.1 m.
-TaskConfig ramp_config() {
-  TaskConfig c;
-  c.ramp.start_s = 2.0;
-  c.ramp.increment_mps = 0.05;
-  c.ramp.increment_radps = 0.2;
-  c.ramp.hold_s = 4.0;
-  c.ramp.measure_s = 3.0;
-  c.ramp.max_levels = 10;
-  c.ramp.patience = 2;
-  c.max_drift_ratio = 0.1;
-  c.max_heading_change_deg = 10.0;
-  c.max_turn_translation_m = 0.1;
+RampSettings ramp_config() {
+  RampSettings c;
+  c.timing.start_s = 2.0;
+  c.timing.increment_mps = 0.05;
+  c.timing.increment_radps = 0.2;
+  c.timing.hold_s = 4.0;
+  c.timing.measure_s = 3.0;
+  c.timing.max_levels = 10;
+  c.timing.patience = 2;
+  c.straightness.max_drift_ratio = 0.1;
+  c.straightness.max_heading_change_deg = 10.0;
+  c.straightness.max_turn_translation_m = 0.1;
   return c;
 }
 
@@ -56,7 +56,7 @@ fw::walk::WalkParameters fast_walk() {
 }
 
 TEST(RampDirection, LevelsRiseEveryHoldFromTheStartWithTheirSpeedAndWindow) {
-  const TaskConfig c = ramp_config();
+  const RampSettings c = ramp_config();
   RampDirection ramp(c, kForward), turn(c, kTurnLeft);
   EXPECT_EQ(ramp.level_at(0.0), 0);
   EXPECT_EQ(ramp.level_at(1.99), 0);
@@ -72,19 +72,19 @@ TEST(RampDirection, LevelsRiseEveryHoldFromTheStartWithTheirSpeedAndWindow) {
   EXPECT_FALSE(ramp.window_begun(2, 6.99));
   EXPECT_TRUE(ramp.window_begun(2, 7.0));
   // After max_levels the direction ends (the walk could command more).
-  TaskConfig fast = c;
-  fast.ramp.increment_mps = 0.01;
+  RampSettings fast = c;
+  fast.timing.increment_mps = 0.01;
   RampDirection slow(fast, kForward);
   EXPECT_GT(slow.begin_level(10, fast_walk()), 0.0);
   EXPECT_FALSE(slow.ended());
   EXPECT_EQ(slow.begin_level(11, fast_walk()), 0.0);
   EXPECT_TRUE(slow.ended());
   EXPECT_FALSE(slow.beyond_walk_limits());
-  EXPECT_DOUBLE_EQ(c.ramp.episode_s(), 42.0);
+  EXPECT_DOUBLE_EQ(c.timing.episode_s(), 42.0);
 }
 
 TEST(RampDirection, ALevelCommandsItsSpeedWithTheWalksLimitsAndEndsBeyondThem) {
-  const TaskConfig c = ramp_config();
+  const RampSettings c = ramp_config();
   const fw::walk::WalkParameters walk = fast_walk();
   // Forward: command = speed * T / velocity.limits.x_max while the step limit does not bind.
   RampDirection forward(c, kForward);
@@ -122,8 +122,8 @@ TEST(RampDirection, ALevelCommandsItsSpeedWithTheWalksLimitsAndEndsBeyondThem) {
 }
 
 TEST(RampDirection, ANormalisedRampCommandsItsShareWhateverTheWalk) {
-  TaskConfig c = ramp_config();
-  c.ramp.increment = 0.1;  // issue 32's ramp, as its run.json files give it
+  RampSettings c = ramp_config();
+  c.timing.increment = 0.1;  // issue 32's ramp, as its run.json files give it
   RampDirection ramp(c, kLeft);
   const fw::walk::WalkParameters ind_o = fw::walk::default_walk_parameters();
   EXPECT_DOUBLE_EQ(ramp.level_speed(7), 0.7);
@@ -131,15 +131,15 @@ TEST(RampDirection, ANormalisedRampCommandsItsShareWhateverTheWalk) {
   EXPECT_DOUBLE_EQ(ramp.begin_level(7, ind_o), 0.7);
   EXPECT_DOUBLE_EQ(ramp.begin_level(10, ind_o), 1.0);
   EXPECT_FALSE(ramp.ended());
-  c.ramp.max_levels = 13;
+  c.timing.max_levels = 13;
   EXPECT_DOUBLE_EQ(ramp.begin_level(13, ind_o), 1.0);  // never beyond full scale
   EXPECT_FALSE(ramp.beyond_walk_limits());
 }
 
 /// The levels a direction measures before it ends, for these speeds and this patience.
 int levels_until_end(const std::vector<double>& speeds, int patience, double& best) {
-  TaskConfig c = ramp_config();
-  c.ramp.patience = patience;
+  RampSettings c = ramp_config();
+  c.timing.patience = patience;
   RampDirection ramp(c, kForward);
   int level = 0;
   for (const double speed : speeds) {
@@ -161,7 +161,7 @@ TEST(RampDirection, PatienceLevelsInARowNoFasterThanTheBestEndTheDirection) {
   EXPECT_EQ(levels_until_end(speeds, 3, best), -1);  // still going after all seven
   EXPECT_DOUBLE_EQ(best, 0.30);
   // A direction that never moves counts nothing and ends after `patience` levels.
-  TaskConfig c = ramp_config();
+  RampSettings c = ramp_config();
   RampDirection still(c, kForward);
   still.end_level(1, straight_at(0.0));
   EXPECT_FALSE(still.ended());
@@ -172,7 +172,7 @@ TEST(RampDirection, PatienceLevelsInARowNoFasterThanTheBestEndTheDirection) {
 }
 
 TEST(RampDirection, ACrookedLevelEndsTheDirectionAndKeepsTheBestStraightOne) {
-  const TaskConfig c = ramp_config();
+  const RampSettings c = ramp_config();
   RampDirection first(c, kForward);
   RampLevel crooked = straight_at(0.5);
   crooked.straight = false;
@@ -191,7 +191,7 @@ TEST(RampDirection, ACrookedLevelEndsTheDirectionAndKeepsTheBestStraightOne) {
 }
 
 TEST(RampDirection, ATranslationsSpeedIsAlongItsAxisAndItsDriftSinceTheDirectionsStart) {
-  const TaskConfig c = ramp_config();
+  const RampSettings c = ramp_config();
   const PlanarPose start{0.0, 0.0, 0.0};
   // 0.3 m forward over the 3 s window: 0.1 m/s; 2 cm aside after 0.6 m: drift 0.033.
   RampLevel l = measure_ramp_level(start, {0.3, 0.0, 0.0}, {0.6, 0.02, 0.0}, kForward, c);
@@ -219,14 +219,14 @@ TEST(RampDirection, ATranslationsSpeedIsAlongItsAxisAndItsDriftSinceTheDirection
   // Walking backwards on a forward command is a negative speed.
   EXPECT_LT(measure_ramp_level(start, {0.0, 0, 0}, {-0.1, 0, 0}, kForward, c).speed, 0.0);
   // With the limits off (negative) nothing is crooked.
-  TaskConfig off = c;
-  off.max_drift_ratio = -1.0;
-  off.max_heading_change_deg = -1.0;
+  RampSettings off = c;
+  off.straightness.max_drift_ratio = -1.0;
+  off.straightness.max_heading_change_deg = -1.0;
   EXPECT_TRUE(measure_ramp_level(start, {0, 0, 0}, {0.1, 0.5, 1.0}, kForward, off).straight);
 }
 
 TEST(RampDirection, ATurnsSpeedIsItsYawRateTheCommandedWayAndItsTranslationIsLimited) {
-  const TaskConfig c = ramp_config();
+  const RampSettings c = ramp_config();
   const PlanarPose start{0.0, 0.0, 0.0};
   // 0.9 rad anticlockwise over 3 s, moving 5 cm: 0.3 rad/s, within 0.1 m.
   RampLevel l = measure_ramp_level(start, {0.0, 0.0, 0.3}, {0.03, 0.04, 1.2}, kTurnLeft, c);

@@ -8,13 +8,16 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <string_view>
 
 #include <nlohmann/json.hpp>
 
 #include "stride/optimiser/run/optimisation_run.hpp"
 #include "stride/optimiser/tasks/kick_settings.hpp"
 #include "stride/optimiser/tasks/robot_task.hpp"
+#include "stride/optimiser/tasks/speed_ramp.hpp"
 #include "stride/optimiser/tasks/task_config.hpp"
+#include "stride/optimiser/tasks/walk_omni_settings.hpp"
 #include "stride/optimiser/tasks/walk_settings.hpp"
 #include "stride/sim_hal/world_spec.hpp"
 #include "temp_dir.hpp"
@@ -69,6 +72,13 @@ void expect_contains(const json& original, const json& written, const std::strin
   }
 }
 
+/// The straightness limits a walking task's settings hold, field by field.
+void expect_same(const StraightnessLimits& a, const StraightnessLimits& b) {
+  EXPECT_EQ(a.max_drift_ratio, b.max_drift_ratio);
+  EXPECT_EQ(a.max_heading_change_deg, b.max_heading_change_deg);
+  EXPECT_EQ(a.max_turn_translation_m, b.max_turn_translation_m);
+}
+
 /// Every field of the config read back equals the loaded config's, named when it does not (the
 /// world through its JSON, which names its fields).
 void expect_same(const TaskConfig& a, const TaskConfig& b) {
@@ -95,15 +105,20 @@ void expect_same(const TaskConfig& a, const TaskConfig& b) {
     const WalkSettings& r = b.own_settings<WalkSettings>();
     EXPECT_EQ(w->goal_distance_m, r.goal_distance_m);
     EXPECT_EQ(w->walk_vx, r.walk_vx);
+    expect_same(w->straightness, r.straightness);
   }
-  EXPECT_EQ(a.max_drift_ratio, b.max_drift_ratio);
-  EXPECT_EQ(a.max_heading_change_deg, b.max_heading_change_deg);
-  EXPECT_EQ(a.max_turn_translation_m, b.max_turn_translation_m);
-  EXPECT_EQ(a.omni.start_s, b.omni.start_s);
-  EXPECT_EQ(a.omni.ramp_s, b.omni.ramp_s);
-  EXPECT_EQ(a.omni.hold_s, b.omni.hold_s);
-  EXPECT_EQ(a.omni.stop_s, b.omni.stop_s);
-  EXPECT_EQ(to_json(a.ramp), to_json(b.ramp));  // every field (EveryRampSettingSurvivesRunJson)
+  if (const OmniSettings* o = a.own.get<OmniSettings>()) {
+    const OmniTiming& r = b.own_settings<OmniSettings>().timing;
+    EXPECT_EQ(o->timing.start_s, r.start_s);
+    EXPECT_EQ(o->timing.ramp_s, r.ramp_s);
+    EXPECT_EQ(o->timing.hold_s, r.hold_s);
+    EXPECT_EQ(o->timing.stop_s, r.stop_s);
+    expect_same(o->straightness, b.own_settings<OmniSettings>().straightness);
+  }
+  if (const RampSettings* p = a.own.get<RampSettings>()) {  // every field, named
+    EXPECT_EQ(to_json(p->timing), to_json(b.own_settings<RampSettings>().timing));
+    expect_same(p->straightness, b.own_settings<RampSettings>().straightness);
+  }
   EXPECT_EQ(a.trials, b.trials);
   EXPECT_EQ(a.aggregate, b.aggregate);
   EXPECT_EQ(a.trial_seed, b.trial_seed);
@@ -167,15 +182,18 @@ TEST(TaskConfig, EveryTaskSettingAwayFromItsDefaultSurvivesRunJson) {
     k.yaw_drift_limit_rad = 3.25;
   });
   through("walk.json", [](TaskConfig& c) {
-    c.own_settings<WalkSettings>() = {1.75, 0.625};
-    c.max_drift_ratio = 0.2;
-    c.max_heading_change_deg = -1.0;  // off: null
+    WalkSettings& w = c.own_settings<WalkSettings>();
+    w.goal_distance_m = 1.75;
+    w.walk_vx = 0.625;
+    w.straightness = {0.2, -1.0, 0.05};  // heading off: null
   });
   through("walk-omni.json", [](TaskConfig& c) {
-    c.omni = {3.0, 0.5, 6.0, 1.5};
-    c.max_drift_ratio = -1.0;
-    c.max_heading_change_deg = 12.5;
-    c.max_turn_translation_m = 0.15;
+    c.own_settings<OmniSettings>().timing = {3.0, 0.5, 6.0, 1.5};
+    c.own_settings<OmniSettings>().straightness = {-1.0, 12.5, 0.15};
+  });
+  through("walk-ramp.json", [](TaskConfig& c) {
+    c.own_settings<RampSettings>().timing = {1.5, 0.03, 0.15, 0.125, 5.0, 2.5, 12, 5};
+    c.own_settings<RampSettings>().straightness = {0.15, 7.5, -1.0};
   });
 }
 
@@ -193,8 +211,20 @@ TEST(TaskConfig, ARunJsonHoldsOnlyItsOwnTasksSettings) {
     EXPECT_FALSE(walk.contains(kick_field)) << kick_field;
   const json kick = written("kick.json");
   EXPECT_EQ(kick.at("script"), "kick_right");
-  for (const char* walk_field : {"goal_distance_m", "walk_vx"})
+  for (const char* walk_field : {"goal_distance_m", "walk_vx", "omni", "ramp", "max_drift_ratio",
+                                 "max_heading_change_deg", "max_turn_translation_m"})
     EXPECT_FALSE(kick.contains(walk_field)) << walk_field;
+  // The straightness limits: the walking tasks' own (walk, walk-omni, walk-ramp), no other's.
+  for (const char* file : {"walk.json", "walk-omni.json", "walk-ramp.json"})
+    for (std::string_view field : kStraightnessFields)
+      EXPECT_TRUE(written(file).contains(std::string(field))) << file << ": " << field;
+  for (std::string_view field : kStraightnessFields)
+    EXPECT_FALSE(written("getup.json").contains(std::string(field))) << field;
+  EXPECT_FALSE(walk.contains("omni"));
+  EXPECT_FALSE(walk.contains("ramp"));
+  EXPECT_TRUE(written("walk-omni.json").contains("omni"));
+  EXPECT_FALSE(written("walk-omni.json").contains("ramp"));
+  EXPECT_TRUE(written("walk-ramp.json").contains("ramp"));
 }
 
 TEST(TaskConfig, AnOldRunJsonWithEveryTasksFieldsStillLoads) {
@@ -205,6 +235,8 @@ TEST(TaskConfig, AnOldRunJsonWithEveryTasksFieldsStillLoads) {
   doc["kick_at_s"] = 1.0;
   doc["yaw_drift_limit_rad"] = 6.66;
   doc["walk_vx"] = 0.75;
+  doc["omni"] = {{"hold_s", 0.5}};  // walk-omni's, and one it would refuse: not read
+  doc["ramp"] = {{"measure_s", 3.0}, {"increment", 0.1}};  // walk-ramp's (issue 32's)
   TaskConfig c;
   ASSERT_TRUE(parse_task_config(doc, c));
   EXPECT_EQ(c.own_settings<WalkSettings>().walk_vx, 0.75);
@@ -213,6 +245,8 @@ TEST(TaskConfig, AnOldRunJsonWithEveryTasksFieldsStillLoads) {
   doc["goal_distance_m"] = 2.5;
   doc["walk_vx"] = 1.0;
   doc["kick_at_s"] = 2.0;
+  doc["max_drift_ratio"] = -0.5;  // the walking tasks' (one they would refuse): not read
+  doc["omni"] = {{"pause_s", 1.0}};
   ASSERT_TRUE(parse_task_config(doc, c));
   EXPECT_EQ(c.own_settings<KickSettings>().kick_at_s, 2.0);
   // A task's own setting is still checked; another task's is not read.
@@ -226,30 +260,33 @@ TEST(TaskConfig, EveryRampSettingSurvivesRunJson) {
   TaskConfig config, reread;
   ASSERT_TRUE(load_task_config(kConfigs / "walk-ramp.json", config));
   // None of them the default (RampTiming's), so that a field the writer drops is seen.
-  config.ramp.start_s = 1.5;
-  config.ramp.increment_mps = 0.03;
-  config.ramp.increment_radps = 0.15;
-  config.ramp.increment = 0.0;
-  config.ramp.hold_s = 5.0;
-  config.ramp.measure_s = 2.5;
-  config.ramp.max_levels = 12;
-  config.ramp.patience = 5;
+  RampTiming& ramp = config.own_settings<RampSettings>().timing;
+  ramp = {.start_s = 1.5,
+          .increment_mps = 0.03,
+          .increment_radps = 0.15,
+          .increment = 0.0,
+          .hold_s = 5.0,
+          .measure_s = 2.5,
+          .max_levels = 12,
+          .patience = 5};
   const test::TempDir tmp;
   ASSERT_TRUE(parse_task_config(through_run_json(config, tmp.path()), reread));
-  EXPECT_EQ(reread.ramp.start_s, 1.5);
-  EXPECT_EQ(reread.ramp.increment_mps, 0.03);
-  EXPECT_EQ(reread.ramp.increment_radps, 0.15);
-  EXPECT_EQ(reread.ramp.increment, 0.0);
-  EXPECT_FALSE(reread.ramp.normalised());
-  EXPECT_EQ(reread.ramp.hold_s, 5.0);
-  EXPECT_EQ(reread.ramp.measure_s, 2.5);
-  EXPECT_EQ(reread.ramp.max_levels, 12);
-  EXPECT_EQ(reread.ramp.patience, 5);
+  const RampTiming& back = reread.own_settings<RampSettings>().timing;
+  EXPECT_EQ(back.start_s, 1.5);
+  EXPECT_EQ(back.increment_mps, 0.03);
+  EXPECT_EQ(back.increment_radps, 0.15);
+  EXPECT_EQ(back.increment, 0.0);
+  EXPECT_FALSE(back.normalised());
+  EXPECT_EQ(back.hold_s, 5.0);
+  EXPECT_EQ(back.measure_s, 2.5);
+  EXPECT_EQ(back.max_levels, 12);
+  EXPECT_EQ(back.patience, 5);
+  EXPECT_TRUE(back == ramp);
   // A normalised ramp (issue 32's) stays one.
-  config.ramp.increment = 0.15;
+  ramp.increment = 0.15;
   ASSERT_TRUE(parse_task_config(through_run_json(config, tmp.path()), reread));
-  EXPECT_EQ(reread.ramp.increment, 0.15);
-  EXPECT_TRUE(reread.ramp.normalised());
+  EXPECT_EQ(reread.own_settings<RampSettings>().timing.increment, 0.15);
+  EXPECT_TRUE(reread.own_settings<RampSettings>().timing.normalised());
 }
 
 TEST(TaskConfig, AnIssue32RampFromAnOldRunJsonStillLoadsAsTheNormalisedRamp) {
@@ -260,9 +297,9 @@ TEST(TaskConfig, AnIssue32RampFromAnOldRunJsonStillLoadsAsTheNormalisedRamp) {
                  {"measure_s", 3.0}, {"max_levels", 10}, {"patience", 2}};
   TaskConfig c;
   ASSERT_TRUE(parse_task_config(doc, c));
-  EXPECT_TRUE(c.ramp.normalised());
-  EXPECT_EQ(c.ramp.increment, 0.1);
-  EXPECT_EQ(c.ramp.measure_s, 3.0);
+  EXPECT_TRUE(c.own_settings<RampSettings>().timing.normalised());
+  EXPECT_EQ(c.own_settings<RampSettings>().timing.increment, 0.1);
+  EXPECT_EQ(c.own_settings<RampSettings>().timing.measure_s, 3.0);
 }
 
 TEST(TaskConfig, ABadRampSpeedIsNamed) {

@@ -9,6 +9,8 @@
 #include "stride/optimiser/run/run_report.hpp"
 #include "stride/optimiser/tasks/robot_task.hpp"
 #include "stride/optimiser/tasks/task_config.hpp"
+#include "stride/optimiser/tasks/walk_omni_settings.hpp"
+#include "stride/optimiser/tasks/walk_settings.hpp"
 #include "temp_dir.hpp"
 
 namespace stride::opt {
@@ -42,8 +44,8 @@ TEST(TaskConfig, WalkConfigIsTheSeedsTable71With46Genes) {
   EXPECT_EQ(task.shape().reals.size(), 46u);
   // fell, lateral drift, heading change (issue 22: straightness on by default).
   EXPECT_EQ(task.shape().constraints, 3);
-  EXPECT_DOUBLE_EQ(c.max_drift_ratio, 0.1);
-  EXPECT_DOUBLE_EQ(c.max_heading_change_deg, 10.0);
+  EXPECT_DOUBLE_EQ(c.own_settings<WalkSettings>().straightness.max_drift_ratio, 0.1);
+  EXPECT_DOUBLE_EQ(c.own_settings<WalkSettings>().straightness.max_heading_change_deg, 10.0);
   EXPECT_EQ(task.start_genome().reals[0], c.genes[0].start);
 }
 
@@ -67,8 +69,8 @@ TEST(TaskConfig, WalkOmniConfigHasTheWalkGenesWidenedAndTheBalanceGains) {
   for (std::size_t i = 46; i < omni.genes.size(); ++i)
     EXPECT_EQ(omni.genes[i].parameter.rfind("walk.balance.", 0), 0u) << omni.genes[i].parameter;
   EXPECT_EQ(omni.genes.back().parameter, "walk.balance.heading_rate_gain");
-  EXPECT_DOUBLE_EQ(omni.omni.hold_s, 8.0);
-  EXPECT_DOUBLE_EQ(omni.omni.total_s(), 4.0 + 6 * 11.0);
+  EXPECT_DOUBLE_EQ(omni.own_settings<OmniSettings>().timing.hold_s, 8.0);
+  EXPECT_DOUBLE_EQ(omni.own_settings<OmniSettings>().timing.total_s(), 4.0 + 6 * 11.0);
   const RobotTask task(omni);
   EXPECT_EQ(task.shape().constraints, 4);
   EXPECT_EQ(task.shape().objectives, 2);
@@ -157,11 +159,15 @@ TEST(TaskConfig, ErrorsNameTheField) {
   d["max_heading_change_deg"] = nullptr;  // off
   EXPECT_EQ(error_of(d), "ok");
   d = minimal();
+  d["task"] = "walk-omni";  // its own setting: read by walk-omni, accepted and not read by walk
   d["omni"] = {{"hold_s", 0.5}};
   EXPECT_EQ(error_of(d), "omni.hold_s: must be at least 1 s");
-  d = minimal();
   d["omni"] = {{"pause_s", 1.0}};
   EXPECT_EQ(error_of(d), "omni.pause_s: unknown field");
+  d["omni"] = {{"start_s", "soon"}};
+  EXPECT_EQ(error_of(d), "omni.start_s: must be a number");
+  d["task"] = "walk";
+  EXPECT_EQ(error_of(d), "ok");
 }
 
 TEST(TaskConfig, StraightnessLimitsRoundTripIncludingOff) {
@@ -170,13 +176,13 @@ TEST(TaskConfig, StraightnessLimitsRoundTripIncludingOff) {
   d["max_turn_translation_m"] = 0.2;
   TaskConfig a, b;
   ASSERT_TRUE(parse_task_config(d, a));
-  EXPECT_LT(a.max_drift_ratio, 0.0);
-  EXPECT_DOUBLE_EQ(a.max_heading_change_deg, 10.0);
+  EXPECT_LT(a.own_settings<WalkSettings>().straightness.max_drift_ratio, 0.0);
+  EXPECT_DOUBLE_EQ(a.own_settings<WalkSettings>().straightness.max_heading_change_deg, 10.0);
   const nlohmann::json j = to_json(a);
   EXPECT_TRUE(j["max_drift_ratio"].is_null());
   ASSERT_TRUE(parse_task_config(j, b));
-  EXPECT_LT(b.max_drift_ratio, 0.0);
-  EXPECT_DOUBLE_EQ(b.max_turn_translation_m, 0.2);
+  EXPECT_LT(b.own_settings<WalkSettings>().straightness.max_drift_ratio, 0.0);
+  EXPECT_DOUBLE_EQ(b.own_settings<WalkSettings>().straightness.max_turn_translation_m, 0.2);
 }
 
 // Issue 21: the engines a genome is scored on, and the validation's seed count.

@@ -70,7 +70,7 @@ TEST(WalkMeasures, OmniObjectiveIsTheBitBotsScoreAndConstraintsSumTheViolations)
   s[4].speed = 1.0;   // turn left
   s[5].speed = 0.5;   // turn right
   EXPECT_NEAR(omni_speed_objective(s), -(0.3 + 0.2 + 2 * 0.075 + 0.2 * 0.75), 1e-12);
-  TaskConfig config;  // drift 0.1, heading 10 deg, turn translation 0.1 m
+  StraightnessLimits config;  // drift 0.1, heading 10 deg, turn translation 0.1 m
   EXPECT_EQ(omni_constraints(s, config), (std::array<double, 3>{0, 0, 0}));
   s[0].drift_ratio = 0.15;                       // 1.5 x the limit: -0.5
   s[2].drift_ratio = 0.3;                        // 3 x the limit: capped at -1

@@ -8,7 +8,7 @@
 #include <array>
 
 #include "stride/firmware/walk/walk_parameters.hpp"
-#include "stride/optimiser/tasks/task_config.hpp"
+#include "stride/optimiser/tasks/speed_ramp.hpp"
 #include "stride/optimiser/tasks/walk_measures.hpp"
 
 namespace stride::opt {
@@ -24,21 +24,22 @@ struct RampLevel {
   double drift_ratio = 0.0;         ///< translations: since the direction's start
   double heading_change_rad = 0.0;  ///< translations: since the direction's start
   double translation_m = 0.0;       ///< turns: over the window
-  bool straight = true;             ///< within the config's straightness limits
+  bool straight = true;             ///< within the ramp's straightness limits
 };
 
 /// A level's figures from the walking frame at the direction's first level start, at its
 /// measurement window's start and at its end; `axis` the direction's normalised command, the
-/// limits the config's max_drift_ratio, max_heading_change_deg, max_turn_translation_m.
+/// window the ramp's measure_s, the limits its straightness limits.
 RampLevel measure_ramp_level(const PlanarPose& direction_start, const PlanarPose& window_start,
                              const PlanarPose& end, const std::array<double, 3>& axis,
-                             const TaskConfig& config);
+                             const RampSettings& ramp);
 
 class RampDirection {
  public:
   /// `axis`: the direction's normalised command (omni_command).
-  RampDirection(const TaskConfig& config, const std::array<double, 3>& axis)
-      : config_(config), axis_(axis) {}
+  /// `ramp`: the walk-ramp task's own settings (outlive the direction).
+  RampDirection(const RampSettings& ramp, const std::array<double, 3>& axis)
+      : ramp_(ramp.timing), axis_(axis) {}
   /// The level at `t` [s] from the episode's start: 0 before ramp.start_s, then 1, 2, ...
   int level_at(double t) const;
   /// The speed `level` asks for: level * increment_mps [m/s] for a translation, level *
@@ -67,7 +68,7 @@ class RampDirection {
   const RampLevel& best() const { return best_; }
 
  private:
-  const TaskConfig& config_;
+  const RampTiming& ramp_;
   std::array<double, 3> axis_;
   int levels_without_gain_ = 0;
   bool ended_ = false, counted_ = false, crooked_first_ = false, beyond_walk_limits_ = false;

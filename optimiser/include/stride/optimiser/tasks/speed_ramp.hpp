@@ -1,5 +1,6 @@
 // The speed-ramp walk task's settings (task "walk-ramp", issue 32 point 1; the task itself is
-// optimiser/src/tasks/walk_ramp_task.cpp).
+// optimiser/src/tasks/walk_ramp_task.cpp, which parses and writes them: config field `ramp` and
+// the straightness limits), its own settings held in TaskConfig::own (RampSettings).
 //
 // Per direction (forward, backward, left, right, turn left, turn right; one episode each, from
 // standing): after start_s standing, level k = 1, 2, ... asks for a speed of k * increment_mps
@@ -22,6 +23,7 @@
 #include <nlohmann/json.hpp>
 
 #include "stride/core/status.hpp"
+#include "stride/optimiser/tasks/straightness_limits.hpp"
 
 namespace stride::opt {
 
@@ -37,6 +39,14 @@ struct RampTiming {
   double episode_s() const { return start_s + max_levels * hold_s; }
   /// Levels of normalised command (issue 32's runs) rather than of speed.
   bool normalised() const { return increment > 0.0; }
+  bool operator==(const RampTiming&) const = default;
+};
+
+/// The walk-ramp task's own settings (TaskConfig::own).
+struct RampSettings {
+  RampTiming timing;  ///< config `ramp`
+  StraightnessLimits straightness;
+  bool operator==(const RampSettings&) const = default;
 };
 
 /// Reads the config's `ramp` object over `out`'s values; the error names the field

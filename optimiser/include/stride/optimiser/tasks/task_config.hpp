@@ -21,7 +21,6 @@
 
 #include "stride/core/status.hpp"
 #include "stride/optimiser/nsga2/settings.hpp"
-#include "stride/optimiser/tasks/speed_ramp.hpp"
 #include "stride/optimiser/tasks/task_settings.hpp"
 #include "stride/sim_hal/world_spec.hpp"
 
@@ -49,18 +48,6 @@ struct TrialRandomisation {
   /// Robot variants per trial: the trunk's centre of mass moved up to +-com_range in x and y
   /// [m] (sim::Randomisation::com_range); 0 (the default): none, drawing nothing.
   double com_range = 0.0;
-};
-
-/// The segments of the omnidirectional walk task (walk-omni): after start_s of walking in
-/// place from standing, six segments (forward, backward, left, right, turn left, turn right),
-/// each a command ramp from 0 to full over ramp_s, a hold of hold_s (where the speed is
-/// measured) and a stop (command 0) of stop_s. Episode length start_s + 6 (ramp + hold + stop).
-struct OmniTiming {
-  double start_s = 4.0;
-  double ramp_s = 1.0;
-  double hold_s = 8.0;
-  double stop_s = 2.0;
-  double total_s() const { return start_s + 6.0 * (ramp_s + hold_s + stop_s); }
 };
 
 /// The physics step of a walk or kick optimisation's trials on Simbody in the faithful world
@@ -98,15 +85,6 @@ struct TaskConfig {
   T& own_settings() {
     return own.as<T>();
   }
-  // Straightness (walk and walk-omni; a negative value switches the constraint off, written
-  // as null in JSON): lateral drift at most max_drift_ratio of the distance walked, heading
-  // change at most max_heading_change_deg; walk-omni's turns translate at most
-  // max_turn_translation_m.
-  double max_drift_ratio = 0.1;
-  double max_heading_change_deg = 10.0;
-  double max_turn_translation_m = 0.1;
-  OmniTiming omni;  ///< walk-omni
-  RampTiming ramp;  ///< walk-ramp (speed_ramp.hpp)
   // Robust evaluation.
   int trials = 1;  ///< 1: the nominal world; K > 1: K seeded randomised worlds
   Aggregate aggregate = Aggregate::kMean;

@@ -10,11 +10,11 @@
 // Drift ratio = off-axis / max(|along|, kDriftDistanceFloor): a walk that hardly moves is not
 // held to millimetres.
 //
-// walk-omni (TaskConfig::omni): after start_s, six segments forward, backward, left, right,
-// turn left, turn right; each ramps the command from 0 to full (ramp_s), holds it (hold_s) and
-// stops it (command 0, stop_s). Per segment, over the hold: the speed along the commanded axis
-// [m/s or rad/s, positive = the commanded way], the off-axis drift, the heading change, and for
-// the turns the translation. Objectives (minimised):
+// walk-omni (OmniTiming, walk_omni_settings.hpp): after start_s, six segments forward, backward,
+// left, right, turn left, turn right; each ramps the command from 0 to full (ramp_s), holds it
+// (hold_s) and stops it (command 0, stop_s). Per segment, over the hold: the speed along the
+// commanded axis [m/s or rad/s, positive = the commanded way], the off-axis drift, the heading
+// change, and for the turns the translation. Objectives (minimised):
 //   Obj1 = -(v_forward + v_backward + 2 (v_left + v_right)/2 + 0.2 (w_left + w_right)/2)
 //          (the Hamburg Bit-Bots' score; sideways and turning averaged over both sides)
 //   Obj2 = max |a| of the IMU over the episode (the seed's stability measure)
@@ -35,6 +35,7 @@
 
 #include "stride/hal/types.hpp"
 #include "stride/optimiser/tasks/task_config.hpp"
+#include "stride/optimiser/tasks/walk_omni_settings.hpp"
 #include "stride/sim_hal/sim_world.hpp"
 
 namespace stride::opt {
@@ -120,6 +121,7 @@ bool every_segment_measured(const OmniSegments& segments);
 /// Obj1 of the walk-omni task from the segments' speeds (see the header comment).
 double omni_speed_objective(const OmniSegments& segments);
 /// Constraints c1..c3 of the walk-omni task (c0, the fall, is the caller's).
-std::array<double, 3> omni_constraints(const OmniSegments& segments, const TaskConfig& config);
+std::array<double, 3> omni_constraints(const OmniSegments& segments,
+                                       const StraightnessLimits& limits);
 
 }  // namespace stride::opt
