@@ -9,7 +9,7 @@ every value --fit offers without a warning.
 
   python3 tests/bench/calibration_study.py --robots N [--seed S] [--fit LIST] [--jobs J]
       [--calibrate-jobs 2] [--max-evals 250] [--subsets 0] [--window 15] [--json OUT]
-      [--keep DIR]
+      [--resume] [--keep DIR]
       [--stride build/release/bin/stride]
 
 The distribution (robot k of seed S: random.Random(S * 1000003 + k), draws in a fixed order):
@@ -250,14 +250,14 @@ def print_table(rows, records):
           "median abs perturbation |")
     print("|---|---|---|---|---|---|")
     for r in rows:
-        print("| %s | %d of %d | %s | %.3g %s | %.3g %s | %.3g %s |" % (
+        print(("| %s | %d of %d | %s | %.3g %s | %.3g %s | %.3g %s |" % (
             r["value"], r["within"], r["robots"],
             "%.0f %%" % (100 * r["share"]) if r["robots"] else "-", r["tolerance"], r["unit"],
-            r["median_abs_error"], r["unit"], r["median_abs_perturbation"], r["unit"]).replace(
+            r["median_abs_error"], r["unit"], r["median_abs_perturbation"], r["unit"])).replace(
             "nan", "-"))
     print()
     for r in records:
-        line = "robot %d: identify %.0f s, calibrate %.0f s" % (r["robot"], r["identify_s"],
+        line = "robot %d: identify %.0f s, calibrate %.0f s" % (r["robot"] + 1, r["identify_s"],
                                                                 r["calibrate_s"])
         if "objective" in r:
             j = r["objective"]
@@ -289,6 +289,8 @@ def main():
     p.add_argument("--no-truth-objective", dest="truth_objective", action="store_false",
                    help="skip the replay objective J at the true values (3 more replays)")
     p.add_argument("--json", help="write the records and the table as JSON")
+    p.add_argument("--resume", action="store_true",
+                   help="keep the robots already in --json (same seed and --fit), run the rest")
     p.add_argument("--keep", help="folder to keep the URDFs, worlds, logs and fits in")
     p.add_argument("--stride", default=os.path.join(ROOT, "build", "release", "bin", "stride"))
     args = p.parse_args()
@@ -304,6 +306,18 @@ def main():
     folder = args.keep or tmp.name
     os.makedirs(folder, exist_ok=True)
     started, records = time.time(), []
+    settings = {"max_evals": args.max_evals, "window_s": args.window, "subsets": args.subsets}
+    if args.resume:
+        if not args.json or not os.path.exists(args.json):
+            raise SystemExit("calibration_study: --resume needs an existing --json file")
+        with open(args.json) as f:
+            done = json.load(f)
+        if done.get("seed") != args.seed or done.get("fit") != names or \
+                done.get("settings") != settings:
+            raise SystemExit("calibration_study: --resume: %s has another seed, --fit or "
+                             "calibration settings" % args.json)
+        records = [r for r in done["records"] if r["robot"] < args.robots]
+    todo = [k for k in range(args.robots) if k not in {r["robot"] for r in records}]
 
     def one(k):
         log("robot %d of %d: start (%.0f s elapsed)" % (k + 1, args.robots, time.time() - started))
@@ -315,11 +329,12 @@ def main():
 
     try:
         with ThreadPoolExecutor(args.jobs) as pool:
-            for r in pool.map(one, range(args.robots)):
+            for r in pool.map(one, todo):
                 records.append(r)
                 if args.json:  # written after every robot: a stopped study keeps its robots
                     with open(args.json, "w") as f:
-                        json.dump({"seed": args.seed, "fit": names,
+                        records.sort(key=lambda r: r["robot"])
+                        json.dump({"seed": args.seed, "fit": names, "settings": settings,
                                    "rows": report(records, report_names),
                                    "records": records}, f, indent=1)
     except RuntimeError as e:
@@ -327,6 +342,7 @@ def main():
     finally:
         if tmp:
             tmp.cleanup()
+    records.sort(key=lambda r: r["robot"])
     rows = report(records, report_names)
     print_table(rows, records)
     if "trunk_mass" not in names:
