@@ -153,6 +153,8 @@ Status record_identification(const IdentificationRun& run, WorldOptions world,
     }
     player.wait(run.pause_s);
   }
+  out.accel_bias_mps2 = robot.world().episode_accel_bias();
+  out.gyro_bias_rad_s = robot.world().episode_gyro_bias();
   const fw::RecorderTotals totals = recorder->close();
   out.ticks_dropped = static_cast<std::int64_t>(totals.ticks_dropped);
   std::error_code error;

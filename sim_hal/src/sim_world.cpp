@@ -402,6 +402,14 @@ const ImuReading& SimWorld::imu() const {
   return impl_->imu.reading();
 }
 
+const Eigen::Vector3d& SimWorld::episode_accel_bias() const {
+  return impl_->accel_bias;
+}
+
+const Eigen::Vector3d& SimWorld::episode_gyro_bias() const {
+  return impl_->gyro_bias;
+}
+
 bool SimWorld::step() {
   return impl_->step_once();
 }

@@ -79,13 +79,20 @@ int run_identify(int argc, char** argv) {
   if (args.has("json")) {
     nlohmann::json parts_json = nlohmann::json::object();
     for (const auto& [name, start] : summary.part_start_s) parts_json[name] = start;
-    const nlohmann::json j = {{"log", out.string()},
-                              {"ticks", summary.ticks},
-                              {"ticks_dropped", summary.ticks_dropped},
-                              {"fell", summary.fell},
-                              {"failure", summary.failure},
-                              {"part_start_s", parts_json},
-                              {"world", sim::describe_world(world)}};
+    const nlohmann::json j = {
+        {"log", out.string()},
+        {"ticks", summary.ticks},
+        {"ticks_dropped", summary.ticks_dropped},
+        {"fell", summary.fell},
+        {"failure", summary.failure},
+        {"part_start_s", parts_json},
+        {"imu_bias",
+         {{"accel_mps2",
+           {summary.accel_bias_mps2.x(), summary.accel_bias_mps2.y(), summary.accel_bias_mps2.z()}},
+          {"gyro_rad_s",
+           {summary.gyro_bias_rad_s.x(), summary.gyro_bias_rad_s.y(),
+            summary.gyro_bias_rad_s.z()}}}},
+        {"world", sim::describe_world(world)}};
     std::printf("%s\n", j.dump().c_str());
   } else {
     std::printf("%s: %lld ticks (%.1f s) in %s\n", out.string().c_str(),

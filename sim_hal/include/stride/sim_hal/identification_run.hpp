@@ -7,6 +7,7 @@
 // (`stride identify`).
 #pragma once
 
+#include <Eigen/Core>
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -42,6 +43,10 @@ struct IdentificationSummary {
   bool fell = false;    ///< the firmware detected a fall (the log ends there)
   std::string failure;  ///< the world stopped (explosion) or a script did not end
   std::vector<std::pair<std::string, double>> part_start_s;  ///< each part's start [s]
+  /// The IMU's fixed biases of the recorded episode (the world's plus the per-episode draw):
+  /// the true values behind a calibration's accel_bias and gyro_bias.
+  Eigen::Vector3d accel_bias_mps2 = Eigen::Vector3d::Zero();
+  Eigen::Vector3d gyro_bias_rad_s = Eigen::Vector3d::Zero();
 };
 
 /// Plays `run` in `world` (its control period is the firmware's) and records it to `log`

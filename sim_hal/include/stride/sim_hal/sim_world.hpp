@@ -120,6 +120,10 @@ class SimWorld {
   hal::ServoState servo_state(std::size_t index) const;
   /// The IMU sample taken at the end of the last period (noise and bias included).
   const ImuReading& imu() const;
+  /// The IMU's fixed biases this episode: the options' plus the per-reset draw (noise on), in
+  /// the torso frame (the truth a calibration of the IMU biases should find).
+  const Eigen::Vector3d& episode_accel_bias() const;
+  const Eigen::Vector3d& episode_gyro_bias() const;
 
   /// Advances one control period (several physics steps), then samples the sensors.
   /// Returns false (and does nothing) once the status is not kRunning.
