@@ -159,5 +159,25 @@ TEST(ShippedPicks, WalkOmniRobustWalksBackwardAndTurnsOnSoftGroundWhereTheHandSe
   }
 }
 
+// Its sideways velocity limits (+-0.06 m/step, raised by hand from the run's +-0.01, which the
+// ramp's first sideways level could not pass): it steps sideways on the soft ground without a
+// fall, 1.62 m left and 1.63 m right in 20 s (seed 1), where walk-omnidirectional.json moves
+// 0.19 and 0.11 m. At 0.09 m/step MuJoCo fell stepping right on two robot variants
+// (tests/bench/RESULTS.md).
+TEST(ShippedPicks, WalkOmniRobustStepsSidewaysOnSoftGround) {
+  const std::string soft = "walk --duration 20 --contact soft --seed 1 --params " + kConfig;
+  for (const double side : {1.0, -1.0}) {
+    const std::string args = side > 0 ? " --vy 1" : " --vy -1";
+    const nlohmann::json robust = stride_sim(soft + "walk-omni-robust.json" + args);
+    const nlohmann::json slow = stride_sim(soft + "walk-omnidirectional.json" + args);
+    ASSERT_TRUE(robust.is_object() && slow.is_object());
+    EXPECT_FALSE(robust.at("fell").get<bool>()) << args;
+    EXPECT_GT(side * robust.at("lateral_m").get<double>(), 1.4) << args;
+    EXPECT_GT(side * robust.at("lateral_m").get<double>(),
+              4.0 * side * slow.at("lateral_m").get<double>())
+        << args;
+  }
+}
+
 }  // namespace
 }  // namespace stride
