@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <numbers>
 
+#include "minimal_task_config.hpp"
 #include "stride/optimiser/run/progress.hpp"
 #include "stride/optimiser/run/run_report.hpp"
 #include "stride/optimiser/tasks/robot_task.hpp"
@@ -104,17 +105,7 @@ TEST(TaskConfig, KickConfigsAreTheSeedsTable61) {
 }
 
 nlohmann::json minimal() {
-  return {
-      {"task", "walk"},
-      {"seed", 1},
-      {"pop", 8},
-      {"generations", 2},
-      {"pc", 0.8},
-      {"pm", 0.1},
-      {"etac", 13},
-      {"etam", 20},
-      {"genes",
-       {{{"parameter", "walk.walk_cycle.zmp_time"}, {"min", 0.2}, {"max", 0.6}, {"start", 0.4}}}}};
+  return minimal_task_config();
 }
 
 std::string error_of(const nlohmann::json& doc) {

@@ -7,23 +7,14 @@
 
 #include <nlohmann/json.hpp>
 
+#include "minimal_task_config.hpp"
 #include "stride/optimiser/tasks/task_config.hpp"
 
 namespace stride::opt {
 namespace {
 
 nlohmann::json walk_config() {
-  return {
-      {"task", "walk"},
-      {"seed", 1},
-      {"pop", 8},
-      {"generations", 2},
-      {"pc", 0.8},
-      {"pm", 0.1},
-      {"etac", 13},
-      {"etam", 20},
-      {"genes",
-       {{{"parameter", "walk.walk_cycle.zmp_time"}, {"min", 0.2}, {"max", 0.6}, {"start", 0.4}}}}};
+  return minimal_task_config();
 }
 
 std::int64_t step_of(const nlohmann::json& doc) {
