@@ -45,8 +45,17 @@ MotionManager::MotionManager(ParameterStore& params, double period_s, WalkContro
       protection_(params),
       walk_(walk),
       script_(script) {
-  fallen_settle_time_ = params.add_real("motion.fallen_settle_time", 1.0, 0.0, 10.0, "s",
-                                        "time lying still before a get-up starts");
+  fallen_settle_time_ =
+      params.add_real("motion.fallen_settle_time", 1.0, 0.0, 10.0, "s",
+                      "longest wait after a fall before a get-up starts, still or not");
+  // Lying still: a robot at rest reads its gyro's bias and noise, a few hundredths of a rad/s
+  // (CM730: 0.01 rad/s bias, 0.005 noise in sim_hal/src/igus_defaults.cpp; the register's
+  // step is 0.05 rad/s), while one still settling or rocking after the impact turns faster
+  // than 0.5 rad/s. 0.2 s is two periods of the settling bounce measured on the turf.
+  fallen_still_time_ = params.add_real("motion.fallen_still_time", 0.2, 0.0, 10.0, "s",
+                                       "the get-up starts once the robot lies still this long");
+  fallen_still_rate_ = params.add_real("motion.fallen_still_rate", 0.5, 0.0, 10.0, "rad/s",
+                                       "lying still: every gyro axis below this rate");
   fallen_gain_ = params.add_real("motion.fallen_gain", 5.0, 0.0, 100.0, "1",
                                  "servo gain while fallen (0-100), soft to protect the robot");
   get_up_enabled_ = params.add({"motion.get_up", ParamType::kBool, 1, 0, 1, "",
@@ -145,6 +154,7 @@ void MotionManager::step(const hal::SensorFrame& sensors, hal::Tick tick, const 
     relaxed_ = state_ == MotionState::kFalling;  // a protected fall relaxes through the impact
     state_ = MotionState::kFallen;
     fallen_since_ = tick;
+    moving_since_fall_ = tick;
     want_walk_ = false;
     want_script_ = -1;
     active_script_name_.fill(0);
@@ -207,20 +217,29 @@ void MotionManager::step(const hal::SensorFrame& sensors, hal::Tick tick, const 
 
     case MotionState::kFallen: {
       const double lying = static_cast<double>(tick - fallen_since_) * period_s_;
+      const auto& gyro = sensors.cm730.gyro_rad_s;
+      const double rate_limit = params_.value(fallen_still_rate_);
+      if (std::abs(gyro[0]) >= rate_limit || std::abs(gyro[1]) >= rate_limit ||
+          std::abs(gyro[2]) >= rate_limit)
+        moving_since_fall_ = tick;
+      const double still = static_cast<double>(tick - moving_since_fall_) * period_s_;
       if (!fallen) {  // righted by someone: stand up from here
         enter(MotionState::kStand, stand_, sensors, last, tick);
         stand_.step(sensors, tick, out);
         return;
       }
-      if (params_.value(get_up_enabled_) != 0.0 && lying >= params_.value(fallen_settle_time_)) {
+      const bool settled =
+          still >= params_.value(fallen_still_time_) || lying >= params_.value(fallen_settle_time_);
+      if (params_.value(get_up_enabled_) != 0.0 && settled) {
         const auto& a = sensors.cm730.accel_mps2;
         const bool on_front = a[0] < 0.0;  // torso x axis points down
-        // On a side, wait one more settle time (it may still roll over), then play the script of
-        // the side the torso leans to: its first frames tip the robot onto its front or back,
-        // and the retry picks the script for that side. (Without this a robot lying still on a
-        // side stayed down for ever.)
-        const bool clear =
-            std::abs(a[0]) > std::abs(a[1]) || lying >= 2.0 * params_.value(fallen_settle_time_);
+        // On a side, wait until it lies still (it may still roll over), at most one more settle
+        // time, then play the script of the side the torso leans to: its first frames tip the
+        // robot onto its front or back, and the retry picks the script for that side. (Without
+        // this a robot lying still on a side stayed down for ever.)
+        const bool clear = std::abs(a[0]) > std::abs(a[1]) ||
+                           still >= params_.value(fallen_still_time_) ||
+                           lying >= 2.0 * params_.value(fallen_settle_time_);
         const int index = on_front ? get_up_front_ : get_up_back_;
         if (clear && index >= 0 &&
             start_script(index, on_front ? "get_up_front" : "get_up_back", sensors, last, tick)) {
@@ -253,6 +272,7 @@ void MotionManager::step(const hal::SensorFrame& sensors, hal::Tick tick, const 
         if (fallen) {
           state_ = MotionState::kFallen;
           fallen_since_ = tick;
+          moving_since_fall_ = tick;
           active_script_name_.fill(0);
           hold_soft(sensors, out);
         } else {

@@ -249,17 +249,44 @@ TEST(MotionManager, FallFromEveryStateGoesToFallenAndHoldsSoft) {
   }
 }
 
-TEST(MotionManager, LyingOnTheFrontPlaysGetUpFrontAfterTheSettleTime) {
+TEST(MotionManager, LyingStillOnTheFrontPlaysGetUpFrontAfterTheStillTime) {
   Rig r;
   r.settle_stand();
-  r.lie(-9.81, 0.5, 0.3);  // torso x axis points down: face down
+  r.lie(-9.81, 0.5, 0.3);                            // torso x axis points down: face down
+  r.sensors.cm730.gyro_rad_s = {0.03, -0.04, 0.02};  // a bias and noise, not a motion
   r.run(1);
   ASSERT_EQ(r.manager->state(), MotionState::kFallen);
-  // motion.fallen_settle_time 1.0 s = 100 ticks of lying still first.
+  // motion.fallen_still_time 0.2 s = 20 ticks of lying still (gyro below 0.5 rad/s) first.
   const hal::Tick waited = r.run_until(MotionState::kGetUp, 300);
-  EXPECT_GE(waited, 99);
-  EXPECT_LE(waited, 101);
+  EXPECT_GE(waited, 18);
+  EXPECT_LE(waited, 20);
   EXPECT_EQ(r.manager->active_script(), "get_up_front");
+}
+
+TEST(MotionManager, ARobotStillRockingWaitsUntilItIsStillOrTheSettleTimeHasPassed) {
+  Rig r;
+  r.settle_stand();
+  r.lie(-9.81, 0.5, 0.3);
+  r.sensors.cm730.gyro_rad_s = {0.0, 0.8, 0.0};  // still rolling after the impact
+  r.run(1);
+  ASSERT_EQ(r.manager->state(), MotionState::kFallen);
+  r.run(50);
+  EXPECT_EQ(r.manager->state(), MotionState::kFallen);
+  // It comes to rest at tick 51: the get-up starts 0.2 s later, not at the 1 s settle time.
+  r.sensors.cm730.gyro_rad_s = {0.0, 0.1, 0.0};
+  const hal::Tick still = r.run_until(MotionState::kGetUp, 300);
+  EXPECT_GE(still, 19);
+  EXPECT_LE(still, 21);
+  // Rocking for ever: motion.fallen_settle_time 1.0 s = 100 ticks is the longest wait.
+  Rig rocking;
+  rocking.settle_stand();
+  rocking.lie(9.81, -0.5, 0.3);
+  rocking.sensors.cm730.gyro_rad_s = {0.6, 0.0, -0.7};
+  rocking.run(1);
+  const hal::Tick waited = rocking.run_until(MotionState::kGetUp, 300);
+  EXPECT_GE(waited, 98);
+  EXPECT_LE(waited, 100);
+  EXPECT_EQ(rocking.manager->active_script(), "get_up_back");
 }
 
 TEST(MotionManager, LyingOnTheBackPlaysGetUpBack) {
@@ -272,13 +299,27 @@ TEST(MotionManager, LyingOnTheBackPlaysGetUpBack) {
   EXPECT_EQ(r.manager->active_script(), "get_up_back");
 }
 
-TEST(MotionManager, LyingOnASideWaitsThenPlaysTheScriptOfTheSideItLeansTo) {
+TEST(MotionManager, LyingStillOnASidePlaysTheScriptOfTheSideItLeansTo) {
   Rig r;
   r.settle_stand();
   r.lie(1.0, 9.7, 0.3);  // on its right side, leaning slightly onto the back (accel x > 0)
   r.run(1);
   ASSERT_EQ(r.manager->state(), MotionState::kFallen);
-  // One settle time (1 s) is not enough on a side: it may still be rolling.
+  // Still (gyro 0): after motion.fallen_still_time, 20 ticks, as on the front or back.
+  const hal::Tick waited = r.run_until(MotionState::kGetUp, 300);
+  EXPECT_GE(waited, 18);
+  EXPECT_LE(waited, 20);
+  EXPECT_EQ(r.manager->active_script(), "get_up_back");
+}
+
+TEST(MotionManager, RockingOnASideWaitsTwiceTheSettleTime) {
+  Rig r;
+  r.settle_stand();
+  r.lie(1.0, 9.7, 0.3);
+  r.sensors.cm730.gyro_rad_s = {0.7, 0.0, 0.0};  // it may still roll over
+  r.run(1);
+  ASSERT_EQ(r.manager->state(), MotionState::kFallen);
+  // One settle time (1 s) is not enough on a side while it still moves.
   r.run(150);
   EXPECT_EQ(r.manager->state(), MotionState::kFallen);
   // After twice the settle time the get-up of the side it leans to starts.
@@ -292,9 +333,10 @@ TEST(MotionManager, RollingFromASideOntoTheFrontStartsAtOnce) {
   Rig r;
   r.settle_stand();
   r.lie(-1.0, 9.7, 0.3);
+  r.sensors.cm730.gyro_rad_s = {0.7, 0.0, 0.0};  // rolling
   r.run(120);
   EXPECT_EQ(r.manager->state(), MotionState::kFallen);
-  r.sensors.cm730.accel_mps2 = {-9.7, 1.0, 0.3};  // rolled onto the front
+  r.sensors.cm730.accel_mps2 = {-9.7, 1.0, 0.3};  // rolled onto the front, past the settle time
   r.run(2);
   EXPECT_EQ(r.manager->state(), MotionState::kGetUp);
   EXPECT_EQ(r.manager->active_script(), "get_up_front");

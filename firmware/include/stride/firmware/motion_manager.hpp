@@ -12,10 +12,13 @@
 //                         and fall.protect is on: FallProtection's pose, soft and torque-limited
 //   kFalling -> kStand    when the prediction has cleared for fall.hold_time_s without a fall
 //   any      -> kFallen   when the safety layer reports a fall (not during a get-up)
-//   kFallen  -> kGetUp    after motion.fallen_settle_time, with get_up_front (lying on the
-//                         front: torso x axis down, accel x < 0) or get_up_back (accel x > 0);
-//                         lying on a side (|accel y| > |accel x|) it waits twice that time, then
-//                         plays the script of the side the torso leans to
+//   kFallen  -> kGetUp    once the robot lies still (every gyro axis below
+//                         motion.fallen_still_rate for motion.fallen_still_time) or at the
+//                         latest after motion.fallen_settle_time, with get_up_front (lying on
+//                         the front: torso x axis down, accel x < 0) or get_up_back (accel x >
+//                         0); lying on a side (|accel y| > |accel x|) and still rocking it waits
+//                         up to twice the settle time, then plays the script of the side the
+//                         torso leans to
 //   kGetUp   -> kStand    when the get-up script has finished and the robot is upright,
 //                         otherwise back to kFallen and try again
 // Without a walk or script engine the corresponding requests are refused (counted).
@@ -87,7 +90,8 @@ class MotionManager {
   FallProtection protection_;
   WalkControl* walk_;
   ScriptControl* script_;
-  ParamHandle fallen_settle_time_, fallen_gain_, get_up_enabled_;
+  ParamHandle fallen_settle_time_, fallen_still_time_, fallen_still_rate_, fallen_gain_,
+      get_up_enabled_;
 
   MotionState state_ = MotionState::kStand;
   bool started_ = false;
@@ -97,6 +101,7 @@ class MotionManager {
   double walk_vx_ = 0.0, walk_vy_ = 0.0, walk_vtheta_ = 0.0;
   int want_script_ = -1;  // script index to play once standing, -1 for none, -2 stop the script
   hal::Tick fallen_since_ = 0;
+  hal::Tick moving_since_fall_ = 0;    // last tick a gyro axis was at or above fallen_still_rate
   hal::Tick falling_clear_since_ = 0;  // last tick the fall was still predicted (kFalling)
   FallDirection falling_direction_ = FallDirection::kNone;
   bool relaxed_ = false;  // torque off: past fall.relax_tilt_rad, until fall.relax_time_s lying
