@@ -49,6 +49,7 @@ EpisodeResult run_episode(SimRobot& robot, const StepFunction& controller,
     return std::atan2(pose.linear()(1, 0), pose.linear()(0, 0));
   };
   double last_yaw = yaw_of(start.torso);
+  bool impact_closed = false;  // EpisodeOptions::impact_over said the landing is over
   for (;;) {
     robot.read(sensors);
     commands = controller(sensors, tick);
@@ -69,7 +70,9 @@ EpisodeResult run_episode(SimRobot& robot, const StepFunction& controller,
     if (options.impact_metrics) {
       ImpactMeasure& m = result.impact;
       if (!m.body_contact_s && world.ground_truth().other_contacts > 0) m.body_contact_s = t;
-      if (m.body_contact_s && t <= *m.body_contact_s + options.impact_window_s) {
+      if (m.body_contact_s && !impact_closed && options.impact_over && options.impact_over())
+        impact_closed = true;
+      if (m.body_contact_s && !impact_closed && t <= *m.body_contact_s + options.impact_window_s) {
         const SimWorld::PeriodPeaks& p = world.last_period_peaks();
         m.peak_accel_mps2 = std::max(m.peak_accel_mps2, p.torso_accel_mps2);
         m.peak_joint_torque_nm = std::max(m.peak_joint_torque_nm, p.joint_torque_nm);

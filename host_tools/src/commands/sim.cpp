@@ -286,6 +286,9 @@ Status run_controlled_episode(const SimRequest& r, stride::fw::Firmware& firmwar
   if (watch_get_up) episode.stop_on_fall = false;
   // A robot that may fall and go on lying: its landing is measured (impact in --json).
   episode.impact_metrics = watch_get_up && !getup;
+  // The landing ends where the get-up begins: the get-up's own pushes are not the impact (the
+  // get-up starts once the robot lies still, which can be inside the 0.8 s window).
+  episode.impact_over = [&stood_up] { return stood_up.get_up().attempts() > 0; };
   // The first tick the firmware predicted a fall (FallPredictor), whether or not it protects.
   const double period_s = static_cast<double>(robot.period_ns()) * 1e-9;
   const stride::hal::Tick first_tick = robot.current_tick();

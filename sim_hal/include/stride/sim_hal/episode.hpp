@@ -69,6 +69,9 @@ struct EpisodeOptions {
   /// It reads the ground truth every tick until that contact; the episode is the same.
   bool impact_metrics = false;
   double impact_window_s = 0.8;
+  /// Optional: true closes the impact window early (`stride sim`: once a get-up has started,
+  /// whose own pushes are not the landing). Asked every tick inside the window.
+  std::function<bool()> impact_over;
 };
 
 /// The landing of a fall (EpisodeOptions::impact_metrics).
