@@ -1,8 +1,8 @@
 // The get-up task (the seed's future work): the robot lies still on its front, then on its back
 // (two episodes per world, sim::lying_reset_spec); the firmware's motion manager sees the fall,
-// waits motion.fallen_settle_time and plays get_up_front or get_up_back (get_up_front rolls onto
-// the back and hands over to get_up_back). The genes are those scripts' keyframes: targets and
-// frame durations (script.get_up_*.frameK.*, make_configs.py).
+// waits until the robot lies still (motion.fallen_still_time) and plays get_up_front or
+// get_up_back (each a direct get-up, issue 43). The genes are those scripts' keyframes: targets
+// and frame durations (script.get_up_*.frameK.*, make_configs.py).
 //   Obj1 = time until standing [s], from lying still: when the last get-up handed over to stand
 //          (sim::GetUpWatch); an episode that does not end standing counts duration_s + 10 s.
 //   Obj2 = peak |a| of the IMU [m/s^2] over the episode (after the first 0.25 s).

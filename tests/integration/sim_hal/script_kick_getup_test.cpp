@@ -115,71 +115,72 @@ TEST(SimScripts, KickIsDeterministicAndAnUnknownScriptIsAnError) {
 }
 
 struct PushFigures {
-  int knocked_over = 0, got_up = 0, right_script = 0, back_first_try = 0;
-  double back_slowest_s = 0.0;  // the slowest stand-up of the trials lying on their back
+  int knocked_over = 0, got_up = 0, right_script = 0, first_try = 0;
+  double slowest_s = 0.0;  // the slowest stand-up of the ten, from the fall [s]
 };
 
-/// Ten trials: the robot standing, knocked over by a ball thrown at its chest at 10-14.5 m/s,
-/// from behind and from the front in turn, randomised worlds on `contact`, 40 s each.
-PushFigures push_trials(const ContactOptions& contact) {
+/// Ten trials on `engine` in the default world (turf): the robot standing, knocked over by a
+/// ball thrown at its chest at 10-14.5 m/s, from behind and from the front in turn, randomised
+/// worlds, 20 s each (the time the rules give a fallen robot).
+PushFigures push_trials(EngineKind engine) {
   PushFigures f;
   for (int trial = 0; trial < 10; ++trial) {
     PushEpisodeOptions push;
     push.from_behind = trial % 2 == 0;
     push.push_speed = 10.0 + 0.5 * static_cast<double>(trial);
-    push.duration_s = 40.0;  // a front fall: roll onto the back, then get_up_back; retries
+    push.duration_s = 20.0;
     PushEpisodeResult result;
     WorldOptions world = world_for_seed(static_cast<std::uint64_t>(100 + trial), true);
-    world.contact = contact;
+    world.contact = ContactOptions::turf();
+    world.engine = engine;
     const Status status = run_push_episode(world, push, result);
     EXPECT_TRUE(status) << status.message();
     const char* expected = push.from_behind ? "get_up_front" : "get_up_back";
+    const double from_fall = result.stand_again_s - result.episode.fall_time_s;
     std::printf(
-        "push trial %d (%s, %.1f m/s): knocked over %d, first script %s, %d get-up attempts, "
-        "standing again at %.1f s, got up %d, final upright %.2f\n",
-        trial, push.from_behind ? "from behind" : "from the front", push.push_speed,
-        result.episode.fell, result.get_up_script.c_str(), result.get_up_attempts,
-        result.stand_again_s, result.got_up, result.final_upright);
+        "%s push trial %d (%s, %.1f m/s): knocked over %d at %.2f s, first script %s, %d get-up "
+        "attempts, standing again %.2f s after the fall, got up %d, final upright %.2f\n",
+        to_string(engine), trial, push.from_behind ? "from behind" : "from the front",
+        push.push_speed, result.episode.fell, result.episode.fall_time_s,
+        result.get_up_script.c_str(), result.get_up_attempts, from_fall, result.got_up,
+        result.final_upright);
     f.knocked_over += result.episode.fell ? 1 : 0;
     f.got_up += result.got_up ? 1 : 0;
     f.right_script += result.get_up_script == expected ? 1 : 0;
-    if (!push.from_behind) {
-      f.back_first_try += result.got_up && result.get_up_attempts == 1 ? 1 : 0;
-      f.back_slowest_s = std::max(f.back_slowest_s, result.got_up ? result.stand_again_s : 1e9);
-    }
+    f.first_try += result.got_up && result.get_up_attempts == 1 ? 1 : 0;
+    f.slowest_s = std::max(f.slowest_s, result.got_up ? from_fall : 1e9);
   }
   std::printf(
-      "push and get up: %d/10 knocked over, %d/10 got up, %d/10 chose the right side, %d/5 on "
-      "the back up at the first try, slowest from the back %.1f s\n",
-      f.knocked_over, f.got_up, f.right_script, f.back_first_try, f.back_slowest_s);
+      "%s push and get up: %d/10 knocked over, %d/10 got up, %d/10 chose the right side, %d/10 "
+      "at the first try, slowest %.2f s from the fall\n",
+      to_string(engine), f.knocked_over, f.got_up, f.right_script, f.first_try, f.slowest_s);
   return f;
 }
 
-// On the seed's 2 cm grass (in the faithful world otherwise), where the get-up scripts were
-// authored: with the default scripts (the get-up run's pick) every trial gets up, those lying on
-// the back at the first try in under 8 s. (The authored scripts: 10/10 as well, but three of
-// the five on the back needed 2-5 tries, up to 39.4 s.)
-TEST(SimScripts, PushedOverTheRobotGetsUp) {
-  const PushFigures f = push_trials(ContactOptions::seed());
+// Knocked over in the default world, the default firmware gets up on both engines, every trial
+// with the script of the side it landed on, within 9 s of the fall (the landing, 0.2 s lying
+// still, the script, and retries). Measured: Simbody 3 of 10 and MuJoCo 2 of 10 stand at the
+// first try, slowest 8.65 and 8.36 s: the direct get-ups were designed from lying flat in the
+// Stand pose, and a knocked-over robot lands in the crouch of the fall protection, often on a
+// side; the retry starts from the flat pose the first attempt leaves. Before issue 43 only the
+// seed's grass got 10 of 10 up within 40 s on Simbody, and on turf the front's roll took
+// 12.5-35.8 s.
+TEST(SimScripts, PushedOverTheRobotGetsUpOnSimbody) {
+  const PushFigures f = push_trials(EngineKind::kSimbody);
   EXPECT_EQ(f.knocked_over, 10);
   EXPECT_EQ(f.right_script, 10);
   EXPECT_EQ(f.got_up, 10);
-  EXPECT_EQ(f.back_first_try, 5);
-  EXPECT_LT(f.back_slowest_s, 8.0);
+  EXPECT_EQ(f.first_try, 3);
+  EXPECT_LT(f.slowest_s, 9.0);
 }
 
-// The same on the faithful world's turf, whose softer stick spring (1000 N/m, Mindlin) lets hands
-// and feet slide where the scripts push: every trial gets up (those lying on the back at the
-// first try, under 8 s; the front rolls in 12.5-35.8 s). The authored scripts stood up in only
-// 4 of these 10 trials (one of the five on the back at the first try), which is what the get-up
-// run was for.
-TEST(SimScripts, PushedOverOnTurfTheRobotGetsUp) {
-  const PushFigures f = push_trials(ContactOptions::turf());
+TEST(SimScripts, PushedOverTheRobotGetsUpOnMujoco) {
+  const PushFigures f = push_trials(EngineKind::kMujoco);
   EXPECT_EQ(f.knocked_over, 10);
   EXPECT_EQ(f.right_script, 10);
   EXPECT_EQ(f.got_up, 10);
-  EXPECT_EQ(f.back_first_try, 5);
-  EXPECT_LT(f.back_slowest_s, 8.0);
+  EXPECT_EQ(f.first_try, 2);
+  EXPECT_LT(f.slowest_s, 9.0);
 }
 
 std::string run_stride(const std::string& args, int& code) {

@@ -18,8 +18,9 @@
 namespace stride::sim {
 
 /// Lying still on the grass on the front (face down) or on the back, the joints in the Stand
-/// pose: where a get-up starts. The motion manager sees the fall, lets the robot settle
-/// (motion.fallen_settle_time) and plays get_up_front or get_up_back.
+/// pose: where a get-up starts. The motion manager sees the fall, waits until the robot lies
+/// still (motion.fallen_still_time; at most motion.fallen_settle_time) and plays get_up_front
+/// or get_up_back.
 ResetSpec lying_reset_spec(bool on_front);
 
 /// Follows the motion manager through a get-up (run_push_episode, `stride sim getup` and the
