@@ -101,14 +101,18 @@ TEST(VirtualBusEndToEnd, ThousandTicksWithoutErrors) {
   EXPECT_EQ(r["cycles"], 1000);
   EXPECT_LE(r["missed_ticks"].get<int>(), 10) << "loop did not keep 100 Hz";
   // Every request is answered or timed out, and nothing arrives corrupt. A timeout here is a
-  // pty reply the OS scheduled later than the bus margin (one late cycle on the shared 2-core
-  // machine times out all 21 devices at once), so at most 1 % of cycles may be lost per device.
+  // pty reply the OS scheduled later than the bus margin: one late cycle on the shared 2-core
+  // machine times out all 21 devices at once, so every device has lost the same cycles (a
+  // device fault would lose its own), and at most 5 % of them (1 % on a quiet host; 1.4 % seen
+  // with a CI rehearsal beside two optimisations).
   EXPECT_EQ(r["bus"]["corrupt"], 0);
   EXPECT_EQ(r["bus"]["error_replies"], 0);
   EXPECT_EQ(r["bus"]["replies"].get<int>() + r["bus"]["timeouts"].get<int>(), 21 * 1000);
   ASSERT_EQ(r["bus"]["devices"].size(), 21U);
+  const int lost_cycles = r["bus"]["devices"][0]["timeouts"].get<int>();
+  EXPECT_LE(lost_cycles, 1000 / 20) << run.errors;
   for (const auto& d : r["bus"]["devices"]) {
-    EXPECT_LE(d["timeouts"].get<int>(), 1000 / 100) << d["name"] << "\n" << run.errors;
+    EXPECT_EQ(d["timeouts"].get<int>(), lost_cycles) << d["name"] << "\n" << run.errors;
     EXPECT_EQ(d["health"], "ok") << d["name"];
   }
   EXPECT_EQ(r["motion_state"], "stand");
@@ -136,12 +140,16 @@ TEST(VirtualBusEndToEnd, InjectedFaultsAreCountedNamedAndSurvived) {
   EXPECT_EQ(silent["health"], "missing");
   EXPECT_GE(silent["timeouts"].get<int>(), 5);
   EXPECT_NE(run.errors.find("7 r_hip_yaw"), std::string::npos);
+  // The overheated servo flags every reply it gives once the faults start (after 50 cycles), and
+  // most cycles reach it (1000 less 50, less 2 % dropped and 2 % corrupt, less the cycles a
+  // loaded host makes late).
   const auto& hot = device(r, "13 r_knee");
-  EXPECT_GT(hot["error_replies"].get<int>(), 900);
+  EXPECT_GE(hot["error_replies"].get<int>(), hot["replies"].get<int>() - 50);
+  EXPECT_GT(hot["error_replies"].get<int>(), 850);
   EXPECT_NE(hot["last_error_flags"].get<int>() & 0x04, 0);  // overheating bit
   EXPECT_NE(run.errors.find("13 r_knee"), std::string::npos);
   const auto& healthy = device(r, "9 r_hip_roll");
-  EXPECT_GT(healthy["replies"].get<int>(), 900);
+  EXPECT_GT(healthy["replies"].get<int>(), 850);
   const auto counters = vbus.stop();
   EXPECT_EQ(vbus.exit_code(), 0);
   EXPECT_GT(counters["dropped"].get<int>(), 0);
