@@ -149,7 +149,7 @@ getup = {"_comment": [
     "Get-up optimisation (issue 43 point 3): the robot lies still on its front and on its back; the",
     "motion manager plays get_up_front or get_up_back (each a direct four-frame get-up). Obj1 = time",
     "until standing (mean of front and back; duration_s + 10 s if it does not end standing), Obj2 =",
-    "peak |a| (the impacts; optimiser/src/tasks/getup_task.cpp says why not the servo load).",
+    "peak servo load, the largest |motor torque| of any servo (optimiser/src/tasks/getup_task.cpp).",
     "Constraint: it ends standing within duration_s. Genes: the targets of frames 1..N-1 (+-0.3 rad)",
     "and every frame's duration (x0.5..x1.5). Robust: 2 randomised trials on each engine, the ground",
     "drawn from hard to soft, the trunk's CoM moved up to 1 cm, drawn again each generation; the",
@@ -161,7 +161,7 @@ getup = {"_comment": [
     "randomisation": {"imu_noise": True, "friction_range": 0.2, "mass_range": 0.05, "strength_range": 0.1,
                       "contact_range": 1.0, "com_range": 0.01},
     "validate": {"seeds": 10},
-    "hypervolume_ideal": [1.5, 9.81], "hypervolume_nadir": [20.0, 200.0], "genes": getup_genes}
+    "hypervolume_ideal": [1.5, 5.0], "hypervolume_nadir": [20.0, 60.0], "genes": getup_genes}
 json.dump(getup, open('optimiser/configs/getup.json', 'w'), indent=1)
 
 # Speed ramp (issue 32 point 1): the top speed of each direction, as the Bit-Bots search for it.

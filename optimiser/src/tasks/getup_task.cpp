@@ -5,19 +5,20 @@
 // and frame durations (script.get_up_*.frameK.*, make_configs.py).
 //   Obj1 = time until standing [s], from lying still: when the last get-up handed over to stand
 //          (sim::GetUpWatch); an episode that does not end standing counts duration_s + 10 s.
-//   Obj2 = peak |a| of the IMU [m/s^2] over the episode (after the first 0.25 s).
+//   Obj2 = peak servo load [N m]: the largest |motor torque| of any servo over the episode's
+//          physics steps (SimWorld::last_period_peaks, the torque the gear train carries).
 //   c0   = -(episodes that do not end standing within duration_s) / episodes (g >= 0 feasible).
 // Each value is the mean of the two episodes. An episode ends as soon as its outcome is decided
 // (issue 42 point 4): once the robot has stood up by sim::StoodUpWatch's criterion (in Stand after
-// a get-up, upright, held 1 s: the `stood_up_s` of `stride sim getup`), and otherwise at
-// duration_s. So Obj2 is the peak up to that moment, and a robot that stood up and fell again
-// later would count as standing; standing still for 1 s after its get-up, none did in the runs.
-// Obj2 is the peak acceleration rather than the
-// peak servo load: the load register of the identified servo law is the PWM duty, which
-// saturates at 100 % whenever a joint is held against a stop or the ground, as every get-up
-// does when it pushes the body up, so its peak tells get-ups apart poorly; the IMU's peak is
-// the impact when the body drops onto its hands, back or feet, which is what breaks gears and
-// brackets, and it is the seed's stability measure.
+// a get-up, upright, held 1 s: the `stride sim getup` stood_up_s), and otherwise at duration_s.
+// So Obj2 is the peak up to that moment, and a robot that stood up and fell again later would
+// count as standing; standing still for 1 s after its get-up, none did in the runs.
+// Why the motor torque (issue 43): pushing the body up a servo sits at its stall torque (MX-106
+// about 8 N m), but where a limb takes the body's weight or an impact, the gear train is
+// back-driven and carries two to three times that (18-26 N m across the first genomes of
+// getup.json): that is the load that strips gears. The load register (the PWM duty) saturates at
+// 100 % in every get-up and tells them apart poorly; the IMU's peak |a| (Obj2 before issue 43)
+// stays in EpisodeScore::max_accel and the report.
 #include <algorithm>
 #include <cstdio>
 
@@ -46,6 +47,8 @@ class GetUpEpisode final : public TaskEpisode {
   void after_step(const fw::Controller& controller, const sim::SimWorld& world,
                   hal::Tick tick) override {
     watch_.after_step(controller, world, tick);
+    peak_servo_torque_nm_ =
+        std::max(peak_servo_torque_nm_, world.last_period_peaks().servo_torque_nm);
   }
   Status score(const sim::EpisodeResult& r, const sim::SimWorld& world,
                const fw::Controller& controller, EpisodeScore& out) override {
@@ -55,7 +58,7 @@ class GetUpEpisode final : public TaskEpisode {
     out.stand_time_s = stood ? std::max(0.0, watch_.get_up().stand_again_s()) : -1.0;
     out.fell = !stood;
     const double time = stood ? out.stand_time_s : config_.duration_s + kNotStandingPenaltyS;
-    out.objectives = {time, r.max_accel};
+    out.objectives = {time, peak_servo_torque_nm_};
     out.constraints = {stood ? 0.0 : -1.0};
     return {};
   }
@@ -63,6 +66,7 @@ class GetUpEpisode final : public TaskEpisode {
  private:
   const TaskConfig& config_;
   sim::StoodUpWatch watch_;
+  double peak_servo_torque_nm_ = 0.0;  ///< Obj2, over the episode's physics steps [N m]
 };
 
 class GetUpTask final : public TaskType {
@@ -70,10 +74,10 @@ class GetUpTask final : public TaskType {
   std::string_view name() const override { return "getup"; }
   int constraint_count() const override { return 1; }
   ObjectiveLabels objective_labels(const nlohmann::json&) const override {
-    return {"time until standing [s]", "max |a| [m/s^2]"};
+    return {"time until standing [s]", "peak servo load [N m]"};
   }
   std::string objective_legend() const override {
-    return "f1 time until standing [s], f2 max |a| [m/s^2]";
+    return "f1 time until standing [s], f2 peak servo load [N m]";
   }
   const char* best_f1_pick() const override { return "quickest"; }
   const char* best_f2_pick() const override { return "gentlest"; }

@@ -32,9 +32,11 @@ EpisodeScore nominal_episodes(TaskConfig config, const std::string& contact) {
   EpisodeScore score;
   const Status s = task.run_trial(task.start_genome(), 0, score);
   EXPECT_TRUE(s) << s.message();
-  std::printf("%s: stood %d of 2, %d get-up attempts, stand time %.3f s, peak |a| %.2f m/s^2\n",
-              contact.c_str(), score.stood, score.get_up_attempts, score.stand_time_s,
-              score.max_accel);
+  std::printf(
+      "%s: stood %d of 2, %d get-up attempts, stand time %.3f s, peak servo load %.2f N m, peak "
+      "|a| %.2f m/s^2\n",
+      contact.c_str(), score.stood, score.get_up_attempts, score.stand_time_s, score.objectives[1],
+      score.max_accel);
   return score;
 }
 
@@ -51,9 +53,11 @@ TEST(GetUpTask, TheStartGenomeStandsUpOnEveryGroundOnBothEngines) {
       EXPECT_GT(s.stand_time_s, 2.0) << sim::to_string(engine) << " " << contact;
       EXPECT_LT(s.stand_time_s, 3.0) << sim::to_string(engine) << " " << contact;
       EXPECT_DOUBLE_EQ(s.objectives[0], s.stand_time_s);
-      // Obj2 is the mean of the two episodes' peaks; max_accel the larger peak.
-      EXPECT_GT(s.objectives[1], 9.81);
-      EXPECT_LE(s.objectives[1], s.max_accel);
+      // Obj2, the peak servo load, is the mean of the two episodes' peak motor torques: above
+      // the MX-106's stall torque (8.4 N m at 12 V), where a limb is back-driven, and below
+      // what the identified servo law allows a back-driven gear train.
+      EXPECT_GT(s.objectives[1], 8.4) << sim::to_string(engine) << " " << contact;
+      EXPECT_LT(s.objectives[1], 40.0) << sim::to_string(engine) << " " << contact;
       ASSERT_EQ(s.constraints.size(), 1u);
       EXPECT_EQ(s.constraints[0], 0.0);
       EXPECT_FALSE(s.fell);
@@ -110,8 +114,9 @@ TEST(GetUpTask, TheDefaultScriptsAreTheStartGenomeAndStandUpOnBothEngines) {
     const RobotTask task(config);
     EpisodeScore by_default;
     ASSERT_TRUE(task.run_trial(defaults, 0, by_default));
-    std::printf("%s: the defaults stood %d of 2 in %.2f s, peak |a| %.1f\n", sim::to_string(engine),
-                by_default.stood, by_default.stand_time_s, by_default.objectives[1]);
+    std::printf("%s: the defaults stood %d of 2 in %.2f s, peak servo load %.2f N m\n",
+                sim::to_string(engine), by_default.stood, by_default.stand_time_s,
+                by_default.objectives[1]);
     EXPECT_EQ(by_default.stood, 2) << sim::to_string(engine);
     EXPECT_GT(by_default.stand_time_s, 2.0);
     EXPECT_LT(by_default.stand_time_s, 3.0) << sim::to_string(engine);
