@@ -19,7 +19,8 @@ Stages, each a cross-entropy search (population --pop, the best 5 set the next m
 
 The chain that wrote getup-start/ is in optimiser/RESULTS.md ("Direct get-ups"). A rerun follows
 the same method but need not find the same bits (the other side's script in the search's data
-folder was then a template, and a get-up that fails can end on the other side).
+folder was then a template, a get-up that fails can end on the other side, and the stand pose
+was then rounded to 0.01 rad; it is now read from firmware/scripts/stand.json).
 
   python3 optimiser/configs/getup_keyframe_search.py front|back [--stage design|robust8|robust12]
       [--iters 15] [--pop 24] [--from STATE.json] [--out STATE.json] [--script OUT.json]
@@ -41,8 +42,10 @@ from multiprocessing import Pool
 
 MIRROR = {'shoulder_pitch': 1, 'shoulder_roll': -1, 'elbow': 1, 'hip_yaw': -1, 'hip_roll': -1,
           'hip_pitch': 1, 'knee': 1, 'ankle_pitch': 1, 'ankle_roll': -1}
-STAND = dict(shoulder_pitch=0.39, shoulder_roll=0.12, elbow=-2.44, hip_yaw=0.03, hip_roll=0.06,
-             hip_pitch=-0.21, knee=0.29, ankle_pitch=-0.26, ankle_roll=-0.07)
+# The igus stand pose, left side, from the firmware's stand script (the frame every get-up ends in).
+STAND = {t['servo'][2:]: t['position']
+         for t in json.load(open('firmware/scripts/stand.json'))['frames'][0]['targets']
+         if t['servo'].startswith('l_') and t['servo'][2:] in MIRROR}
 LIMITS = dict(shoulder_pitch=(-2.8, 2.8), elbow=(-2.6, 0.1), hip_yaw=(-0.2, 0.8),
               hip_roll=(-0.2, 1.0), hip_pitch=(-2.2, 0.8), knee=(0.0, 2.6),
               ankle_pitch=(-1.4, 1.1), ankle_roll=(-0.7, 0.7))
