@@ -8,23 +8,34 @@ start that never stands gives NSGA-II nothing to rank (every genome violates the
 This search reaches a first standing get-up from a rough template, with a graded score for one that
 stays down: 10 + 10 (1 - p), p the best over the episode of (centre of mass height / 0.40 m) times
 the share of the weight on the feet (halved while any other link touches). A standing one scores
-its stood_up_s. Both scripts are symmetric (left-side URDF angles, mirrored).
+its stood_up_s, plus 2 s for each further get-up attempt (a retry, or a fall after standing).
+Both scripts are symmetric (left-side URDF angles, mirrored).
 
 Stages, each a cross-entropy search (population --pop, the best 5 set the next mean and spread):
   design: from the template, spread 15 % of each range, on Simbody and MuJoCo turf (front: the
           worst of the two plus a tenth of their mean; back: their mean);
   robust8, robust12: from an earlier stage's mean, spread 2-3 % (--spread), the mean over 8
           or 12 worlds: both engines on turf, hard and soft ground and the make_variants.py
-          robots (heavier trunk, CoM moved, a leg 5 % heavier), several seeds.
+          robots (heavier trunk, CoM moved, a leg 5 % heavier), several seeds;
+  random: the mean over --worlds (16) randomised worlds, alternately Simbody and MuJoCo, a
+          quarter each on turf, hard, soft and the seed's grass, each with the get-up run's
+          draws (friction +-20 %, link masses +-5 %, servo strength +-10 %) on its own seed
+          (--world-seed the first); for a script that stands in the fixed worlds but not yet
+          in drawn ones (--from SCRIPT.json starts at a firmware script);
+  mixed: robust12's worlds, the seed's grass on both engines and --worlds (20) of random's, so
+          that what a script gains in the drawn worlds it must not lose in the nominal ones or
+          on the robot variants.
 
 The chain that wrote getup-start/ is in optimiser/RESULTS.md ("Direct get-ups"). A rerun follows
 the same method but need not find the same bits (the other side's script in the search's data
-folder was then a template, a get-up that fails can end on the other side, and the stand pose
-was then rounded to 0.01 rad; it is now read from firmware/scripts/stand.json).
+folder was then a template, a get-up that fails can end on the other side, the stand pose was
+then rounded to 0.01 rad, now read from firmware/scripts/stand.json, and a further attempt was
+then not charged 2 s).
 
-  python3 optimiser/configs/getup_keyframe_search.py front|back [--stage design|robust8|robust12]
-      [--iters 15] [--pop 24] [--from STATE.json] [--out STATE.json] [--script OUT.json]
-      [--variants DIR] [--stride build/release/bin/stride]
+  python3 optimiser/configs/getup_keyframe_search.py front|back
+      [--stage design|robust8|robust12|random|mixed] [--iters 15] [--pop 24] [--worlds N]
+      [--seed 1] [--world-seed 11] [--from STATE.json|SCRIPT.json] [--out STATE.json]
+      [--script OUT.json] [--variants DIR] [--stride build/release/bin/stride]
 
 Run from the repository root; two simulations at a time. The state file holds the search's mean
 and best; --script writes the best as a firmware script. Deterministic for a given --seed.
@@ -130,6 +141,23 @@ def frames_from(side, spec, x):
     return frames
 
 
+def x_of_script(side, spec, script):
+    """The search vector of a firmware script (its left-side targets and durations)."""
+    frames = script['frames']
+    if len(frames) != len(TEMPLATES[side]):
+        sys.exit('--from: %d frames, the %s template has %d' %
+                 (len(frames), side, len(TEMPLATES[side])))
+    x = []
+    for key, _, _, _ in spec:
+        frame, joint = key.split('.')
+        f = frames[int(frame[5:]) - 1]
+        if joint == 'dur':
+            x.append(float(f['duration_ms']))
+        else:
+            x.append(next(t['position'] for t in f['targets'] if t['servo'] == 'l_' + joint))
+    return x
+
+
 def progress(trace):
     best = 0.0
     with open(trace) as f:
@@ -155,16 +183,26 @@ def episode(job):
         if r.returncode not in (0, 1):
             raise RuntimeError(' '.join(cmd) + ': ' + r.stderr.strip())
         d = json.loads(r.stdout)
-        if d.get('stood_up_s') is not None:
-            return d['stood_up_s']
+        if d.get('stood_up_s') is not None:  # 2 s more for each further attempt: a retry, or a
+            return d['stood_up_s'] + 2.0 * (d['get_up_attempts'] - 1)  # fall after standing
         return 10.0 + 10.0 * (1.0 - progress(trace))
 
 
-def worlds(stage, variants):
+def worlds(stage, variants, first_seed=11, count=16):
     s, m = ['--engine', 'simbody'], ['--engine', 'mujoco']
     if stage == 'design':
         return [s, m]
     v = lambda name: ['--urdf', os.path.join(variants, name + '.urdf')]
+    if stage == 'mixed':
+        grass = ['--contact', 'seed']
+        return (worlds('robust12', variants) + [s + grass, m + grass] +
+                worlds('random', variants, first_seed, count))
+    if stage == 'random':
+        draws = ['--friction-range', '0.2', '--mass-range', '0.05', '--strength-range', '0.1']
+        grounds = ('turf', 'hard', 'soft', 'seed')
+        return [(s if i % 2 == 0 else m) + ['--contact', grounds[i * 4 // count],
+                                             '--seed', str(first_seed + i)] + draws
+                for i in range(count)]
     if stage == 'robust8':
         return [s, s + ['--contact', 'hard'], s + ['--contact', 'soft'],
                 s + v('trunk_mass_plus_10pct'), s + v('trunk_com_1cm_backward') + ['--seed', '2'],
@@ -182,13 +220,18 @@ def worlds(stage, variants):
 def main():
     p = argparse.ArgumentParser(description=__doc__.split('\n\n')[0])
     p.add_argument('side', choices=('front', 'back'))
-    p.add_argument('--stage', choices=('design', 'robust8', 'robust12'), default='design')
+    p.add_argument('--stage', default='design',
+                   choices=('design', 'robust8', 'robust12', 'random', 'mixed'))
     p.add_argument('--spread', type=float,
                    help='first spread, share of each range (design 0.15, robust 0.03)')
     p.add_argument('--iters', type=int, default=15)
     p.add_argument('--pop', type=int, default=24)
     p.add_argument('--seed', type=int, default=1)
-    p.add_argument('--from', dest='start', help='state file of an earlier stage (its mean)')
+    p.add_argument('--world-seed', type=int, default=11,
+                   help='random: the first world seed (a further stage draws other worlds)')
+    p.add_argument('--worlds', type=int, help='random, mixed: how many drawn worlds (16, 20)')
+    p.add_argument('--from', dest='start',
+                   help='state file of an earlier stage (its mean), or a firmware script')
     p.add_argument('--out', default='getup_search_state.json')
     p.add_argument('--script', help='write the best as a firmware script here')
     p.add_argument('--variants', help='make_variants.py URDFs (robust stage; written if missing)')
@@ -197,17 +240,19 @@ def main():
     spec = spec_of(a.side)
     mean = [s[3] for s in spec]
     if a.start:
-        mean = json.load(open(a.start))['mean']
+        start = json.load(open(a.start))
+        mean = x_of_script(a.side, spec, start) if 'frames' in start else start['mean']
     share = a.spread if a.spread is not None else 0.15 if a.stage == 'design' else 0.03
     spread = [(s[2] - s[1]) * share for s in spec]
     tmp = tempfile.mkdtemp(prefix='getup-search-')
     variants = a.variants or os.path.join(tmp, 'variants')
-    if a.stage != 'design' and not os.path.isdir(variants):
+    if a.stage in ('robust8', 'robust12', 'mixed') and not os.path.isdir(variants):
         subprocess.run([sys.executable, 'sim_hal/models/make_variants.py', variants], check=True)
     data = os.path.join(tmp, 'data')
     shutil.copytree('firmware/scripts', os.path.join(data, 'scripts'))
     os.symlink(os.path.abspath('firmware/config'), os.path.join(data, 'config'))
-    ws = worlds(a.stage, variants)
+    ws = worlds(a.stage, variants, a.world_seed,
+                a.worlds or (20 if a.stage == 'mixed' else 16))
     mean_of = a.stage != 'design' or a.side == 'back'
     rng = random.Random(a.seed)
     best = (math.inf, mean)

@@ -158,20 +158,20 @@ PushFigures push_trials(EngineKind engine) {
 }
 
 // Knocked over in the default world, the default firmware gets up on both engines, every trial
-// with the script of the side it landed on, within 9 s of the fall (the landing, 0.2 s lying
-// still, the script, and retries). Measured: Simbody 3 of 10 and MuJoCo 2 of 10 stand at the
-// first try, slowest 8.65 and 8.36 s: the direct get-ups were designed from lying flat in the
-// Stand pose, and a knocked-over robot lands in the crouch of the fall protection, often on a
-// side; the retry starts from the flat pose the first attempt leaves. Before issue 43 only the
-// seed's grass got 10 of 10 up within 40 s on Simbody, and on turf the front's roll took
-// 12.5-35.8 s.
+// with the script of the side it landed on, within 10 s of the fall (the landing, 0.2 s lying
+// still, the script, and retries). Measured: Simbody 4 of 10 and MuJoCo 3 of 10 stand at the
+// first try, slowest 6.79 and 9.82 s (with the back get-up before its mixed search stage: 3 and
+// 2 of 10, 8.65 and 8.36 s): the direct get-ups were designed from lying flat in the Stand pose,
+// and a knocked-over robot lands in the crouch of the fall protection, often on a side; the retry
+// starts from the flat pose the first attempt leaves. Before issue 43 only the seed's grass got
+// 10 of 10 up within 40 s on Simbody, and on turf the front's roll took 12.5-35.8 s.
 TEST(SimScripts, PushedOverTheRobotGetsUpOnSimbody) {
   const PushFigures f = push_trials(EngineKind::kSimbody);
   EXPECT_EQ(f.knocked_over, 10);
   EXPECT_EQ(f.right_script, 10);
   EXPECT_EQ(f.got_up, 10);
-  EXPECT_EQ(f.first_try, 3);
-  EXPECT_LT(f.slowest_s, 9.0);
+  EXPECT_EQ(f.first_try, 4);
+  EXPECT_LT(f.slowest_s, 10.0);
 }
 
 TEST(SimScripts, PushedOverTheRobotGetsUpOnMujoco) {
@@ -179,8 +179,8 @@ TEST(SimScripts, PushedOverTheRobotGetsUpOnMujoco) {
   EXPECT_EQ(f.knocked_over, 10);
   EXPECT_EQ(f.right_script, 10);
   EXPECT_EQ(f.got_up, 10);
-  EXPECT_EQ(f.first_try, 2);
-  EXPECT_LT(f.slowest_s, 9.0);
+  EXPECT_EQ(f.first_try, 3);
+  EXPECT_LT(f.slowest_s, 10.0);
 }
 
 std::string run_stride(const std::string& args, int& code) {
