@@ -5,6 +5,7 @@
 // (--after-fall).
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -89,13 +90,14 @@ std::string outcome_text(const sim::EpisodeResult& result, const GetUpOutcome& g
 }
 
 // The --html page: the episode's settings and results, accelerometer, poses and replay.
-Status write_html(const stride::core::CliArgs& args, const std::string& motion,
-                  const std::string& duration_text, const sim::WorldOptions& world,
-                  sim::SimRobot& robot, const sim::EpisodeResult& result,
-                  const GetUpOutcome& get_up, const sim::EpisodeCapture& capture) {
+Status write_html(const stride::core::CliArgs& args, const std::string& params_name,
+                  const std::string& motion, const std::string& duration_text,
+                  const sim::WorldOptions& world, sim::SimRobot& robot,
+                  const sim::EpisodeResult& result, const GetUpOutcome& get_up,
+                  const sim::EpisodeCapture& capture) {
   namespace report = stride::opt::report;
   report::ReplayIndividual episode;
-  episode.name = args.has("params") ? args.get("params") : "default parameters";
+  episode.name = params_name;
   episode.colour = report::individual_colour(0);
   episode.capture = capture;
   const double end = capture.frames.empty() ? 0.0 : capture.frames.back().time_s;
@@ -140,7 +142,10 @@ Status write_html(const stride::core::CliArgs& args, const std::string& motion,
 
 void declare_options(stride::core::CliArgs& args) {
   args.option("help", "show this help", false);
-  args.option("params", "parameter file (JSON) loaded into the controller", true);
+  args.option("params",
+              "parameter file (JSON) loaded into the controller (default: none; with --world "
+              "seed the seed world's walk, config/seed-walk.json)",
+              true);
   args.option("vx", "walk forward command, normalised [-1, 1]", true, "0");
   args.option("vy", "walk sideways command, normalised [-1, 1]", true, "0");
   args.option("vth", "walk turning command, normalised [-1, 1]", true, "0");
@@ -200,6 +205,9 @@ struct SimRequest {
   double duration = 0.0, vx = 0.0, vy = 0.0, vth = 0.0, metrics_from = 0.25;
   std::vector<double> snapshot_times;
   sim::WorldOptions world;
+  /// The parameter file loaded into the controller: --params, else with --world seed the seed
+  /// world's walk (config/seed-walk.json), else none (the firmware's defaults).
+  std::optional<std::filesystem::path> params_file;
 };
 
 /// Reads and checks the motion and every option but the firmware's; errors are bad input.
@@ -248,7 +256,14 @@ Status read_request(const stride::core::CliArgs& args, SimRequest& r) {
     sim::TorsoPush push;
     if (Status s = sim::parse_push(text, r.duration, push); !s) return s;
   }
-  if (Status s = sim::read_world_options(args, r.world); !s) return s;
+  sim::WorldSpec spec;
+  if (Status s = sim::read_world_spec(args, spec); !s) return s;
+  r.world = spec.to_options();
+  // --world seed is the thesis's world and its walk: the walk defaults of then, unless --params.
+  if (args.has("params"))
+    r.params_file = args.get("params");
+  else if (spec.base == sim::WorldPreset::kSeed && !spec.file)
+    r.params_file = stride::fw::data_dir() / "config" / "seed-walk.json";
   if (motion == "walk")
     for (double v : {r.vx, r.vy, r.vth})
       if (!(v >= -1.0 && v <= 1.0)) return Status::error("--vx/--vy/--vth: must be in [-1, 1]");
@@ -330,8 +345,8 @@ Status write_outputs(const stride::core::CliArgs& args, const SimRequest& r,
     if (Status s = stride::core::write_file_atomically(args.get("snapshot"), svg); !s) return s;
   }
   if (args.has("html"))
-    return write_html(args, r.motion, r.duration_text, r.world, robot, result, get_up,
-                      capturer.finish());
+    return write_html(args, r.params_file ? r.params_file->string() : "default parameters",
+                      r.motion, r.duration_text, r.world, robot, result, get_up, capturer.finish());
   return {};
 }
 
@@ -383,7 +398,7 @@ int run_sim(int argc, char** argv) {
 
   // The firmware exactly as stride-fw builds it (parameters, servo table, engines).
   stride::fw::FirmwareOptions fw_options;
-  if (args.has("params")) fw_options.params_file = args.get("params");
+  fw_options.params_file = r.params_file;
   std::unique_ptr<stride::fw::Firmware> firmware;
   if (Status s = stride::fw::Firmware::create(fw_options, firmware); !s)
     return errors.bad_input(s.message());

@@ -106,7 +106,9 @@ TEST(Exactness, SimEpisodesMatchTheRecordedStateHashes) {
   const std::vector<Case> cases = {
       {{"walk", "--vx", "1", "--duration", "3"}, "04aa01d6c8ec2fb0"},
       {{"walk", "--vx", "1", "--duration", "3", "--engine", "mujoco"}, "a7765ba1ad808dac"},
-      {{"walk", "--vy", "1", "--duration", "2", "--world", "seed"}, "529f3ea9fdc4bf54"},
+      // The seed world walks the seed's walk (seed-walk.json) since issue 44; the firmware's
+      // defaults there (--params a file holding {}) give the hash recorded before, 529f3ea9....
+      {{"walk", "--vy", "1", "--duration", "2", "--world", "seed"}, "4f057ac2972046df"},
       {{"kick", "--duration", "3"}, "4d1f0ce42fd1ae4d"},
       {{"stand", "--duration", "1", "--physics-step-us", "500", "--noise", "off"},
        "89400f4cad5c8290"},
