@@ -152,12 +152,19 @@ Status check_window(const fw::FlightLog& log, double window_s) {
 
 namespace {
 
+/// The IMU's means and peaks skip each window's first second: the placed robot settling on its
+/// feet turns and shakes the trunk in the simulation alone.
+constexpr double kSettleS = 1.0;
+
 /// Sums of squared errors, turned into ReplayErrors.
 struct ErrorSums {
   std::array<double, hal::kServoCount> position{}, speed{}, load{};
   std::array<std::size_t, hal::kServoCount> servo_samples{};
   double roll = 0.0, pitch = 0.0;
   Eigen::Vector3d gyro = Eigen::Vector3d::Zero(), accel = Eigen::Vector3d::Zero();
+  Eigen::Vector3d gyro_diff = Eigen::Vector3d::Zero(), accel_diff = Eigen::Vector3d::Zero();
+  double peak_logged = 0.0, peak_sim = 0.0;
+  std::size_t settled_samples = 0;  ///< in the means and peaks
   std::size_t imu_samples = 0;
   std::size_t ticks = 0;
 
@@ -172,6 +179,11 @@ struct ErrorSums {
     pitch += o.pitch;
     gyro += o.gyro;
     accel += o.accel;
+    gyro_diff += o.gyro_diff;
+    accel_diff += o.accel_diff;
+    peak_logged = std::max(peak_logged, o.peak_logged);
+    peak_sim = std::max(peak_sim, o.peak_sim);
+    settled_samples += o.settled_samples;
     imu_samples += o.imu_samples;
     ticks += o.ticks;
   }
@@ -202,6 +214,12 @@ struct ErrorSums {
       e.gyro_rad_s[k] = root(gyro[k], imu_samples);
       e.accel_mps2[k] = root(accel[k], imu_samples);
     }
+    const double settled = settled_samples > 0 ? static_cast<double>(settled_samples) : kNaN;
+    e.gyro_mean_rad_s = gyro_diff / settled;
+    e.accel_mean_mps2 = accel_diff / settled;
+    e.peak_accel_logged_mps2 = peak_logged;
+    e.peak_accel_sim_mps2 = peak_sim;
+    e.mean_samples = settled_samples;
     e.samples = ticks;
     return e;
   }
@@ -344,6 +362,13 @@ ReplayWindow replay_window(SimRobot& robot, const fw::FlightLog& log,
       sums.pitch += std::pow(sim_tilt.pitch() - logged_tilt.pitch(), 2);
       sums.gyro += (gyro_of(sim) - gyro_of(logged)).cwiseAbs2();
       sums.accel += (accel_of(sim) - accel_of(logged)).cwiseAbs2();
+      if (static_cast<double>(k + 1) * period_s >= kSettleS) {
+        sums.gyro_diff += gyro_of(logged) - gyro_of(sim);
+        sums.accel_diff += accel_of(logged) - accel_of(sim);
+        ++sums.settled_samples;
+        sums.peak_logged = std::max(sums.peak_logged, accel_of(logged).norm());
+        sums.peak_sim = std::max(sums.peak_sim, accel_of(sim).norm());
+      }
       ++sums.imu_samples;
     }
     if (options.keep_traces)

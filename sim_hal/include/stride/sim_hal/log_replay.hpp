@@ -82,7 +82,16 @@ struct ReplayErrors {
   double roll_rad = 0.0, pitch_rad = 0.0;  ///< TiltFilter attitude
   Eigen::Vector3d gyro_rad_s = Eigen::Vector3d::Zero();
   Eigen::Vector3d accel_mps2 = Eigen::Vector3d::Zero();
-  std::size_t samples = 0;  ///< ticks compared
+  /// The mean of logged minus simulated IMU reading (signed) over the compared samples from 1 s
+  /// into each window (the placed robot settles first): what a constant sensor bias the world
+  /// lacks leaves behind [rad/s, m/s^2].
+  Eigen::Vector3d gyro_mean_rad_s = Eigen::Vector3d::Zero();
+  Eigen::Vector3d accel_mean_mps2 = Eigen::Vector3d::Zero();
+  /// The largest |accelerometer reading| over the same samples, logged and simulated [m/s^2]
+  /// (the seed walk's Obj2, measured on the robot and predicted by the world).
+  double peak_accel_logged_mps2 = 0.0, peak_accel_sim_mps2 = 0.0;
+  std::size_t mean_samples = 0;  ///< the IMU samples in the means and peaks
+  std::size_t samples = 0;      ///< ticks compared
 };
 
 /// The traces of one window (one entry per compared tick), logged and simulated.
