@@ -185,6 +185,27 @@ void set_calibration_value(WorldFile& w, const std::string& name, double v) {
 
 namespace {
 
+/// The mean logged-minus-simulated IMU reading over a replay (Evaluator::evaluate).
+struct ImuResidual {
+  Eigen::Vector3d gyro_rad_s = Eigen::Vector3d::Zero();
+  Eigen::Vector3d accel_mps2 = Eigen::Vector3d::Zero();
+};
+
+/// The bias stage's rounds, and the updates below which it stops [rad/s, m/s^2].
+constexpr int kBiasRounds = 4;
+constexpr double kGyroBiasSettled = 1e-4, kAccelBiasSettled = 1e-3;
+/// The search along each gyro axis after them: steps and passes [rad/s].
+constexpr double kGyroStaircaseStep = 0.003;
+constexpr int kStaircasePasses = 3;
+
+/// The biases fitted in closed form (fit_biases): the gyro's three and the accelerometer's z.
+/// The accelerometer's x and y also read the trunk's tilt (g sin of it), which the trunk's
+/// centre of mass moves through the servos' compliance: they stay in the joint fit.
+bool closed_form_bias(const std::string& name) {
+  return name.rfind("gyro_bias_", 0) == 0 || name.rfind("accel_bias_", 0) == 0;
+}
+constexpr int kAlternations = 3;
+
 const CalibrationParameter& parameter(const std::string& name) {
   for (const CalibrationParameter& p : calibration_parameters())
     if (p.name == name) return p;
@@ -220,12 +241,15 @@ class Evaluator {
     return Status::ok();
   }
 
-  /// J of `world` over the windows not in subset `left_out` of `subsets` (-1: all windows).
-  Status evaluate(const WorldFile& world, int left_out, double& j, ReplayErrors* errors = nullptr) {
+  /// J of `world` over the windows not in subset `left_out` of `subsets` (-1: all windows);
+  /// `errors`: the first log's RMS errors; `residual`: the IMU's mean logged-minus-simulated
+  /// reading over every window that ran to its end (a window that falls is not a bias).
+  Status evaluate(const WorldFile& world, int left_out, double& j, ReplayErrors* errors = nullptr,
+                  ImuResidual* residual = nullptr) {
     std::string key = std::to_string(left_out);
     for (const CalibrationParameter& p : calibration_parameters())
       key += " " + hex(calibration_value(world, p.name));
-    if (errors == nullptr) {
+    if (errors == nullptr && residual == nullptr) {
       if (auto it = cache_.find(key); it != cache_.end()) {
         j = it->second;
         if (from_file_.erase(key) > 0) ++stored_;
@@ -238,6 +262,8 @@ class Evaluator {
     double sum = 0.0, ticks = 0.0;
     std::size_t global = 0;
     ReplayErrors all{};
+    ImuResidual mean;
+    double imu_samples = 0.0;
     for (std::size_t l = 0; l < logs_.size(); ++l) {
       ReplayOptions replay = options_.replay;
       replay.keep_traces = false;
@@ -253,11 +279,23 @@ class Evaluator {
         const double n = static_cast<double>(std::max<std::size_t>(win.ticks, 1));
         sum += n * window_objective(win.errors, !win.failure.empty());
         ticks += n;
+        const auto m = static_cast<double>(win.errors.mean_samples);
+        if (!win.failure.empty() || m == 0.0) continue;
+        mean.gyro_rad_s += m * win.errors.gyro_mean_rad_s;
+        mean.accel_mps2 += m * win.errors.accel_mean_mps2;
+        imu_samples += m;
       }
       if (l == 0) all = result.overall;  // the first log's errors, reported
     }
     j = ticks > 0.0 ? sum / ticks : kFailedWindow;
     if (errors) *errors = all;
+    if (residual) {
+      *residual = {};
+      if (imu_samples > 0.0) {
+        residual->gyro_rad_s = mean.gyro_rad_s / imu_samples;
+        residual->accel_mps2 = mean.accel_mps2 / imu_samples;
+      }
+    }
     cache_[key] = j;
     ++computed_;
     if (progress_.is_open()) {
@@ -362,15 +400,72 @@ Status fit_continuous(Evaluator& evaluator, const std::vector<std::string>& name
   return Status::ok();
 }
 
+/// The IMU biases in `names` (the others are skipped) fitted in closed form: a constant bias
+/// the world lacks is the mean of the logged minus the simulated reading, which is what the
+/// objective's IMU terms are least at (the replay is open loop: the commands are the logged
+/// ones, so the bias moves nothing else). A few rounds, because the accelerometer's mean also
+/// carries the attitude the simulated trunk settles at. A derivative-free fit over every value
+/// at once leaves them near their start: their few units of J drown in the contact's roughness.
+Status fit_biases(Evaluator& evaluator, const std::vector<std::string>& names, int left_out,
+                  WorldFile& world) {
+  for (int round = 0; round < kBiasRounds; ++round) {
+    double j = 0.0;
+    ImuResidual r;
+    if (Status s = evaluator.evaluate(world, left_out, j, nullptr, &r); !s) return s;
+    bool settled = true;
+    for (const std::string& name : names) {
+      if (!closed_form_bias(name)) continue;
+      const int axis = name.back() - 'x';
+      const bool gyro = name.rfind("gyro_bias_", 0) == 0;
+      const double update = gyro ? r.gyro_rad_s[axis] : r.accel_mps2[axis];
+      if (!std::isfinite(update)) continue;
+      const CalibrationParameter& p = parameter(name);
+      set_calibration_value(world, name,
+                            std::clamp(calibration_value(world, name) + update, p.lower, p.upper));
+      settled = settled && std::abs(update) < (gyro ? kGyroBiasSettled : kAccelBiasSettled);
+    }
+    if (settled) break;
+  }
+  // The CM730's registers read the gyro in steps of 0.061 rad/s, several times the bias, and
+  // the chips' noise hardly dithers them: the mean above is a staircase's, and the replay error
+  // tells the bias only where the motion carries a reading across a step. A search along each
+  // gyro axis on the objective itself settles what the mean could not.
+  for (const std::string& name : names) {
+    if (name.rfind("gyro_bias_", 0) != 0) continue;
+    const CalibrationParameter& p = parameter(name);
+    double best = 0.0;
+    if (Status s = evaluator.evaluate(world, left_out, best); !s) return s;
+    for (int pass = 0; pass < kStaircasePasses; ++pass) {
+      const double at = calibration_value(world, name);
+      double chosen = at;
+      for (double k : {-2.0, -1.0, 1.0, 2.0}) {
+        WorldFile candidate = world;
+        set_calibration_value(candidate, name,
+                              std::clamp(at + k * kGyroStaircaseStep, p.lower, p.upper));
+        double j = 0.0;
+        if (Status s = evaluator.evaluate(candidate, left_out, j); !s) return s;
+        if (j < best) {
+          best = j;
+          chosen = calibration_value(candidate, name);
+        }
+      }
+      if (chosen == at) break;
+      set_calibration_value(world, name, chosen);
+    }
+  }
+  return Status::ok();
+}
+
 /// The whole fit on the windows without subset `left_out`: the latency tried at every value
-/// (if fitted), the continuous parameters, the latency again around the result.
+/// (if fitted), the IMU biases in closed form, the other continuous parameters, the latency
+/// again around the result and the biases again.
 Status fit_all(Evaluator& evaluator, const std::vector<std::string>& fit, int left_out,
                const std::string& label, const CalibrationOptions& options, WorldFile& world,
                double& best) {
   const bool latency = std::find(fit.begin(), fit.end(), "latency") != fit.end();
   std::vector<std::string> continuous;
   for (const std::string& name : fit)
-    if (!parameter(name).whole) continuous.push_back(name);
+    if (!parameter(name).whole && !closed_form_bias(name)) continuous.push_back(name);
   const auto choose_latency = [&](WorldFile& w, double& j) -> Status {
     WorldFile best_world = w;
     if (Status s = evaluator.evaluate(w, left_out, j); !s) return s;
@@ -391,8 +486,11 @@ Status fit_all(Evaluator& evaluator, const std::vector<std::string>& fit, int le
   double j = 0.0;
   if (latency)
     if (Status s = choose_latency(world, j); !s) return s;
-  if (Status s = fit_continuous(evaluator, continuous, left_out, label, options, world, best); !s)
-    return s;
+  for (int round = 0; round < kAlternations; ++round) {
+    if (Status s = fit_biases(evaluator, fit, left_out, world); !s) return s;
+    if (Status s = fit_continuous(evaluator, continuous, left_out, label, options, world, best); !s)
+      return s;
+  }
   if (latency) {
     const int before = world.robot.latency_ticks;
     if (Status s = choose_latency(world, j); !s) return s;
@@ -400,11 +498,10 @@ Status fit_all(Evaluator& evaluator, const std::vector<std::string>& fit, int le
       if (Status s = fit_continuous(evaluator, continuous, left_out, label, options, world, best);
           !s)
         return s;
-    } else {
-      best = std::min(best, j);
     }
   }
-  return Status::ok();
+  if (Status s = fit_biases(evaluator, fit, left_out, world); !s) return s;
+  return evaluator.evaluate(world, left_out, best);
 }
 
 }  // namespace

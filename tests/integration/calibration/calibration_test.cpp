@@ -276,8 +276,13 @@ Eigen::Vector3d mean_accel(const std::filesystem::path& log_path, std::size_t fr
 // within 20 % of the drawn bias (x) or 0.02 m/s^2 (y, where the draw is small), the drawn bias
 // measured as the noisy log's standing readings less those of the same robot standing without
 // noise. Then the replay objective is at most a third of the nominal world's, and the forward
-// walk's time to 2.5 m within 5 % of the perturbed robot's.
-TEST(CalibratePerturbedRobot, EachValueLandsWithinTwentyPercentOfItsPerturbation) {
+// walk's time to 2.5 m within 5 % of the perturbed robot's. Two values these parts do not tell
+// (measured), so the test does not claim them: the MX-64 torque scale (arms and head; the arms
+// hang still: J equal within 0.01 at x1.02 and x1.09), left out of the fit, and the trunk's
+// centre of mass, fitted (left out, the MX-106 scale takes its place: 0.809) but not asserted:
+// with the trunk heavier and the MX-106 weaker, J is 14.17 at a true 15 mm and 14.15 at 7.9 mm.
+// calibrate_urdf_robot_test.cpp asserts the centre of mass where the routine tells it.
+TEST(CalibratePerturbedRobot, ServoLatencyAndBiasLandWithinTwentyPercentAndTheWalkIsPredicted) {
   test::TempDir dir;
   const auto perturbed = dir.write("perturbed.json", R"({"format": "stride-world",
       "supply_voltage_v": 14.0, "robot": {"torque_scale": {"MX-106": 0.85}, "latency_ticks": 1,
@@ -303,7 +308,7 @@ TEST(CalibratePerturbedRobot, EachValueLandsWithinTwentyPercentOfItsPerturbation
 
   const auto world = dir.path() / "calibrated.json";
   run = stride(dir, {"calibrate", log.string(), "--robot-mass", std::to_string(weighed_kg), "--fit",
-                     "torque_mx64,torque_mx106,latency,trunk_com_x,trunk_com_y,accel_bias_x,"
+                     "torque_mx106,latency,trunk_com_x,trunk_com_y,accel_bias_x,"
                      "accel_bias_y",
                      "--out", world.string(), "--subsets", "0", "--jobs", "2"});
   ASSERT_EQ(run.code, 0) << run.err;
@@ -314,10 +319,7 @@ TEST(CalibratePerturbedRobot, EachValueLandsWithinTwentyPercentOfItsPerturbation
   ASSERT_TRUE(load_world_file(world, fit));
   // Fitted.
   EXPECT_NEAR(fit.robot.torque_scale_mx106, 0.85, 0.2 * 0.15);
-  EXPECT_NEAR(fit.robot.trunk_com_offset_m.x(), 0.01, 0.2 * 0.01);
   EXPECT_EQ(fit.robot.latency_ticks, 1);
-  EXPECT_NEAR(fit.robot.torque_scale_mx64, 1.0, 0.05);        // stated tolerance
-  EXPECT_NEAR(fit.robot.trunk_com_offset_m.y(), 0.0, 0.003);  // stated tolerance
   ASSERT_GT(std::abs(drawn_bias.x()), 0.1);  // measured -0.254: a fit that ignored it fails
   EXPECT_NEAR(fit.accel_bias_mps2.x(), drawn_bias.x(), 0.2 * std::abs(drawn_bias.x()));
   EXPECT_NEAR(fit.accel_bias_mps2.y(), drawn_bias.y(), 0.02);  // stated tolerance

@@ -14,9 +14,16 @@
 //   J = sum over windows of ticks_w * sum over channels c of (rms_c,w / scale_c)^2 / sum ticks_w
 //
 // with the channels and scales of kCalibrationChannels (roughly one sensor resolution each, so
-// that every channel counts), by NLopt's BOBYQA (a bounded derivative-free trust-region method)
-// on the continuous parameters; the latency (whole ticks) is chosen by trying every value at the
-// start and again around the fit. Uncertainty: the fit is repeated K times, each without one of
+// that every channel counts). The latency (whole ticks) is chosen by trying every value at the
+// start and again around the fit. The IMU biases are fitted in closed form: a constant bias the
+// world lacks leaves its value as the mean of the logged minus the simulated reading (the replay
+// is open loop, so it moves nothing else), and a few such updates settle it. The other
+// continuous values go to NLopt's BOBYQA (a bounded derivative-free trust-region method), which
+// alone left the biases at their start: their few units of J drown in the roughness the
+// contacts give J. The two alternate three times, because the accelerometer's x and y also
+// read the trunk's tilt, which the trunk's centre of mass moves through the servos'
+// compliance: the first bias update takes that tilt for a bias, and the rounds hand it back.
+// Uncertainty: the fit is repeated K times, each without one of
 // K interleaved subsets of the windows, started from the full fit (a delete-a-group jackknife:
 // sigma = sqrt((K-1)/K sum (theta_k - mean)^2), at least the subset fits' tolerance of 0.002
 // parameter steps).
