@@ -14,6 +14,7 @@
 #include <system_error>
 #include <vector>
 
+#include "calibration_check.hpp"
 #include "stride/calibration/calibration.hpp"
 #include "stride/calibration/identifiability.hpp"
 #include "stride/core/atomic_file.hpp"
@@ -55,6 +56,10 @@ void declare_options(core::CliArgs& args) {
   args.option("identifiability",
               "print the values' sensitivity per routine part, standard errors and correlations "
               "on the logs, and fit nothing (--out not needed)",
+              false);
+  args.option("no-check",
+              "skip the prediction check after the fit (the default walk in the nominal and the "
+              "calibrated world, about 20 s)",
               false);
   args.option("max-correlation",
               "refuse to fit two values whose estimates correlate beyond this (|r|)", true, "0.95");
@@ -263,6 +268,31 @@ void print_fit(const calibration::CalibrationResult& result, const std::filesyst
               result.start_errors.load_all, result.errors.load_all, out.string().c_str());
 }
 
+/// The prediction check (calibration_check.hpp): the nominal and the calibrated world, with
+/// the sensor noise the command line gives a simulation (on unless --noise off).
+Status print_prediction_check(const core::CliArgs& args,
+                              const std::vector<const fw::FlightLog*>& logs,
+                              const sim::WorldOptions& world, const sim::ReplayOptions& replay,
+                              const sim::WorldFile& calibrated) {
+  sim::WorldOptions simulated = world;
+  if (args.get_all("noise").empty()) simulated.imu.set_noise(true);
+  sim::WorldFile nominal;
+  nominal.base = calibrated.base;
+  sim::WorldOptions nominal_world = simulated, calibrated_world = simulated;
+  nominal.apply_calibration(nominal_world);
+  calibrated.apply_calibration(calibrated_world);
+  std::fprintf(stderr,
+               "prediction check: the default walk in the nominal and the calibrated "
+               "world\n");
+  double logged_peak = 0.0;
+  stride::tools::WorldPrediction n, c;
+  if (Status s = stride::tools::predict(logs, nominal_world, replay, logged_peak, n); !s) return s;
+  if (Status s = stride::tools::predict(logs, calibrated_world, replay, logged_peak, c); !s)
+    return s;
+  std::printf("%s", stride::tools::prediction_table(logged_peak, n, c).c_str());
+  return {};
+}
+
 }  // namespace
 
 int run_calibrate(int argc, char** argv) {
@@ -338,6 +368,9 @@ int run_calibrate(int argc, char** argv) {
   std::error_code error;
   std::filesystem::remove(options.progress_file, error);
   print_fit(result, out);
+  if (!args.has("no-check"))
+    if (Status c = print_prediction_check(args, log_ptrs, world, options.replay, result.world); !c)
+      return errors.failure("prediction check: " + c.message());
   return 0;
 }
 
