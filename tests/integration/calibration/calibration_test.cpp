@@ -1,8 +1,9 @@
 // stride calibrate and world files (issue 30 point 3): a world file reads, writes and names a
 // bad field; its calibration changes the simulated robot (trunk mass and centre of mass, bus
 // latency); `stride calibrate` fits a perturbed robot from the identification routine's log,
-// writes a world file that `stride sim` takes (task configs: task_config_test.cpp), resumes a
-// stopped run to the same result, and gives bad input one line, exit 2 and no output file.
+// writes a world file that `stride sim` takes (task configs: task_config_test.cpp), prints a
+// prediction check whose walk is stride sim's in each world, resumes a stopped run to the same
+// result, and gives bad input one line, exit 2 and no output file.
 #include <signal.h>
 
 #include <algorithm>
@@ -165,6 +166,36 @@ TEST_F(Calibrate, FitsTheBusLatencyAndWritesAWorldFileTheSimulatorTakes) {
   const CliRun sim = stride(dir, {"sim", "stand", "--world", world.string(), "--duration", "1"});
   EXPECT_EQ(sim.code, 0) << sim.err;
   // Task configs take it too: TaskConfig.AWorldFileReachesEveryTrialWorld.
+
+  // The prediction check (calibration_check.hpp): its walk is stride sim's, in each world.
+  const auto row = [&run](const std::string& figure) {
+    const auto at = run.out.find("  " + figure);
+    EXPECT_NE(at, std::string::npos) << figure << " missing from:\n" << run.out;
+    return at == std::string::npos ? std::string()
+                                   : run.out.substr(at, run.out.find('\n', at) - at);
+  };
+  const auto walk_time = [&dir](const std::string& w) {
+    const CliRun walk =
+        stride(dir, {"sim", "walk", "--vx", "1", "--duration", "30", "--world", w, "--json"});
+    EXPECT_EQ(walk.code, 0) << walk.err;
+    char text[32];
+    std::snprintf(text, sizeof text, "%.2f",
+                  nlohmann::json::parse(walk.out)["time_to_goal_s"].get<double>());
+    return std::string(text);
+  };
+  const std::string times = row("time to walk 2.5 m [s]");
+  EXPECT_NE(times.find(" " + walk_time("faithful") + " "), std::string::npos) << times;
+  EXPECT_EQ(times.substr(times.size() - walk_time(world.string()).size()),
+            walk_time(world.string()))
+      << times;
+  // The logs' own peak |a| is a number, and the forward walk goes forward in both worlds.
+  EXPECT_NE(row("peak |a| in the logs' replay [m/s^2]").find('.'), std::string::npos);
+  double nominal_speed = 0.0, calibrated_speed = 0.0;
+  ASSERT_EQ(std::sscanf(row("speed forward [m/s]").c_str(), " speed forward [m/s] %lf %lf",
+                        &nominal_speed, &calibrated_speed),
+            2);
+  EXPECT_GT(nominal_speed, 0.1);
+  EXPECT_GT(calibrated_speed, 0.1);
 }
 
 TEST_F(Calibrate, AStoppedRunResumesToTheSameWorldFile) {
