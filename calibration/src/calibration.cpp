@@ -106,15 +106,24 @@ Status trunk_scale_for_mass(const WorldOptions& world, double robot_mass_kg, dou
 }
 
 const std::vector<CalibrationParameter>& calibration_parameters() {
+  static const std::string kServo =
+      "the routine's slow motions let the MX torque scales and the friction trade against each "
+      "other and against the model's other differences";
+  static const std::string kCom =
+      "the routine tells the trunk's centre of mass only when little else differs, and then to "
+      "about 2.5 mm";
   static const std::vector<CalibrationParameter> params = {
-      {"torque_mx64", "x", "MX-64 torque scale", 0.5, 1.5, 0.1},
-      {"torque_mx106", "x", "MX-106 torque scale", 0.5, 1.5, 0.1},
-      {"friction", "x", "servo friction scale", 0.2, 3.0, 0.2},
-      {"voltage", "V", "supply voltage", 11.0, 16.8, 0.5},
+      {"torque_mx64", "x", "MX-64 torque scale", 0.5, 1.5, 0.1, false,
+       "the routine hardly loads the arms and the head, which the MX-64s move"},
+      {"torque_mx106", "x", "MX-106 torque scale", 0.5, 1.5, 0.1, false, kServo},
+      {"friction", "x", "servo friction scale", 0.2, 3.0, 0.2, false, kServo},
+      {"voltage", "V", "supply voltage", 11.0, 16.8, 0.5, false,
+       "it trades against the MX-106 torque; the logs measure it (leave it out of --fit)"},
       {"latency", "ticks", "bus latency", 0.0, RobotCalibration::kMaxLatencyTicks, 1.0, true},
-      {"trunk_mass", "x", "trunk mass scale", 0.7, 1.5, 0.05},
-      {"trunk_com_x", "m", "trunk centre of mass, forward", -0.04, 0.04, 0.005},
-      {"trunk_com_y", "m", "trunk centre of mass, left", -0.04, 0.04, 0.005},
+      {"trunk_mass", "x", "trunk mass scale", 0.7, 1.5, 0.05, false,
+       "it trades against the MX-106 torque and the supply; weigh the robot (--robot-mass)"},
+      {"trunk_com_x", "m", "trunk centre of mass, forward", -0.04, 0.04, 0.005, false, kCom},
+      {"trunk_com_y", "m", "trunk centre of mass, left", -0.04, 0.04, 0.005, false, kCom},
       {"gyro_bias_x", "rad/s", "gyro bias x", -0.2, 0.2, 0.02},
       {"gyro_bias_y", "rad/s", "gyro bias y", -0.2, 0.2, 0.02},
       {"gyro_bias_z", "rad/s", "gyro bias z", -0.2, 0.2, 0.02},

@@ -238,7 +238,8 @@ def report(records, names):
             perturbations.append(perturbation)
             within += error <= max(0.2 * perturbation, tol) + 1e-12
         n = len(errors)
-        rows.append({"value": name, "robots": n, "within": within,
+        warned = any("--fit %s:" % name in w for r in records for w in r.get("warnings", []))
+        rows.append({"value": name, "robots": n, "within": within, "warned": warned,
                      "share": within / n if n else math.nan, "tolerance": tol * shown,
                      "unit": unit, "median_abs_error": statistics.median(errors) * shown
                      if n else math.nan,
@@ -248,12 +249,12 @@ def report(records, names):
 
 
 def print_table(rows, records):
-    print("| value | within 20 % or tolerance | share | tolerance | median abs error | "
-          "median abs perturbation |")
-    print("|---|---|---|---|---|---|")
+    print("| value | --fit warns | within 20 % or tolerance | share | tolerance | "
+          "median abs error | median abs perturbation |")
+    print("|---|---|---|---|---|---|---|")
     for r in rows:
-        print(("| %s | %d of %d | %s | %.3g %s | %.3g %s | %.3g %s |" % (
-            r["value"], r["within"], r["robots"],
+        print(("| %s | %s | %d of %d | %s | %.3g %s | %.3g %s | %.3g %s |" % (
+            r["value"], "yes" if r.get("warned") else "no", r["within"], r["robots"],
             "%.0f %%" % (100 * r["share"]) if r["robots"] else "-", r["tolerance"], r["unit"],
             r["median_abs_error"], r["unit"], r["median_abs_perturbation"], r["unit"])).replace(
             "nan", "-"))
@@ -271,7 +272,7 @@ def print_table(rows, records):
         elif "refused" in r:
             line += "; REFUSED: " + r["refused"]
         elif r["warnings"]:
-            line += "; warnings: " + " / ".join(r["warnings"])
+            line += "; warned about %d values" % len(r["warnings"])
         else:
             line += "; --fit accepted without a warning"
         print(line)

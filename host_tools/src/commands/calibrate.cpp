@@ -75,8 +75,9 @@ void print_help(const core::CliArgs& args) {
   std::string names;
   for (const calibration::CalibrationParameter& p : calibration::calibration_parameters()) {
     char line[160];
-    std::snprintf(line, sizeof line, "  %-14s %-32s [%g, %g] %s\n", p.name.c_str(), p.what.c_str(),
-                  p.lower, p.upper, p.unit.c_str());
+    std::snprintf(line, sizeof line, "  %-14s %-32s [%g, %g] %s%s\n", p.name.c_str(),
+                  p.what.c_str(), p.lower, p.upper, p.unit.c_str(),
+                  p.caution.empty() ? "" : "  (warned)");
     names += line;
   }
   std::printf(
@@ -90,9 +91,22 @@ void print_help(const core::CliArgs& args) {
       "Two or more values are first checked for identifiability on the logs (sensitivity by\n"
       "finite differences, Fisher information with the sensor models' noise): a pair whose\n"
       "estimates correlate beyond --max-correlation is refused, naming what would separate\n"
-      "them; --identifiability prints the analysis instead of fitting.\n\n"
+      "them; --identifiability prints the analysis instead of fitting. A value the routine\n"
+      "does not identify on drawn robots (tests/bench/RESULTS.md) is fitted with a warning\n"
+      "saying why: (warned) below.\n\n"
       "Parameters (--fit; gyro_bias and accel_bias name three axes, all every one):\n%s\n%s",
       names.c_str(), args.help().c_str());
+}
+
+/// One warning line per fitted value the routine does not identify (CalibrationParameter::
+/// caution); the lines, also kept in the world file's calibration.
+std::vector<std::string> fit_warnings(const std::vector<std::string>& fit) {
+  std::vector<std::string> lines;
+  for (const calibration::CalibrationParameter& p : calibration::calibration_parameters())
+    if (!p.caution.empty() && std::find(fit.begin(), fit.end(), p.name) != fit.end())
+      lines.push_back("--fit " + p.name + ": not identified by the routine (" + p.caution +
+                      "); the fitted value is a best guess");
+  return lines;
 }
 
 /// The logs, --out and --fit are required; --out must be a file in an existing folder.
@@ -344,6 +358,8 @@ int run_calibrate(int argc, char** argv) {
   };
   std::fprintf(stderr, "stride calibrate: %zu log(s), fitting %s in %s\n", logs.size(),
                args.get("fit").c_str(), sim::describe_world(world).c_str());
+  const std::vector<std::string> warnings = fit_warnings(options.fit);
+  for (const std::string& w : warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
   std::fprintf(stderr, "supply %.2f V (%s), trunk mass x%.4f (%s)\n", start.supply_voltage_v,
                fit_voltage ? "fitted" : "from the logs", start.robot.trunk_mass_scale,
                args.has("robot-mass") ? "from --robot-mass" : "the start world's");
@@ -361,6 +377,7 @@ int run_calibrate(int argc, char** argv) {
   for (const std::string& path : args.positional()) logs_json.push_back(path);
   result.world.calibration["logs"] = logs_json;
   result.world.calibration["supply_voltage_from"] = fit_voltage ? "fit" : "logs";
+  result.world.calibration["warnings"] = warnings;
   if (args.has("robot-mass"))
     result.world.calibration["robot_mass_kg"] = std::stod(args.get("robot-mass"));
   if (Status w = core::write_file_atomically(out, sim::to_json(result.world).dump(2) + "\n"); !w)

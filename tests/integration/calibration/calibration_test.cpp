@@ -158,6 +158,9 @@ TEST_F(Calibrate, FitsTheBusLatencyAndWritesAWorldFileTheSimulatorTakes) {
   WorldFile fitted;
   ASSERT_TRUE(load_world_file(world, fitted));
   EXPECT_EQ(fitted.robot.latency_ticks, 1);
+  // The latency is identified: no warning (issue 45 point 2: warned values are named).
+  EXPECT_EQ(run.err.find("warning"), std::string::npos) << run.err;
+  EXPECT_TRUE(fitted.calibration["warnings"].empty());
   // Measured: J 867 at the nominal robot, 601 calibrated.
   EXPECT_LT(fitted.calibration["objective"].get<double>(),
             0.8 * fitted.calibration["objective_start"].get<double>());
@@ -348,6 +351,14 @@ TEST(CalibratePerturbedRobot, ServoLatencyAndBiasLandWithinTwentyPercentAndTheWa
               drawn_bias.x(), drawn_bias.y());
   WorldFile fit;
   ASSERT_TRUE(load_world_file(world, fit));
+  // The values the routine does not identify on drawn robots are fitted with a warning each.
+  for (const char* warned : {"torque_mx106", "trunk_com_x", "trunk_com_y"})
+    EXPECT_NE(run.err.find(std::string("warning: --fit ") + warned + ": not identified"),
+              std::string::npos)
+        << warned << " in:\n"
+        << run.err;
+  EXPECT_EQ(fit.calibration["warnings"].size(), 3u);
+  EXPECT_EQ(run.err.find("--fit latency"), std::string::npos);
   // Fitted.
   EXPECT_NEAR(fit.robot.torque_scale_mx106, 0.85, 0.2 * 0.15);
   EXPECT_EQ(fit.robot.latency_ticks, 1);
