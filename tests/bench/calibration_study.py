@@ -223,8 +223,15 @@ def study_robot(args, k, fit, folder):
     return record
 
 
-def report(records, names):
-    """One row per value: robots within tolerance, median |error|, median |perturbation|."""
+def warned_values(stride):
+    """The values `stride calibrate --help` marks "(warned)": fitted with a warning."""
+    text = subprocess.run([stride, "calibrate", "--help"], capture_output=True, text=True).stdout
+    return {line.split()[0] for line in text.splitlines() if line.rstrip().endswith("(warned)")}
+
+
+def report(records, names, warned):
+    """One row per value: robots within tolerance, median |error|, median |perturbation|, and
+    whether --fit warns about it."""
     rows = []
     for name in names:
         nominal, tol, unit, shown = TOLERANCE[name]
@@ -238,8 +245,7 @@ def report(records, names):
             perturbations.append(perturbation)
             within += error <= max(0.2 * perturbation, tol) + 1e-12
         n = len(errors)
-        warned = any("--fit %s:" % name in w for r in records for w in r.get("warnings", []))
-        rows.append({"value": name, "robots": n, "within": within, "warned": warned,
+        rows.append({"value": name, "robots": n, "within": within, "warned": name in warned,
                      "share": within / n if n else math.nan, "tolerance": tol * shown,
                      "unit": unit, "median_abs_error": statistics.median(errors) * shown
                      if n else math.nan,
@@ -303,6 +309,7 @@ def main():
         raise SystemExit("calibration_study: no stride binary at %s (build the target stride)"
                          % args.stride)
     names = expand_fit(args.fit)
+    warned = warned_values(args.stride)
     args.fit_names = names
     report_names = names + [n for n in ("trunk_mass", "voltage") if n not in names]
     tmp = None if args.keep else tempfile.TemporaryDirectory(prefix="calibration_study_")
@@ -338,7 +345,7 @@ def main():
                     with open(args.json, "w") as f:
                         records.sort(key=lambda r: r["robot"])
                         json.dump({"seed": args.seed, "fit": names, "settings": settings,
-                                   "rows": report(records, report_names),
+                                   "rows": report(records, report_names, warned),
                                    "records": records}, f, indent=1)
     except RuntimeError as e:
         raise SystemExit("calibration_study: " + str(e))
@@ -346,7 +353,7 @@ def main():
         if tmp:
             tmp.cleanup()
     records.sort(key=lambda r: r["robot"])
-    rows = report(records, report_names)
+    rows = report(records, report_names, warned)
     print_table(rows, records)
     if "trunk_mass" not in names:
         print("trunk_mass: set from --robot-mass (the URDF's total mass), not fitted")
