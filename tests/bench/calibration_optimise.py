@@ -13,7 +13,8 @@ the gain kept on the true robot (true gain / optimised gain) and the falls on th
       [--pop 40] [--generations 50] [--seeds 1,2,3,4,5] [--jobs 2] [--json OUT]
       [--stride build/release/bin/stride]
 
-A run already in RUNS (its pareto.csv written) is reused, so a stopped study resumes. Runs
+A run already in RUNS that reached its last generation is reused, so a stopped study resumes
+(a run stopped half-way is started again). Runs
 skip the validation (--no-validate): the true robot is the validation here.
 """
 import argparse
@@ -34,9 +35,19 @@ def log(text):
     print(text, file=sys.stderr, flush=True)
 
 
+def finished(run, generations):
+    """True if `run` holds a run that reached its last generation (a stopped one is redone)."""
+    try:
+        with open(os.path.join(run, "generations.jsonl")) as f:
+            lines = [json.loads(x) for x in f if x.strip()]
+    except (OSError, ValueError):
+        return False
+    return bool(lines) and lines[-1].get("generation") == generations
+
+
 def optimise(args, name, world):
     out = os.path.join(args.out, name)
-    if os.path.exists(os.path.join(out, "pareto.csv")):
+    if finished(out, args.generations):
         return out
     with open(CONFIG) as f:
         config = json.load(f)
