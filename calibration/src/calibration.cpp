@@ -128,7 +128,9 @@ const std::vector<CalibrationParameter>& calibration_parameters() {
       {"gyro_bias_y", "rad/s", "gyro bias y", -0.2, 0.2, 0.02},
       {"gyro_bias_z", "rad/s", "gyro bias z", -0.2, 0.2, 0.02},
       {"accel_bias_x", "m/s^2", "accelerometer bias x", -1.0, 1.0, 0.1},
-      {"accel_bias_y", "m/s^2", "accelerometer bias y", -1.0, 1.0, 0.1},
+      {"accel_bias_y", "m/s^2", "accelerometer bias y", -1.0, 1.0, 0.1, false, "", "trunk_com_y",
+       "the accelerometer's y also reads the trunk's roll, which the trunk's lateral centre of "
+       "mass moves through the servos' compliance; fit it without trunk_com_y"},
       {"accel_bias_z", "m/s^2", "accelerometer bias z", -1.0, 1.0, 0.1},
   };
   return params;

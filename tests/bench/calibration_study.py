@@ -223,10 +223,19 @@ def study_robot(args, k, fit, folder):
     return record
 
 
-def warned_values(stride):
-    """The values `stride calibrate --help` marks "(warned)": fitted with a warning."""
+def warned_values(stride, fit):
+    """The values fitted with a warning: those `stride calibrate --help` marks "(warned)", and
+    those marked "(warned with OTHER)" when OTHER is fitted too."""
     text = subprocess.run([stride, "calibrate", "--help"], capture_output=True, text=True).stdout
-    return {line.split()[0] for line in text.splitlines() if line.rstrip().endswith("(warned)")}
+    warned = set()
+    for line in text.splitlines():
+        line = line.rstrip()
+        if line.endswith("(warned)"):
+            warned.add(line.split()[0])
+        elif line.endswith(")") and "(warned with " in line:
+            if line[line.rindex("(warned with ") + len("(warned with "):-1] in fit:
+                warned.add(line.split()[0])
+    return warned
 
 
 def report(records, names, warned):
@@ -309,7 +318,7 @@ def main():
         raise SystemExit("calibration_study: no stride binary at %s (build the target stride)"
                          % args.stride)
     names = expand_fit(args.fit)
-    warned = warned_values(args.stride)
+    warned = warned_values(args.stride, names)
     args.fit_names = names
     report_names = names + [n for n in ("trunk_mass", "voltage") if n not in names]
     tmp = None if args.keep else tempfile.TemporaryDirectory(prefix="calibration_study_")

@@ -77,7 +77,9 @@ void print_help(const core::CliArgs& args) {
     char line[160];
     std::snprintf(line, sizeof line, "  %-14s %-32s [%g, %g] %s%s\n", p.name.c_str(),
                   p.what.c_str(), p.lower, p.upper, p.unit.c_str(),
-                  p.caution.empty() ? "" : "  (warned)");
+                  !p.caution.empty()       ? "  (warned)"
+                  : p.caution_with.empty() ? ""
+                                           : ("  (warned with " + p.caution_with + ")").c_str());
     names += line;
   }
   std::printf(
@@ -101,11 +103,20 @@ void print_help(const core::CliArgs& args) {
 /// One warning line per fitted value the routine does not identify (CalibrationParameter::
 /// caution); the lines, also kept in the world file's calibration.
 std::vector<std::string> fit_warnings(const std::vector<std::string>& fit) {
+  const auto fitted = [&fit](const std::string& name) {
+    return std::find(fit.begin(), fit.end(), name) != fit.end();
+  };
   std::vector<std::string> lines;
-  for (const calibration::CalibrationParameter& p : calibration::calibration_parameters())
-    if (!p.caution.empty() && std::find(fit.begin(), fit.end(), p.name) != fit.end())
+  for (const calibration::CalibrationParameter& p : calibration::calibration_parameters()) {
+    if (!fitted(p.name)) continue;
+    if (!p.caution.empty())
       lines.push_back("--fit " + p.name + ": not identified by the routine (" + p.caution +
                       "); the fitted value is a best guess");
+    else if (!p.caution_with.empty() && fitted(p.caution_with))
+      lines.push_back("--fit " + p.name + ": not identified by the routine with " + p.caution_with +
+                      " also fitted (" + p.caution_with_why +
+                      "); the fitted value is a best guess");
+  }
   return lines;
 }
 

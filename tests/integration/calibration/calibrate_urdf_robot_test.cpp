@@ -58,6 +58,10 @@ TEST(CalibrateUrdfRobot, FindsTheTrunkCentreOfMassMovedInTheUrdfAndTheImuBiases)
                      "--out", out.string(), "--subsets", "0", "--jobs", "2", "--no-check"});
   ASSERT_EQ(run.code, 0) << run.err;
   std::printf("%s", run.out.c_str());
+  // Warned: the centre of mass; not warned: the biases (accel_bias_y only with trunk_com_y).
+  EXPECT_NE(run.err.find("warning: --fit trunk_com_x"), std::string::npos) << run.err;
+  for (const char* quiet : {"warning: --fit gyro_bias", "warning: --fit accel_bias"})
+    EXPECT_EQ(run.err.find(quiet), std::string::npos) << run.err;
   WorldFile fit;
   ASSERT_TRUE(load_world_file(out, fit));
   expect_within("trunk_com_x", fit.robot.trunk_com_offset_m.x(), 0.015, 0.0, 0.002);

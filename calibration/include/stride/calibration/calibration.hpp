@@ -59,6 +59,8 @@ struct CalibrationParameter {
   /// drawn robots (tests/bench/calibration_study.py, tests/bench/RESULTS.md), where a value
   /// without a warning lands within 20 % of its perturbation on at least 80 % of the robots.
   std::string caution = {};
+  /// The same, only when the value named here is fitted too (the study fitted both).
+  std::string caution_with = {}, caution_with_why = {};
 };
 
 /// Every fittable parameter, in the order they are reported.
