@@ -1,10 +1,12 @@
 // EpisodeScore: the raw figures of one task episode (objectives, constraints and what they were
-// computed from), for the optimiser, the reports, the validation and the tests.
+// computed from), for the optimiser, the reports, the validation and the tests. A task's own
+// figures go in `figures`, as that task's struct (task_figures.hpp).
 #pragma once
 
 #include <string>
 #include <vector>
 
+#include "stride/optimiser/tasks/task_figures.hpp"
 #include "stride/optimiser/tasks/walk_measures.hpp"
 
 namespace stride::opt {
@@ -32,6 +34,9 @@ struct EpisodeScore {
   double stand_time_s = -1.0;  ///< mean time until standing again (-1: not every episode stood)
   int stood = 0;               ///< episodes that ended standing
   int get_up_attempts = 0;     ///< get-up scripts started, summed over the episodes
+  /// The task's own figures: its struct (walk_figures.hpp, kick_figures.hpp, ...), written by
+  /// its episode (TaskEpisode::score) and merged by its type (TaskType::merge_figures).
+  TaskFigures figures;
   /// Empty, or why the world failed (NaN, explosion, integrator): run_world() then scores the
   /// episode as a fall at that moment; run_trial() returns it as an error.
   std::string world_failure;
