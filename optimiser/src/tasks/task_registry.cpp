@@ -54,7 +54,9 @@ std::string travel_note(bool fell, double distance_m, double end_s) {
 }
 
 std::string TaskType::outcome_note(const TaskConfig&, const EpisodeScore& s, double end_s) const {
-  return travel_note(s.fell, s.distance_m, end_s);
+  char text[64];
+  std::snprintf(text, sizeof text, s.fell ? "fell at %.2f s" : "ended at %.2f s", end_s);
+  return text;
 }
 
 sim::ResetSpec TaskType::reset_spec(const TaskConfig&, int) const {
