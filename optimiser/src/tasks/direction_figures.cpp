@@ -1,6 +1,8 @@
 // The figures of the tasks that walk in every direction (see direction_figures.hpp).
 #include "stride/optimiser/tasks/direction_figures.hpp"
 
+#include <array>
+
 namespace stride::opt {
 
 void merge_direction_figures(const TaskFigures& next, TaskFigures& total) {
