@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "stride/optimiser/run/run_report.hpp"
+#include "stride/optimiser/tasks/direction_figures.hpp"
 
 namespace stride::opt {
 
@@ -31,7 +32,8 @@ Status measure_direction_speeds(const RobotTask& task, const Genome& genome,
     EpisodeScore score;
     if (Status s = task.run_trial(genome, k, score); !s)
       return Status::error(label + ", trial " + std::to_string(k) + ": " + s.message());
-    for (int d = 0; d < kOmniSegments; ++d) row.speed[d] += score.omni[d].speed / trials;
+    const DirectionFigures figures = score.figures.read<DirectionFigures>();
+    for (int d = 0; d < kOmniSegments; ++d) row.speed[d] += figures.segments[d].speed / trials;
     if (score.fell) ++row.falls;
   }
   row.trials = trials;

@@ -61,7 +61,7 @@ struct Cell {
   double gate_median = 0.0, gate_limit = 0.0;
   std::string unavailable;
   json failures = json::array();
-  std::array<double, kOmniSegments> speeds{};
+  ValidationFigures figures;  ///< the task's own, over the seeds (TaskType::validation_figures)
 };
 
 Cell summarise_cell(const TaskConfig& config, const ValidationIndividual& ind,
@@ -69,6 +69,7 @@ Cell summarise_cell(const TaskConfig& config, const ValidationIndividual& ind,
   Cell c;
   c.seeds = static_cast<int>(seeds.size());
   std::vector<std::vector<double>> values(2);
+  std::vector<const EpisodeScore*> scores;
   for (std::size_t s = 0; s < seeds.size(); ++s) {
     const EpisodeOutcome& e = seeds[s];
     if (!e.setup_error.empty()) {
@@ -81,9 +82,10 @@ Cell summarise_cell(const TaskConfig& config, const ValidationIndividual& ind,
       c.failures.push_back({{"seed", world.seeds[s]}, {"reason", e.score.world_failure}});
     for (std::size_t m = 0; m < 2 && m < e.score.objectives.size(); ++m)
       values[m].push_back(e.score.objectives[m]);
-    for (int d = 0; d < kOmniSegments; ++d)
-      c.speeds[d] += e.score.omni[d].speed / static_cast<double>(seeds.size());
+    scores.push_back(&e.score);
   }
+  if (const TaskType* type = find_task_type(config.task))
+    c.figures = type->validation_figures(scores);
   for (auto& v : values) {
     c.medians.push_back(median(v));
     c.spreads.push_back(interquartile_range(v));
@@ -195,8 +197,6 @@ json summarise_validation(const std::filesystem::path& dir, const TaskConfig& co
   json worlds_json = json::array();
   for (std::size_t w = 0; w < worlds.size(); ++w)
     worlds_json.push_back(world_json(worlds[w], cells.empty() ? "" : cells[0][w].unavailable));
-  const TaskType* type = find_task_type(config.task);
-  const bool omni = type != nullptr && type->measures_directions();
   json individuals_json = json::array(), table = json::array();
   bool all_passed = true;
   for (std::size_t i = 0; i < individuals.size(); ++i) {
@@ -258,14 +258,8 @@ json summarise_validation(const std::filesystem::path& dir, const TaskConfig& co
         flat["seed_spread_f1"] = spreads[0];
         flat["seed_spread_f2"] = spreads[1];
       }
-      if (omni) {
-        json speeds = json::object();
-        for (int d = 0; d < kOmniSegments; ++d)
-          speeds[to_string(static_cast<OmniDirection>(d))] = c.speeds[d];
-        row["speeds"] = speeds;
-        for (int d = 0; d < kOmniSegments; ++d)
-          flat[to_string(static_cast<OmniDirection>(d))] = c.speeds[d];
-      }
+      row.update(c.figures.cell);
+      flat.update(c.figures.table_row);
       all_passed = all_passed && c.gate;
       per_world.push_back(row);
       table.push_back(flat);

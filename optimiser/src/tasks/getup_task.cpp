@@ -19,9 +19,12 @@
 // getup.json): that is the load that strips gears. The load register (the PWM duty) saturates at
 // 100 % in every get-up and tells them apart poorly; the IMU's peak |a| (Obj2 before issue 43)
 // stays in EpisodeScore::max_accel and the report.
+// Its own figures (getup_figures.hpp): episodes stood, get-up attempts and the mean stand time,
+// merged over the world's two episodes here.
 #include <algorithm>
 #include <cstdio>
 
+#include "stride/optimiser/tasks/getup_figures.hpp"
 #include "stride/optimiser/tasks/task_type.hpp"
 #include "stride/sim_hal/get_up_watch.hpp"
 
@@ -53,11 +56,12 @@ class GetUpEpisode final : public TaskEpisode {
   Status score(const sim::EpisodeResult& r, const sim::SimWorld& world,
                const fw::Controller& controller, EpisodeScore& out) override {
     const bool stood = sim::stands_at_end(world, r.status, controller);
-    out.stood = stood ? 1 : 0;
-    out.get_up_attempts = watch_.get_up().attempts();
-    out.stand_time_s = stood ? std::max(0.0, watch_.get_up().stand_again_s()) : -1.0;
+    GetUpFigures& figures = out.figures.as<GetUpFigures>();
+    figures.stood = stood ? 1 : 0;
+    figures.get_up_attempts = watch_.get_up().attempts();
+    figures.stand_time_s = stood ? std::max(0.0, watch_.get_up().stand_again_s()) : -1.0;
     out.fell = !stood;
-    const double time = stood ? out.stand_time_s : config_.duration_s + kNotStandingPenaltyS;
+    const double time = stood ? figures.stand_time_s : config_.duration_s + kNotStandingPenaltyS;
     out.objectives = {time, peak_servo_torque_nm_};
     out.constraints = {stood ? 0.0 : -1.0};
     return {};
@@ -92,17 +96,31 @@ class GetUpTask final : public TaskType {
             " within the time limit"};
   }
   bool succeeded(const TaskConfig&, const EpisodeScore& score) const override {
-    return score.stood == episodes_per_world();
+    return score.figures.read<GetUpFigures>().stood == episodes_per_world();
   }
   std::string outcome_note(const TaskConfig&, const EpisodeScore& s, double) const override {
+    const GetUpFigures figures = s.figures.read<GetUpFigures>();
     char text[96];
-    if (s.stood == episodes_per_world())
+    if (figures.stood == episodes_per_world())
       std::snprintf(text, sizeof text, "stood up in %.2f s (mean of front and back)",
-                    s.stand_time_s);
+                    figures.stand_time_s);
     else
-      std::snprintf(text, sizeof text, "stood up in %d of %d episodes", s.stood,
+      std::snprintf(text, sizeof text, "stood up in %d of %d episodes", figures.stood,
                     episodes_per_world());
     return text;
+  }
+  /// Over the world's episodes: the running mean of the stand time (-1 once one did not stand),
+  /// the episodes stood and the attempts summed.
+  void merge_figures(const TaskFigures& next_figures, int count,
+                     TaskFigures& total_figures) const override {
+    const GetUpFigures next = next_figures.read<GetUpFigures>();
+    GetUpFigures& total = total_figures.as<GetUpFigures>();
+    const double w = 1.0 / count;
+    const bool all_stood = total.stand_time_s >= 0.0 && next.stand_time_s >= 0.0;
+    total.stand_time_s =
+        all_stood ? total.stand_time_s + (next.stand_time_s - total.stand_time_s) * w : -1.0;
+    total.stood += next.stood;
+    total.get_up_attempts += next.get_up_attempts;
   }
   int episodes_per_world() const override { return 2; }
   /// 2 ms: at 2.5 ms the front side stood up 3.5 % sooner on Simbody (tests/bench/RESULTS.md).

@@ -5,11 +5,13 @@
 //   Obj1 = max field-plane sway sqrt(ax^2 + ay^2) [m/s^2] (1000 if fell),
 //   Obj2 = 1 / ball distance, distance clamped to [0.001, 10] m (1000 if fell).
 //   c0 = fell ? -10 : 0; c1 = -(|integral of gyro z| - limit) when over the limit.
-// Its own settings (kick_settings.hpp): script, kick_at_s, yaw_drift_limit_rad.
+// Its own settings (kick_settings.hpp): script, kick_at_s, yaw_drift_limit_rad; its own figures
+// (kick_figures.hpp): the ball distance and the sway.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 
+#include "stride/optimiser/tasks/kick_figures.hpp"
 #include "stride/optimiser/tasks/kick_settings.hpp"
 #include "stride/optimiser/tasks/task_type.hpp"
 #include "stride/sim_hal/script_episodes.hpp"
@@ -49,6 +51,9 @@ class KickEpisode final : public TaskEpisode {
                EpisodeScore& out) override {
     if (controller.motion().refused_requests() > 0)
       return Status::error("kick script '" + kick_settings_.script + "' refused");
+    KickFigures& figures = out.figures.as<KickFigures>();
+    figures.ball_distance_m = r.ball_distance_m;
+    figures.max_fps = r.max_fps;
     const double d = std::clamp(r.ball_distance_m, 0.001, 10.0);
     double sway = r.max_fps;
     if (r.fell || sway <= 0.0 || sway > kFallPenalty) sway = kFallPenalty;
@@ -89,14 +94,20 @@ class KickTask final : public TaskType {
   }
   int gate_objective() const override { return 1; }
   bool succeeded(const TaskConfig&, const EpisodeScore& score) const override {
-    return score.ball_distance_m >= kKickSuccessDistanceM;
+    return score.figures.read<KickFigures>().ball_distance_m >= kKickSuccessDistanceM;
   }
   std::string outcome_note(const TaskConfig& config, const EpisodeScore& s,
                            double end_s) const override {
     if (s.fell) return TaskType::outcome_note(config, s, end_s);
     char text[64];
-    std::snprintf(text, sizeof text, "ball kicked %.2f m", s.ball_distance_m);
+    std::snprintf(text, sizeof text, "ball kicked %.2f m",
+                  s.figures.read<KickFigures>().ball_distance_m);
     return text;
+  }
+  /// The first episode's ball distance, the largest sway (one episode per world as it is).
+  void merge_figures(const TaskFigures& next, int, TaskFigures& total) const override {
+    if (const KickFigures* n = next.get<KickFigures>())
+      total.as<KickFigures>().max_fps = std::max(total.as<KickFigures>().max_fps, n->max_fps);
   }
   bool uses_ball() const override { return true; }
   sim::ResetSpec reset_spec(const TaskConfig& config, int) const override {

@@ -269,11 +269,7 @@ Status RobotTask::run_episode(const Genome& genome, const sim::WorldOptions& opt
     out.world_failure =
         r.failure_reason.empty() ? std::string(sim::to_string(r.status)) : r.failure_reason;
   out.fell = r.fell;
-  out.distance_m = r.distance_m;
-  out.time_to_goal_s = r.time_to_goal_s ? *r.time_to_goal_s : -1.0;
   out.max_accel = r.max_accel;
-  out.max_fps = r.max_fps;
-  out.ball_distance_m = r.ball_distance_m;
   out.sim_time_s = r.sim_time_s;
   out.wall_time_s = r.wall_time_s;
   out.setup_s = setup_s;
@@ -281,29 +277,21 @@ Status RobotTask::run_episode(const Genome& genome, const sim::WorldOptions& opt
   return task_episode->score(r, robot.world(), controller, out);
 }
 
-void RobotTask::merge_episode(const EpisodeScore& next, int count, EpisodeScore& total) {
+void RobotTask::merge_episode(const EpisodeScore& next, int count, EpisodeScore& total) const {
   // Running means of the values (count = episodes so far, `next` included).
   const double w = 1.0 / count;
   for (std::size_t i = 0; i < total.objectives.size() && i < next.objectives.size(); ++i)
     total.objectives[i] += (next.objectives[i] - total.objectives[i]) * w;
   for (std::size_t i = 0; i < total.constraints.size() && i < next.constraints.size(); ++i)
     total.constraints[i] += (next.constraints[i] - total.constraints[i]) * w;
-  const bool all_stood = total.stand_time_s >= 0.0 && next.stand_time_s >= 0.0;
-  total.stand_time_s =
-      all_stood ? total.stand_time_s + (next.stand_time_s - total.stand_time_s) * w : -1.0;
-  // Per-direction figures: each episode fills its own direction (walk-ramp).
-  for (std::size_t d = 0; d < total.omni.size(); ++d)
-    if (next.omni[d].measured || next.omni[d].speed != 0.0) total.omni[d] = next.omni[d];
-  total.stood += next.stood;
-  total.get_up_attempts += next.get_up_attempts;
   total.fell = total.fell || next.fell;
   total.max_accel = std::max(total.max_accel, next.max_accel);
-  total.max_fps = std::max(total.max_fps, next.max_fps);
   total.sim_time_s += next.sim_time_s;
   total.wall_time_s += next.wall_time_s;
   total.setup_s += next.setup_s;
   total.controller_s += next.controller_s;
   if (total.world_failure.empty()) total.world_failure = next.world_failure;
+  if (type_ != nullptr) type_->merge_figures(next.figures, count, total.figures);
 }
 
 namespace {

@@ -44,12 +44,18 @@ bool is_task_settings_field(std::string_view field) {
   return false;
 }
 
-std::string TaskType::outcome_note(const TaskConfig&, const EpisodeScore& s, double end_s) const {
+std::string travel_note(bool fell, double distance_m, double end_s) {
   char text[160];
-  if (s.fell)
+  if (fell)
     std::snprintf(text, sizeof text, "fell at %.2f s", end_s);
   else
-    std::snprintf(text, sizeof text, "%.2f m in %.3g s, goal not reached", s.distance_m, end_s);
+    std::snprintf(text, sizeof text, "%.2f m in %.3g s, goal not reached", distance_m, end_s);
+  return text;
+}
+
+std::string TaskType::outcome_note(const TaskConfig&, const EpisodeScore& s, double end_s) const {
+  char text[64];
+  std::snprintf(text, sizeof text, s.fell ? "fell at %.2f s" : "ended at %.2f s", end_s);
   return text;
 }
 

@@ -5,13 +5,14 @@
 //   c0 fell (-(1 + time lost / length)), c1 drift, c2 heading change, c3 translation while
 //   turning (omni_constraints).
 // Its own settings (walk_omni_settings.hpp): `omni` {start_s, ramp_s, hold_s, stop_s} and the
-// straightness limits.
+// straightness limits; its own figures: the directions' (direction_figures.hpp).
 #include <algorithm>
 #include <array>
 #include <iterator>
 #include <string>
 
 #include "stride/firmware/motion_request.hpp"
+#include "stride/optimiser/tasks/direction_figures.hpp"
 #include "stride/optimiser/tasks/task_type.hpp"
 #include "stride/optimiser/tasks/walk_omni_settings.hpp"
 
@@ -62,11 +63,13 @@ class WalkOmniEpisode final : public TaskEpisode {
   Status score(const sim::EpisodeResult& r, const sim::SimWorld&, const fw::Controller& controller,
                EpisodeScore& out) override {
     if (controller.motion().refused_requests() > 0) return Status::error("walk request refused");
-    out.omni = segments_.segments();
-    out.objectives = {omni_speed_objective(out.omni), r.max_accel};
+    DirectionFigures& figures = out.figures.as<DirectionFigures>();
+    figures.segments = segments_.segments();
+    figures.distance_m = r.distance_m;
+    out.objectives = {omni_speed_objective(figures.segments), r.max_accel};
     const double length = segments_.duration_s();
     const double lost = r.fell ? std::max(0.0, length - r.fall_time_s) : 0.0;
-    const auto c = omni_constraints(out.omni, settings_.straightness);
+    const auto c = omni_constraints(figures.segments, settings_.straightness);
     out.constraints = {r.fell ? -(1.0 + lost / length) : 0.0, c[0], c[1], c[2]};
     return {};
   }
@@ -99,7 +102,14 @@ class WalkOmniTask final : public TaskType {
             "its median speed score is {} % worse than in the run"};
   }
   bool succeeded(const TaskConfig&, const EpisodeScore& score) const override {
-    return every_segment_measured(score.omni);
+    return every_direction_measured(score);
+  }
+  std::string outcome_note(const TaskConfig&, const EpisodeScore& s, double end_s) const override {
+    return direction_outcome_note(s, end_s);
+  }
+  ValidationFigures validation_figures(
+      const std::vector<const EpisodeScore*>& seeds) const override {
+    return direction_validation_figures(seeds);
   }
   bool measures_directions() const override { return true; }
   std::vector<std::string_view> settings_fields() const override {

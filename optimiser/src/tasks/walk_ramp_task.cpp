@@ -7,8 +7,9 @@
 //   Obj2 = max |a| of the IMU [m/s^2], the mean over the six episodes of each one's peak.
 //   c0   = -(directions with no level held before a fall) / 6.
 //   c1   = -(directions whose first level was already beyond the straightness limits) / 6.
-// A direction's best speed is EpisodeScore::omni[d] (measured: a level counted), so the run's
-// report and stride validate show the per-direction top speeds beside the reference figures.
+// A direction's best speed is its segment in the task's figures (direction_figures.hpp; measured:
+// a level counted), each episode filling its own, so that the run's report and stride validate
+// show the per-direction top speeds beside the reference figures.
 // A level is a speed (speed_ramp.hpp); the episode commands it with the walk's parameters as the
 // genome set them, read once at the first tick (parameters_applied).
 #include <algorithm>
@@ -17,6 +18,7 @@
 #include <iterator>
 
 #include "stride/firmware/motion_request.hpp"
+#include "stride/optimiser/tasks/direction_figures.hpp"
 #include "stride/optimiser/tasks/ramp_command.hpp"
 #include "stride/optimiser/tasks/ramp_direction.hpp"
 #include "stride/optimiser/tasks/speed_ramp.hpp"
@@ -71,8 +73,9 @@ class RampEpisode final : public TaskEpisode {
                EpisodeScore& out) override {
     if (controller.motion().refused_requests() > 0) return Status::error("walk request refused");
     if (!walk_read_) return Status::error("walk parameters: " + walk_read_.message());
-    out.omni = {};
-    OmniSegment& s = out.omni[static_cast<std::size_t>(direction_)];
+    DirectionFigures& figures = out.figures.as<DirectionFigures>();
+    figures.distance_m = r.distance_m;
+    OmniSegment& s = figures.segments[static_cast<std::size_t>(direction_)];
     const RampLevel& best = ramp_.best();
     s.measured = ramp_.counted();
     s.speed = ramp_.counted() ? best.speed : 0.0;
@@ -131,7 +134,17 @@ class WalkRampTask final : public TaskType {
             "its median speed score is {} % worse than in the run"};
   }
   bool succeeded(const TaskConfig&, const EpisodeScore& score) const override {
-    return every_segment_measured(score.omni);
+    return every_direction_measured(score);
+  }
+  std::string outcome_note(const TaskConfig&, const EpisodeScore& s, double end_s) const override {
+    return direction_outcome_note(s, end_s);
+  }
+  void merge_figures(const TaskFigures& next, int, TaskFigures& total) const override {
+    merge_direction_figures(next, total);
+  }
+  ValidationFigures validation_figures(
+      const std::vector<const EpisodeScore*>& seeds) const override {
+    return direction_validation_figures(seeds);
   }
   bool measures_directions() const override { return true; }
   int episodes_per_world() const override { return kOmniSegments; }

@@ -7,7 +7,8 @@
 //   Straightness at the goal (or the episode's end), from ground truth (walk_measures.hpp):
 //   c1 = min(0, 1 - (|lateral drift| / max(forward, 0.25 m)) / max_drift_ratio),
 //   c2 = min(0, 1 - |heading change| / max_heading_change_deg); a limit of null is off.
-// Its own settings (walk_settings.hpp): goal_distance_m, walk_vx, the straightness limits.
+// Its own settings (walk_settings.hpp): goal_distance_m, walk_vx, the straightness limits; its
+// own figures (walk_figures.hpp): distance, time to the goal, drift and heading change.
 #include <algorithm>
 #include <cstdio>
 #include <iterator>
@@ -15,6 +16,8 @@
 
 #include "stride/firmware/motion_request.hpp"
 #include "stride/optimiser/tasks/task_type.hpp"
+#include "stride/optimiser/tasks/walk_figures.hpp"
+#include "stride/optimiser/tasks/walk_measures.hpp"
 #include "stride/optimiser/tasks/walk_settings.hpp"
 
 namespace stride::opt {
@@ -50,8 +53,11 @@ class WalkEpisode final : public TaskEpisode {
     const PlanarPose a = walking_frame(start_, torso_yaw(start_.torso));
     const PlanarPose b = walking_frame(world.ground_truth(), yaw_.yaw());
     const Translation t = measure_translation(a, b, 1.0, 0.0);
-    out.lateral_drift_m = t.off_axis_m;
-    out.heading_change_rad = t.heading_change_rad;
+    WalkFigures& figures = out.figures.as<WalkFigures>();
+    figures.distance_m = r.distance_m;
+    figures.time_to_goal_s = r.time_to_goal_s ? *r.time_to_goal_s : -1.0;
+    figures.lateral_drift_m = t.off_axis_m;
+    figures.heading_change_rad = t.heading_change_rad;
     const StraightnessLimits& limits = walk_.straightness;
     const double heading_limit = limits.max_heading_change_deg * std::numbers::pi / 180.0;
     const double missing = std::max(0.0, walk_.goal_distance_m - r.distance_m);
@@ -102,17 +108,18 @@ class WalkTask final : public TaskType {
             "{} % slower than in the run"};
   }
   bool succeeded(const TaskConfig&, const EpisodeScore& score) const override {
-    return score.time_to_goal_s >= 0.0;
+    return score.figures.read<WalkFigures>().time_to_goal_s >= 0.0;
   }
   std::optional<double> replay_goal_m(const TaskConfig& config) const override {
     return config.own_settings<WalkSettings>().goal_distance_m;
   }
   std::string outcome_note(const TaskConfig& config, const EpisodeScore& s,
                            double end_s) const override {
-    if (s.fell || s.time_to_goal_s < 0) return TaskType::outcome_note(config, s, end_s);
+    const WalkFigures figures = s.figures.read<WalkFigures>();
+    if (s.fell || figures.time_to_goal_s < 0) return travel_note(s.fell, figures.distance_m, end_s);
     char text[96];
     std::snprintf(text, sizeof text, "reached %.3g m at %.2f s",
-                  config.own_settings<WalkSettings>().goal_distance_m, s.time_to_goal_s);
+                  config.own_settings<WalkSettings>().goal_distance_m, figures.time_to_goal_s);
     return text;
   }
   std::vector<std::string_view> settings_fields() const override {

@@ -20,9 +20,13 @@
 #include <nlohmann/json.hpp>
 
 #include "read_file.hpp"
+#include "stride/optimiser/tasks/direction_figures.hpp"
+#include "stride/optimiser/tasks/kick_figures.hpp"
 #include "stride/optimiser/tasks/robot_task.hpp"
+#include "stride/optimiser/tasks/walk_figures.hpp"
 #include "stride/optimiser/tasks/walk_omni_settings.hpp"
 #include "stride/optimiser/tasks/walk_settings.hpp"
+#include "task_figures_of.hpp"
 #include "temp_dir.hpp"
 
 namespace stride::opt {
@@ -99,8 +103,9 @@ TEST(RobotTask, TheGenomeIsFlashedIntoTheFirmware) {
     if (c.genes[i].parameter == "walk.stance.gains.legs") g.reals[i] = c.genes[i].max;
   ASSERT_TRUE(task.run_trial(g, 0, changed));
   ASSERT_TRUE(task.run_trial(task.start_genome(), 0, again));
-  EXPECT_NE(original.distance_m, changed.distance_m);  // stiffer legs change the episode
-  EXPECT_EQ(original.distance_m, again.distance_m);    // and the episode is deterministic
+  const double distance_m = figures_of<WalkFigures>(original).distance_m;
+  EXPECT_NE(distance_m, figures_of<WalkFigures>(changed).distance_m);  // stiffer legs change it
+  EXPECT_EQ(distance_m, figures_of<WalkFigures>(again).distance_m);    // and it is deterministic
   EXPECT_EQ(original.objectives, again.objectives);
   ASSERT_EQ(original.objectives.size(), 2u);
   ASSERT_EQ(original.constraints.size(), 3u);  // fell, lateral drift, heading change
@@ -127,12 +132,14 @@ TEST(RobotTask, TheSeedsWorldAndWalkByNameAndBaseParameters) {
   ASSERT_TRUE(parse_task_config(doc, seed));
   const RobotTask thesis(seed);
   ASSERT_TRUE(thesis.run_trial(thesis.start_genome(), 0, seed_world));
-  std::printf("  Ind_O to 2.5 m: faithful world %.2f s, seed world and walk %.2f s\n",
-              now.time_to_goal_s, seed_world.time_to_goal_s);
-  EXPECT_GT(now.time_to_goal_s, 17.0);
-  EXPECT_LT(now.time_to_goal_s, 21.0);
-  EXPECT_GT(seed_world.time_to_goal_s, 25.0);
-  EXPECT_LT(seed_world.time_to_goal_s, 29.0);
+  const double faithful_s = figures_of<WalkFigures>(now).time_to_goal_s;
+  const double seed_s = figures_of<WalkFigures>(seed_world).time_to_goal_s;
+  std::printf("  Ind_O to 2.5 m: faithful world %.2f s, seed world and walk %.2f s\n", faithful_s,
+              seed_s);
+  EXPECT_GT(faithful_s, 17.0);
+  EXPECT_LT(faithful_s, 21.0);
+  EXPECT_GT(seed_s, 25.0);
+  EXPECT_LT(seed_s, 29.0);
   seed.base_params = {{"walk.no_such_gain", 1.0}};
   EpisodeScore bad;
   const Status s = RobotTask(seed).run_trial(RobotTask(seed).start_genome(), 0, bad);
@@ -151,10 +158,11 @@ TEST(RobotTask, TheDemoConfigsIndOReachesTheGoalInItsWorld) {
   EpisodeScore s;
   ASSERT_TRUE(task.run_trial(task.start_genome(), 0, s));
   EXPECT_FALSE(s.fell);
-  ASSERT_GT(s.time_to_goal_s, 0.0)
-      << "Ind_O walked " << s.distance_m << " m in " << c.duration_s << " s";
-  EXPECT_LT(s.time_to_goal_s, 0.8 * c.duration_s);  // 20 % to spare
-  EXPECT_EQ(s.objectives[0], s.time_to_goal_s);
+  const WalkFigures walked = figures_of<WalkFigures>(s);
+  ASSERT_GT(walked.time_to_goal_s, 0.0)
+      << "Ind_O walked " << walked.distance_m << " m in " << c.duration_s << " s";
+  EXPECT_LT(walked.time_to_goal_s, 0.8 * c.duration_s);  // 20 % to spare
+  EXPECT_EQ(s.objectives[0], walked.time_to_goal_s);
   for (double g : s.constraints) EXPECT_GE(g, 0.0);
 }
 
@@ -166,10 +174,11 @@ TEST(RobotTask, KickEpisodeMovesTheBallAndScoresTheSeedsObjectives) {
   ASSERT_TRUE(task.run_trial(task.start_genome(), 0, s));
   ASSERT_EQ(s.objectives.size(), 2u);
   ASSERT_EQ(s.constraints.size(), 2u);
+  const KickFigures kicked = figures_of<KickFigures>(s);
   if (!s.fell) {
-    EXPECT_GT(s.ball_distance_m, 0.05);
-    EXPECT_DOUBLE_EQ(s.objectives[0], s.max_fps);
-    EXPECT_NEAR(s.objectives[1], 1.0 / std::clamp(s.ball_distance_m, 0.001, 10.0), 1e-12);
+    EXPECT_GT(kicked.ball_distance_m, 0.05);
+    EXPECT_DOUBLE_EQ(s.objectives[0], kicked.max_fps);
+    EXPECT_NEAR(s.objectives[1], 1.0 / std::clamp(kicked.ball_distance_m, 0.001, 10.0), 1e-12);
     EXPECT_EQ(s.constraints[0], 0.0);
   } else {
     EXPECT_EQ(s.objectives[0], 1000.0);
@@ -364,18 +373,20 @@ TEST(RobotTask, WalkOmniScoresEverySegmentOfIndO) {
   ASSERT_EQ(a.constraints.size(), 4u);
   EXPECT_EQ(a.objectives, b.objectives);
   EXPECT_EQ(a.constraints, b.constraints);
+  const OmniSegments a_segments = figures_of<DirectionFigures>(a).segments;
+  const OmniSegments b_segments = figures_of<DirectionFigures>(b).segments;
   for (int k = 0; k < kOmniSegments; ++k) {
-    const OmniSegment& s = a.omni[k];
+    const OmniSegment& s = a_segments[k];
     std::printf("  %-10s measured %d speed %+.4f drift %.3f heading %.2f deg translation %.3f m\n",
                 to_string(static_cast<OmniDirection>(k)), s.measured ? 1 : 0, s.speed,
                 s.drift_ratio, s.heading_change_rad * 180.0 / 3.141592653589793, s.translation_m);
-    EXPECT_EQ(s.speed, b.omni[k].speed);
+    EXPECT_EQ(s.speed, b_segments[k].speed);
   }
   std::printf("  objectives %.4f %.3f constraints %.4f %.4f %.4f %.4f fell %d\n", a.objectives[0],
               a.objectives[1], a.constraints[0], a.constraints[1], a.constraints[2],
               a.constraints[3], a.fell ? 1 : 0);
-  EXPECT_DOUBLE_EQ(a.objectives[0], omni_speed_objective(a.omni));
-  const auto c13 = omni_constraints(a.omni, c.own_settings<OmniSettings>().straightness);
+  EXPECT_DOUBLE_EQ(a.objectives[0], omni_speed_objective(a_segments));
+  const auto c13 = omni_constraints(a_segments, c.own_settings<OmniSettings>().straightness);
   EXPECT_EQ(a.constraints[1], c13[0]);
   EXPECT_EQ(a.constraints[2], c13[1]);
   EXPECT_EQ(a.constraints[3], c13[2]);
@@ -386,13 +397,13 @@ TEST(RobotTask, WalkOmniScoresEverySegmentOfIndO) {
   // turns 11 deg (over the 10 deg limit), sideways it drifts about 10 %, and each turn
   // translates 0.24-0.25 m (limit 0.1 m). (The seed's world: 0.107 forward, the wrong way
   // backward, a fall in the turn left.)
-  EXPECT_NEAR(a.omni[0].speed, 0.1681, 5e-4);
-  EXPECT_NEAR(a.omni[1].speed, 0.0314, 5e-4);
-  EXPECT_LT(std::abs(a.omni[2].speed), 0.02);
-  EXPECT_LT(std::abs(a.omni[3].speed), 0.02);
-  EXPECT_GT(a.omni[4].speed, 0.15);
-  EXPECT_GT(a.omni[5].speed, 0.15);
-  for (int k = 0; k < kOmniSegments; ++k) EXPECT_TRUE(a.omni[k].measured) << k;
+  EXPECT_NEAR(a_segments[0].speed, 0.1681, 5e-4);
+  EXPECT_NEAR(a_segments[1].speed, 0.0314, 5e-4);
+  EXPECT_LT(std::abs(a_segments[2].speed), 0.02);
+  EXPECT_LT(std::abs(a_segments[3].speed), 0.02);
+  EXPECT_GT(a_segments[4].speed, 0.15);
+  EXPECT_GT(a_segments[5].speed, 0.15);
+  for (int k = 0; k < kOmniSegments; ++k) EXPECT_TRUE(a_segments[k].measured) << k;
   EXPECT_FALSE(a.fell);
   EXPECT_EQ(a.constraints[0], 0.0);   // no fall
   EXPECT_LT(a.constraints[1], 0.0);   // sideways drift above 10 %

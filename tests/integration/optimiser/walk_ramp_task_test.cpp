@@ -13,8 +13,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include "stride/optimiser/tasks/direction_figures.hpp"
 #include "stride/optimiser/tasks/robot_task.hpp"
 #include "stride/optimiser/tasks/speed_ramp.hpp"
+#include "task_figures_of.hpp"
 
 namespace stride::opt {
 namespace {
@@ -36,9 +38,10 @@ TaskConfig nominal_ramp_config() {
 EpisodeScore run_directions(const RobotTask& task, const Genome& genome) {
   EpisodeScore s;
   EXPECT_TRUE(task.run_trial(genome, 0, s));
+  const OmniSegments segments = figures_of<DirectionFigures>(s).segments;
   double score = 0.0;
   for (int d = 0; d < kOmniSegments; ++d) {
-    const OmniSegment& seg = s.omni[static_cast<std::size_t>(d)];
+    const OmniSegment& seg = segments[static_cast<std::size_t>(d)];
     std::printf("%-10s measured %d, top speed %.6f, drift %.3f, heading %.3f, translation %.3f\n",
                 to_string(static_cast<OmniDirection>(d)), seg.measured, seg.speed, seg.drift_ratio,
                 seg.heading_change_rad, seg.translation_m);
@@ -56,8 +59,9 @@ EpisodeScore run_directions(const RobotTask& task, const Genome& genome) {
 void expect_top_speeds(const EpisodeScore& s, const double (&top_speed)[kOmniSegments],
                        const TaskConfig& config) {
   const StraightnessLimits& limits = config.own_settings<RampSettings>().straightness;
+  const OmniSegments segments = figures_of<DirectionFigures>(s).segments;
   for (int d = 0; d < kOmniSegments; ++d) {
-    const OmniSegment& seg = s.omni[static_cast<std::size_t>(d)];
+    const OmniSegment& seg = segments[static_cast<std::size_t>(d)];
     const char* name = to_string(static_cast<OmniDirection>(d));
     EXPECT_EQ(seg.measured, top_speed[d] > 0.0) << name;
     EXPECT_NEAR(seg.speed, top_speed[d], 0.0005) << name;

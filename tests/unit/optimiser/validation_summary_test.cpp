@@ -8,6 +8,9 @@
 
 #include "stride/optimiser/report/html_tables.hpp"
 #include "stride/optimiser/run/validation_summary.hpp"
+#include "stride/optimiser/tasks/direction_figures.hpp"
+#include "stride/optimiser/tasks/kick_figures.hpp"
+#include "stride/optimiser/tasks/walk_figures.hpp"
 #include "temp_dir.hpp"
 
 namespace stride::opt {
@@ -18,7 +21,7 @@ using nlohmann::json;
 EpisodeOutcome walked(double time_s, double max_accel, bool reached) {
   EpisodeOutcome e;
   e.score.objectives = {time_s, max_accel};
-  e.score.time_to_goal_s = reached ? time_s : -1.0;
+  e.score.figures.as<WalkFigures>().time_to_goal_s = reached ? time_s : -1.0;
   e.score.fell = !reached;
   return e;
 }
@@ -40,17 +43,17 @@ TEST(ValidationSummary, MedianReachedAndGateObjective) {
   kick.task = "kick";
   omni.task = "walk-omni";
   EpisodeScore s;
-  s.time_to_goal_s = 12.0;
+  s.figures.as<WalkFigures>().time_to_goal_s = 12.0;
   EXPECT_TRUE(validation_reached(walk, s));
   s.world_failure = "exploding state";
   EXPECT_FALSE(validation_reached(walk, s));
   s = {};
-  s.ball_distance_m = 0.49;
+  s.figures.as<KickFigures>().ball_distance_m = 0.49;
   EXPECT_FALSE(validation_reached(kick, s));
-  s.ball_distance_m = 0.5;
+  s.figures.as<KickFigures>().ball_distance_m = 0.5;
   EXPECT_TRUE(validation_reached(kick, s));
   EXPECT_FALSE(validation_reached(omni, s));  // no segment measured
-  for (auto& seg : s.omni) seg.measured = true;
+  for (auto& seg : s.figures.as<DirectionFigures>().segments) seg.measured = true;
   EXPECT_TRUE(validation_reached(omni, s));
   EXPECT_EQ(gate_objective(walk), 0);
   EXPECT_EQ(gate_objective(kick), 1);  // 1 / ball distance
@@ -211,7 +214,7 @@ TEST(ValidationSummary, WordsSayWhereEachHoldsAndWhyItFailsAndWhatFailMeans) {
   auto ran_out_of_time = [] {
     EpisodeOutcome e;
     e.score.objectives = {30.0, 15.0};
-    e.score.time_to_goal_s = -1.0;
+    e.score.figures.as<WalkFigures>().time_to_goal_s = -1.0;
     return e;
   };
   std::vector<std::vector<std::vector<EpisodeOutcome>>> outcomes(3);
@@ -271,7 +274,7 @@ TEST(ValidationSummary, WordsNameTheKicksGoalAndMeasure) {
   outcomes[0].resize(1);
   for (int s = 0; s < 3; ++s) {
     EpisodeOutcome e;
-    e.score.ball_distance_m = 1.0;
+    e.score.figures.as<KickFigures>().ball_distance_m = 1.0;
     e.score.objectives = {20.0, 1.0};
     outcomes[0][0].push_back(e);
   }

@@ -1,6 +1,7 @@
 // The summary of a validation (validation.hpp): per individual and world the reached fraction,
 // falls, median objectives, the gate and the gain kept; the flat table that `stride report`
-// and `stride validate` show; for walk-omni the speed per direction. Pure functions of the
+// and `stride validate` show; the task's own figures (TaskType::validation_figures: walk-omni's
+// and walk-ramp's speed per direction). Pure functions of the
 // episodes' scores (no simulation here).
 #pragma once
 

@@ -104,8 +104,9 @@ class RobotTask final : public Problem {
                            EpisodeScore& out, sim::EpisodeCapturer* capture = nullptr) const;
   Status run_episode(const Genome& genome, const sim::WorldOptions& options, int index,
                      EpisodeScore& out, sim::EpisodeCapturer* capture) const;
-  /// Folds episode `count` (1-based) of a world into the world's score so far.
-  static void merge_episode(const EpisodeScore& next, int count, EpisodeScore& total);
+  /// Folds episode `count` (1-based) of a world into the world's score so far: the shared
+  /// figures here, the task's own by its type (TaskType::merge_figures).
+  void merge_episode(const EpisodeScore& next, int count, EpisodeScore& total) const;
 };
 
 }  // namespace stride::opt

@@ -7,7 +7,9 @@
 //   - the objectives' labels and units, the constraints, the picks' names;
 //   - the validation's success test, gate objective and plain-language words;
 //   - the report's outcome note;
-//   - its own settings (TaskConfig::own): their config fields, read and written by the type.
+//   - its own settings (TaskConfig::own): their config fields, read and written by the type;
+//   - its own figures of an episode (EpisodeScore::figures, task_figures.hpp): written by its
+//     episode, merged over a world's episodes and shown in the validation by the type.
 // A new task is one file that defines a TaskType, one line in task_registry.cpp and a config.
 //
 // Real-time rule: before_step runs inside the lockstep episode, once per 10 ms control tick; it
@@ -50,7 +52,8 @@ class TaskEpisode {
   /// before_step): what the task follows.
   virtual void after_step(const fw::Controller& /*controller*/, const sim::SimWorld& /*world*/,
                           hal::Tick /*tick*/) {}
-  /// The finished episode's objectives, constraints and figures; `result` already counts a
+  /// The finished episode's objectives, constraints and figures (the shared ones are filled; the
+  /// task writes its own in `out.figures`); `result` already counts a
   /// failed world as a fall at that moment. An error names what went wrong (a refused request).
   virtual Status score(const sim::EpisodeResult& result, const sim::SimWorld& world,
                        const fw::Controller& controller, EpisodeScore& out) = 0;
@@ -63,6 +66,14 @@ struct ValidationWords {
   std::string worse;            ///< "{} % slower than in the run": {} is the percentage
   std::string falls = "falls";  ///< "falls in 3 of 10 seeds"
   std::string without_fall = " without a fall";  ///< after `reach` in the gate's legend
+};
+
+/// A task's own figures of one individual in one validation world, over its seeds: fields the
+/// task adds to the world's cell in validation.json (`cell`) and to the row of its flat table
+/// (`table_row`).
+struct ValidationFigures {
+  nlohmann::json cell = nlohmann::json::object();
+  nlohmann::json table_row = nlohmann::json::object();
 };
 
 /// Labels of the two objectives with their units.
@@ -90,9 +101,20 @@ class TaskType {
   virtual int gate_objective() const { return 0; }
   /// A validation episode that neither fell nor failed: did it do what the task asks?
   virtual bool succeeded(const TaskConfig& config, const EpisodeScore& score) const = 0;
-  /// The report's one-line outcome of a replayed episode that ended at `end_s`.
+  /// The report's one-line outcome of a replayed episode that ended at `end_s` (by default
+  /// whether it fell).
   virtual std::string outcome_note(const TaskConfig& config, const EpisodeScore& score,
                                    double end_s) const;
+  /// Folds the task's own figures of episode `count` (1-based, > 1) of a world into the world's
+  /// figures so far (RobotTask merges the shared ones). By default the first episode's stand for
+  /// the world.
+  virtual void merge_figures(const TaskFigures& /*next*/, int /*count*/,
+                             TaskFigures& /*total*/) const {}
+  /// The task's own figures over one world's validation seeds (in seed order; none by default).
+  virtual ValidationFigures validation_figures(
+      const std::vector<const EpisodeScore*>& /*seeds*/) const {
+    return {};
+  }
   /// The goal line the report's replay draws [m from the start] (none by default).
   virtual std::optional<double> replay_goal_m(const TaskConfig& /*config*/) const {
     return std::nullopt;
@@ -132,6 +154,9 @@ class TaskType {
                                                      double period_s,
                                                      const sim::SimWorld& world) const = 0;
 };
+
+/// The outcome note of a walking task: "fell at 3.20 s", or "1.52 m in 20 s, goal not reached".
+std::string travel_note(bool fell, double distance_m, double end_s);
 
 /// The task named `name`, or null.
 const TaskType* find_task_type(std::string_view name);
