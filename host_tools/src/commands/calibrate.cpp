@@ -75,11 +75,10 @@ void print_help(const core::CliArgs& args) {
   std::string names;
   for (const calibration::CalibrationParameter& p : calibration::calibration_parameters()) {
     char line[160];
-    std::snprintf(line, sizeof line, "  %-14s %-32s [%g, %g] %s%s\n", p.name.c_str(),
-                  p.what.c_str(), p.lower, p.upper, p.unit.c_str(),
-                  !p.caution.empty()       ? "  (warned)"
-                  : p.caution_with.empty() ? ""
-                                           : ("  (warned with " + p.caution_with + ")").c_str());
+    const std::string mark = calibration::warning_mark(p);
+    std::snprintf(line, sizeof line, "  %-14s %-32s [%g, %g] %s%s%s\n", p.name.c_str(),
+                  p.what.c_str(), p.lower, p.upper, p.unit.c_str(), mark.empty() ? "" : "  ",
+                  mark.c_str());
     names += line;
   }
   std::printf(
@@ -98,26 +97,6 @@ void print_help(const core::CliArgs& args) {
       "saying why: (warned) below.\n\n"
       "Parameters (--fit; gyro_bias and accel_bias name three axes, all every one):\n%s\n%s",
       names.c_str(), args.help().c_str());
-}
-
-/// One warning line per fitted value the routine does not identify (CalibrationParameter::
-/// caution); the lines, also kept in the world file's calibration.
-std::vector<std::string> fit_warnings(const std::vector<std::string>& fit) {
-  const auto fitted = [&fit](const std::string& name) {
-    return std::find(fit.begin(), fit.end(), name) != fit.end();
-  };
-  std::vector<std::string> lines;
-  for (const calibration::CalibrationParameter& p : calibration::calibration_parameters()) {
-    if (!fitted(p.name)) continue;
-    if (!p.caution.empty())
-      lines.push_back("--fit " + p.name + ": not identified by the routine (" + p.caution +
-                      "); the fitted value is a best guess");
-    else if (!p.caution_with.empty() && fitted(p.caution_with))
-      lines.push_back("--fit " + p.name + ": not identified by the routine with " + p.caution_with +
-                      " also fitted (" + p.caution_with_why +
-                      "); the fitted value is a best guess");
-  }
-  return lines;
 }
 
 /// The logs, --out and --fit are required; --out must be a file in an existing folder.
@@ -369,7 +348,7 @@ int run_calibrate(int argc, char** argv) {
   };
   std::fprintf(stderr, "stride calibrate: %zu log(s), fitting %s in %s\n", logs.size(),
                args.get("fit").c_str(), sim::describe_world(world).c_str());
-  const std::vector<std::string> warnings = fit_warnings(options.fit);
+  const std::vector<std::string> warnings = calibration::fit_warnings(options.fit);
   for (const std::string& w : warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
   std::fprintf(stderr, "supply %.2f V (%s), trunk mass x%.4f (%s)\n", start.supply_voltage_v,
                fit_voltage ? "fitted" : "from the logs", start.robot.trunk_mass_scale,

@@ -68,6 +68,11 @@ const std::vector<CalibrationParameter>& calibration_parameters();
 /// Parses a comma-separated list of names ("gyro_bias" and "accel_bias" stand for their three
 /// axes, "all" for every parameter); the error names an unknown name and lists the known ones.
 Status parse_fit_names(const std::string& list, std::vector<std::string>& out);
+/// One warning line per value of `fit` the routine does not identify (CalibrationParameter::
+/// caution, or caution_with when that value is in `fit` too), in table order.
+std::vector<std::string> fit_warnings(const std::vector<std::string>& fit);
+/// "(warned)", "(warned with NAME)" or "": how --help marks `p`.
+std::string warning_mark(const CalibrationParameter& p);
 double calibration_value(const sim::WorldFile& world, const std::string& name);
 void set_calibration_value(sim::WorldFile& world, const std::string& name, double value);
 
