@@ -16,6 +16,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "stride/core/json_file.hpp"
+
 namespace stride::calibration {
 
 using sim::count_windows;
@@ -147,11 +149,12 @@ class Evaluator {
   Status open() {
     if (options_.progress_file.empty()) return Status::ok();
     if (options_.resume) {
-      std::ifstream in(options_.progress_file);
-      if (!in) return Status::error("--resume: cannot read " + options_.progress_file.string());
-      for (std::string line; std::getline(in, line);) {
-        const nlohmann::json j = nlohmann::json::parse(line, nullptr, false);
-        if (j.is_discarded() || !j.contains("key") || !j.contains("J")) continue;  // a cut line
+      std::vector<nlohmann::json> lines;  // a line cut by a kill is skipped
+      if (Status s = core::read_json_lines(options_.progress_file, lines); !s)
+        return Status::error("--resume: " + s.message());
+      for (const nlohmann::json& j : lines) {
+        if (!j.contains("key") || !j["key"].is_string() || !j.contains("J") || !j["J"].is_string())
+          continue;
         cache_[j["key"].get<std::string>()] =
             std::strtod(j["J"].get<std::string>().c_str(), nullptr);
         from_file_.insert(j["key"].get<std::string>());

@@ -2,12 +2,12 @@
 #include "stride/firmware/robot_description.hpp"
 
 #include <cmath>
-#include <fstream>
-#include <sstream>
+#include <span>
 #include <stdexcept>
 
 #include <nlohmann/json.hpp>
 
+#include "stride/core/json_file.hpp"
 #include "stride/firmware/firmware.hpp"  // data_dir
 
 namespace stride::fw {
@@ -70,25 +70,54 @@ std::uint64_t fnv1a(const std::string& text) {
   return h;
 }
 
+/// A joint's "parent": null (the root, -1) or the name of a joint listed before it (its index).
+Status read_parent(const json& entry, const std::string& at,
+                   std::span<const RobotDescription::Joint> before, int& parent) {
+  if (!entry.contains("parent")) return field_error(at + ".parent", "missing");
+  if (entry["parent"].is_null()) {
+    parent = -1;
+    return {};
+  }
+  if (!entry["parent"].is_string())
+    return field_error(at + ".parent", "must be a joint name or null (the root)");
+  const std::string name = entry["parent"].get<std::string>();
+  for (std::size_t k = before.size(); k-- > 0;) {  // the latest of that name
+    if (before[k].name == name) {
+      parent = static_cast<int>(k);
+      return {};
+    }
+  }
+  return field_error(at + ".parent", "'" + name + "' is not a joint listed before this one");
+}
+
+/// A joint's origin (xyz, rpy), unit axis, and its child link's mass and centre of mass.
+Status read_joint_body(const json& entry, const std::string& at, RobotDescription::Joint& joint) {
+  Eigen::Vector3d rpy;
+  if (Status s = read_vector(entry, at, "xyz", joint.origin_position); !s) return s;
+  if (Status s = read_vector(entry, at, "rpy", rpy); !s) return s;
+  joint.origin_rotation = rpy_rotation(rpy);
+  if (Status s = read_vector(entry, at, "axis", joint.axis); !s) return s;
+  if (std::abs(joint.axis.norm() - 1.0) > 1e-6) {
+    return field_error(at + ".axis", "must be a unit vector");
+  }
+  if (Status s = read_number(entry, at, "mass", joint.mass); !s) return s;
+  if (!(joint.mass > 0.0)) return field_error(at + ".mass", "must be > 0");
+  return read_vector(entry, at, "com", joint.com);
+}
+
 }  // namespace
 
 Status RobotDescription::load(const std::filesystem::path& path, const ServoTable& servos,
                               RobotDescription& out) {
-  std::ifstream in(path);
-  if (!in) return Status::error(path.string() + ": cannot open the robot description");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse(text.str(), path.filename().string(), servos, out);
+  std::string text;  // the text itself, not only its JSON: the description's hash is of the text
+  if (Status s = core::read_text_file(path, text); !s) return s;
+  return parse(text, path.filename().string(), servos, out);
 }
 
 Status RobotDescription::parse(const std::string& text, const std::string& where,
                                const ServoTable& servos, RobotDescription& out) {
   json doc;
-  try {
-    doc = json::parse(text);
-  } catch (const json::exception& e) {
-    return Status::error(where + ": not valid JSON (" + std::string(e.what()) + ")");
-  }
+  if (Status s = core::parse_json_text(text, where, doc); !s) return s;
   if (!doc.is_object()) return Status::error(where + ": must be a JSON object");
   RobotDescription d;
   d.hash_ = fnv1a(text);
@@ -127,33 +156,9 @@ Status RobotDescription::parse(const std::string& text, const std::string& where
     seen[*index] = true;
     joint.servo = *index;
     d.joint_of_servo_[*index] = j;
-    if (!entry.contains("parent")) return field_error(at + ".parent", "missing");
-    if (entry["parent"].is_null()) {
-      joint.parent = -1;
-    } else if (entry["parent"].is_string()) {
-      const std::string parent = entry["parent"].get<std::string>();
-      joint.parent = -2;
-      for (std::size_t k = 0; k < j; ++k) {
-        if (d.joints_[k].name == parent) joint.parent = static_cast<int>(k);
-      }
-      if (joint.parent == -2) {
-        return field_error(at + ".parent",
-                           "'" + parent + "' is not a joint listed before this one");
-      }
-    } else {
-      return field_error(at + ".parent", "must be a joint name or null (the root)");
-    }
-    Eigen::Vector3d rpy;
-    if (Status s = read_vector(entry, at, "xyz", joint.origin_position); !s) return s;
-    if (Status s = read_vector(entry, at, "rpy", rpy); !s) return s;
-    joint.origin_rotation = rpy_rotation(rpy);
-    if (Status s = read_vector(entry, at, "axis", joint.axis); !s) return s;
-    if (std::abs(joint.axis.norm() - 1.0) > 1e-6) {
-      return field_error(at + ".axis", "must be a unit vector");
-    }
-    if (Status s = read_number(entry, at, "mass", joint.mass); !s) return s;
-    if (!(joint.mass > 0.0)) return field_error(at + ".mass", "must be > 0");
-    if (Status s = read_vector(entry, at, "com", joint.com); !s) return s;
+    if (Status s = read_parent(entry, at, std::span(d.joints_.data(), j), joint.parent); !s)
+      return s;
+    if (Status s = read_joint_body(entry, at, joint); !s) return s;
     d.total_mass_ += joint.mass;
     d.ancestor_mask_[j] =
         (joint.parent >= 0 ? d.ancestor_mask_[static_cast<std::size_t>(joint.parent)] : 0U) |

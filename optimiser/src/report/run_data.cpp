@@ -15,28 +15,17 @@ using nlohmann::json;
 namespace {
 
 void read_log(const fs::path& path, std::vector<json>& out, std::vector<std::string>& warnings) {
-  std::ifstream in(path);
-  if (!in) {
+  core::JsonLinesDamage damage;
+  if (!core::read_json_lines(path, out, &damage)) {
     warnings.push_back(path.filename().string() + " is missing");
     return;
   }
-  std::string line;
-  std::size_t n = 0, bad = 0, first_bad = 0;
-  while (std::getline(in, line)) {
-    ++n;
-    if (line.empty()) continue;
-    json j = json::parse(line, nullptr, false);
-    if (j.is_discarded() || !j.is_object()) {
-      if (bad++ == 0) first_bad = n;
-      continue;
-    }
-    out.push_back(std::move(j));
-  }
-  if (bad > 0)
-    warnings.push_back(path.filename().string() + ": " + std::to_string(bad) +
-                       " damaged line(s) skipped, the first is line " + std::to_string(first_bad) +
-                       " (a truncated log?)");
-  if (out.empty() && bad == 0) warnings.push_back(path.filename().string() + " is empty");
+  if (damage.damaged > 0)
+    warnings.push_back(path.filename().string() + ": " + std::to_string(damage.damaged) +
+                       " damaged line(s) skipped, the first is line " +
+                       std::to_string(damage.first_line) + " (a truncated log?)");
+  if (out.empty() && damage.damaged == 0)
+    warnings.push_back(path.filename().string() + " is empty");
 }
 
 }  // namespace
