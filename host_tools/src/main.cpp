@@ -24,7 +24,7 @@ int main(int argc, char** argv) {
   }
   const std::string_view name = argv[1];
   for (const auto& c : stride::tools::commands()) {
-    if (c.name == name) return c.run(argc - 1, argv + 1);
+    if (c.name == name) return stride::tools::run_command(c, argc - 1, argv + 1);
   }
   std::fprintf(stderr, "stride: unknown command '%s' (see stride --help)\n", argv[1]);
   return 2;

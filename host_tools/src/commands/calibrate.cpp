@@ -349,7 +349,7 @@ int run_calibrate(int argc, char** argv) {
   std::fprintf(stderr, "stride calibrate: %zu log(s), fitting %s in %s\n", logs.size(),
                args.get("fit").c_str(), sim::describe_world(world).c_str());
   const std::vector<std::string> warnings = calibration::fit_warnings(options.fit);
-  for (const std::string& w : warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  for (const std::string& w : warnings) errors.warning(w);
   std::fprintf(stderr, "supply %.2f V (%s), trunk mass x%.4f (%s)\n", start.supply_voltage_v,
                fit_voltage ? "fitted" : "from the logs", start.robot.trunk_mass_scale,
                args.has("robot-mass") ? "from --robot-mass" : "the start world's");

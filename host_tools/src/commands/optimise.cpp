@@ -368,7 +368,7 @@ Status validate_run(const std::filesystem::path& dir, std::int64_t jobs,
                     nlohmann::json& validation) {
   opt::ValidationSubject subject;
   if (auto st = opt::load_validation_subject(dir, subject); !st) {
-    std::fprintf(stderr, "stride optimise: validation skipped: %s\n", st.message().c_str());
+    errors.warning("validation skipped: " + st.message());
     return {};
   }
   opt::ValidationOptions v;

@@ -28,6 +28,11 @@ const std::vector<Command>& commands();
 /// Adds a subcommand (called from static initialisers via STRIDE_COMMAND).
 bool register_command(Command command);
 
+/// Runs `command` with argv starting at its name, and is every command's last line of defence:
+/// an exception that escapes it (a bug, or memory exhausted) ends it as any failure does, with
+/// "stride NAME: internal error: WHAT" on stderr and exit 1, instead of an abort.
+int run_command(const Command& command, int argc, char** argv);
+
 }  // namespace stride::tools
 
 #define STRIDE_COMMAND(name, summary, fn)                               \
