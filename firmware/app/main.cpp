@@ -1,9 +1,13 @@
 // stride-fw: the robot binary. Builds the firmware, picks a HAL backend, runs the fixed-rate
 // loop until --ticks have run or SIGINT/SIGTERM, then prints the loop statistics.
+#include <atomic>
 #include <csignal>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
+#include <memory>
 #include <string>
+#include <string_view>
 
 #include <nlohmann/json.hpp>
 
@@ -14,6 +18,8 @@
 #include "stride/firmware/hal_registry.hpp"
 #include "stride/firmware/realtime_robot.hpp"
 #include "stride/firmware/recorder/flight_recorder.hpp"
+
+using namespace stride;
 
 namespace {
 
@@ -32,15 +38,17 @@ double us(std::int64_t ns) {
   return static_cast<double>(ns) / 1000.0;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  using namespace stride;
-  core::CliArgs args;
-  std::string backends;
+/// "test|dynamixel|...": the HAL backends by name.
+std::string backend_names() {
+  std::string names;
   for (const auto& b : fw::hal_backends())
-    backends += (backends.empty() ? "" : "|") + std::string(b.name);
-  args.option("hal", "HAL backend: " + backends, true, "test")
+    names += (names.empty() ? "" : "|") + std::string(b.name);
+  return names;
+}
+
+/// stride-fw's options, and each backend's own.
+void declare_options(core::CliArgs& args) {
+  args.option("hal", "HAL backend: " + backend_names(), true, "test")
       .option("params", "parameter file (JSON) applied at start-up")
       .option("servo-table", "servo table file", true, fw::ServoTable::default_path().string())
       .option("robot-description",
@@ -56,34 +64,153 @@ int main(int argc, char** argv) {
       .option("json", "print the final report as one JSON object on stdout", false)
       .option("help", "show this help", false);
   for (const auto& b : fw::hal_backends()) b.declare_options(args);
-  if (Status s = args.parse(argc, argv); !s) return fail(2, s.message());
-  if (args.has("help")) {
-    std::printf("usage: stride-fw --hal NAME [options]\n\nbackends:\n");
-    for (const auto& b : fw::hal_backends()) {
-      std::printf("  %-8.*s %.*s\n", static_cast<int>(b.name.size()), b.name.data(),
-                  static_cast<int>(b.help.size()), b.help.data());
-    }
-    std::printf("\n%s", args.help().c_str());
-    return 0;
-  }
-  std::int64_t ticks = -1;
-  if (Status s = args.get_int("ticks", ticks); !s) return fail(2, s.message());
-  std::int64_t record_buffer_kb = 0;
-  if (Status s = args.get_int("record-buffer-kb", record_buffer_kb); !s) {
-    return fail(2, s.message());
-  }
-  if (record_buffer_kb < 4 || record_buffer_kb > (1 << 22)) {
-    return fail(
-        2, "--record-buffer-kb: must be in [4, 4194304], got " + std::to_string(record_buffer_kb));
-  }
+}
 
-  const fw::HalBackend* backend = nullptr;
+void print_help(const core::CliArgs& args) {
+  std::printf("usage: stride-fw --hal NAME [options]\n\nbackends:\n");
+  for (const auto& b : fw::hal_backends()) {
+    std::printf("  %-8.*s %.*s\n", static_cast<int>(b.name.size()), b.name.data(),
+                static_cast<int>(b.help.size()), b.help.data());
+  }
+  std::printf("\n%s", args.help().c_str());
+}
+
+/// --ticks, --record-buffer-kb and the backend of --hal, checked.
+Status read_run_options(const core::CliArgs& args, std::int64_t& ticks, std::int64_t& buffer_kb,
+                        const fw::HalBackend*& backend) {
+  if (Status s = args.get_int("ticks", ticks); !s) return s;
+  if (Status s = args.get_int("record-buffer-kb", buffer_kb); !s) return s;
+  if (buffer_kb < 4 || buffer_kb > (1 << 22))
+    return Status::error("--record-buffer-kb: must be in [4, 4194304], got " +
+                         std::to_string(buffer_kb));
   for (const auto& b : fw::hal_backends()) {
     if (b.name == args.get("hal")) backend = &b;
   }
-  if (backend == nullptr) {
-    return fail(2, "unknown --hal '" + args.get("hal") + "' (available: " + backends + ")");
+  if (backend == nullptr)
+    return Status::error("unknown --hal '" + args.get("hal") + "' (available: " + backend_names() +
+                         ")");
+  return Status::ok();
+}
+
+/// The flight recorder of --record (null without it), opened before the HAL so that a bad path
+/// fails before a port opens.
+Status open_recorder(const core::CliArgs& args, std::int64_t buffer_kb,
+                     const fw::FirmwareOptions& options, std::string_view hal,
+                     fw::Firmware& firmware, std::unique_ptr<fw::FlightRecorder>& out) {
+  if (!args.has("record")) return Status::ok();
+  fw::RecorderOptions record;
+  record.path = args.get("record");
+  record.buffer_bytes = static_cast<std::size_t>(buffer_kb) * 1024;
+  fw::flight_log::HeaderInputs header;
+  header.params = &firmware.params();
+  header.servos = &firmware.servos();
+  header.servo_table_file = options.servo_table;
+  header.robot = &firmware.robot();
+  header.robot_description_file = options.robot_description;
+  header.period_ns = firmware.period_ns();
+  header.hal = std::string(hal);
+  header.params_file = options.params_file.value_or("");
+  if (Status s = fw::FlightRecorder::open(record, header, firmware.controller(), out); !s)
+    return Status::error("--record: " + s.message());
+  return Status::ok();
+}
+
+/// The parameter console on `device`, serving the firmware's parameters and the loop's status.
+std::unique_ptr<fw::console::ConsoleServer> start_console(
+    const std::string& device, fw::Firmware& firmware, const fw::FirmwareOptions& options,
+    const fw::ControlLoop& loop, const fw::RealtimeRobot* paced, hal::Robot& robot) {
+  fw::console::ConsoleContext context;
+  context.params = &firmware.params();
+  context.controller = &firmware.controller();
+  context.servos = &firmware.servos();
+  if (options.params_file) context.default_file = *options.params_file;
+  context.loop_status = fw::console::loop_status_lines(loop, paced, robot);
+  auto console = fw::console::make_console(device, std::move(context));
+  console->start();
+  return console;
+}
+
+/// The run's figures: loop counters, motion state, jitter and compute time (when paced by the
+/// clock), bus timings, the backend's own and the recorder's totals.
+nlohmann::json loop_report(std::string_view hal, double rate_hz, const fw::ControlLoop& loop,
+                           fw::Firmware& firmware, const fw::RealtimeRobot* paced,
+                           const hal::Robot& robot, const fw::HalInstance& instance,
+                           const fw::RecorderTotals* recorded, const std::string& record_path) {
+  const auto& c = loop.counters();
+  const auto status = firmware.controller().status();
+  nlohmann::json report = {{"hal", std::string(hal)},
+                           {"rate_hz", rate_hz},
+                           {"cycles", c.cycles},
+                           {"missed_ticks", c.missed_ticks},
+                           {"param_batches", c.param_batches},
+                           {"motion_state", std::string(fw::to_string(status.state))},
+                           {"fallen", status.safety.fallen}};
+  if (paced != nullptr) {
+    const auto& j = paced->jitter();
+    const auto& k = paced->compute();
+    report["jitter_us"] = {
+        {"p50", us(j.percentile(0.5))}, {"p99", us(j.percentile(0.99))}, {"max", us(j.max())}};
+    report["compute_us"] = {
+        {"p50", us(k.percentile(0.5))}, {"p99", us(k.percentile(0.99))}, {"max", us(k.max())}};
   }
+  const auto& d = robot.diagnostics();
+  report["bus"] = {{"last_tx_us", us(d.last_tx_ns)},
+                   {"last_rx_us", us(d.last_rx_ns)},
+                   {"max_tx_us", us(d.max_tx_ns)},
+                   {"max_rx_us", us(d.max_rx_ns)}};
+  if (instance.report) instance.report(report);
+  if (recorded != nullptr) {
+    report["record"] = {{"path", record_path},
+                        {"ticks_recorded", recorded->ticks_recorded},
+                        {"ticks_dropped", recorded->ticks_dropped},
+                        {"bytes", recorded->bytes_written},
+                        {"write_error", recorded->write_error}};
+  }
+  return report;
+}
+
+/// loop_report as the lines a person reads.
+void print_report(const nlohmann::json& report) {
+  std::printf("loop: %llu cycles at %.0f Hz, %llu missed ticks, motion %s\n",
+              static_cast<unsigned long long>(report["cycles"].get<std::uint64_t>()),
+              report["rate_hz"].get<double>(),
+              static_cast<unsigned long long>(report["missed_ticks"].get<std::uint64_t>()),
+              report["motion_state"].get<std::string>().c_str());
+  if (report.contains("jitter_us")) {
+    std::printf("period jitter: p50 %.1f us, p99 %.1f us, max %.1f us\n",
+                report["jitter_us"]["p50"].get<double>(), report["jitter_us"]["p99"].get<double>(),
+                report["jitter_us"]["max"].get<double>());
+    std::printf("compute time:  p50 %.1f us, p99 %.1f us, max %.1f us\n",
+                report["compute_us"]["p50"].get<double>(),
+                report["compute_us"]["p99"].get<double>(),
+                report["compute_us"]["max"].get<double>());
+  }
+  std::printf("bus: last tx %.1f us, last rx %.1f us\n", report["bus"]["last_tx_us"].get<double>(),
+              report["bus"]["last_rx_us"].get<double>());
+  if (report.contains("record")) {
+    const nlohmann::json& r = report["record"];
+    std::printf("record: %llu ticks, %llu dropped, %llu bytes in %s\n",
+                static_cast<unsigned long long>(r["ticks_recorded"].get<std::uint64_t>()),
+                static_cast<unsigned long long>(r["ticks_dropped"].get<std::uint64_t>()),
+                static_cast<unsigned long long>(r["bytes"].get<std::uint64_t>()),
+                r["path"].get<std::string>().c_str());
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  core::CliArgs args;
+  declare_options(args);
+  if (Status s = args.parse(argc, argv); !s) return fail(2, s.message());
+  if (args.has("help")) {
+    print_help(args);
+    return 0;
+  }
+  std::int64_t ticks = -1, record_buffer_kb = 0;
+  const fw::HalBackend* backend = nullptr;
+  if (Status s = read_run_options(args, ticks, record_buffer_kb, backend); !s)
+    return fail(2, s.message());
 
   fw::FirmwareOptions options;
   options.servo_table = args.get("servo-table");
@@ -95,25 +222,10 @@ int main(int argc, char** argv) {
     if (Status s = backend->check_options(args, firmware->period_ns()); !s)
       return fail(2, s.message());
 
-  // The recorder opens before the HAL, so that a bad --record path fails before a port opens.
   std::unique_ptr<fw::FlightRecorder> recorder;
-  if (args.has("record")) {
-    fw::RecorderOptions record;
-    record.path = args.get("record");
-    record.buffer_bytes = static_cast<std::size_t>(record_buffer_kb) * 1024;
-    fw::flight_log::HeaderInputs header;
-    header.params = &firmware->params();
-    header.servos = &firmware->servos();
-    header.servo_table_file = options.servo_table;
-    header.robot = &firmware->robot();
-    header.robot_description_file = options.robot_description;
-    header.period_ns = firmware->period_ns();
-    header.hal = std::string(backend->name);
-    header.params_file = options.params_file.value_or("");
-    if (Status s = fw::FlightRecorder::open(record, header, firmware->controller(), recorder); !s) {
-      return fail(2, "--record: " + s.message());
-    }
-  }
+  if (Status s = open_recorder(args, record_buffer_kb, options, backend->name, *firmware, recorder);
+      !s)
+    return fail(2, s.message());
 
   fw::HalInstance instance;
   if (Status s = backend->make(args, firmware->period_ns(), instance); !s) {
@@ -145,83 +257,26 @@ int main(int argc, char** argv) {
   fw::ControlLoop loop(*robot, firmware->controller(), firmware->params());
   loop.set_recorder(recorder.get());
   std::unique_ptr<fw::console::ConsoleServer> console;
-  if (args.has("console")) {
-    fw::console::ConsoleContext context;
-    context.params = &firmware->params();
-    context.controller = &firmware->controller();
-    context.servos = &firmware->servos();
-    if (options.params_file) context.default_file = *options.params_file;
-    context.loop_status = fw::console::loop_status_lines(loop, paced.get(), *robot);
-    console = fw::console::make_console(args.get("console"), std::move(context));
-    console->start();
-  }
+  if (args.has("console"))
+    console = start_console(args.get("console"), *firmware, options, loop, paced.get(), *robot);
   loop.run(ticks, &g_stop);
   if (console) console->stop();
   fw::RecorderTotals recorded;
   if (recorder) recorded = recorder->close();
 
-  const auto& c = loop.counters();
-  const auto status = firmware->controller().status();
-  nlohmann::json report = {{"hal", std::string(backend->name)},
-                           {"rate_hz", rate_hz},
-                           {"cycles", c.cycles},
-                           {"missed_ticks", c.missed_ticks},
-                           {"param_batches", c.param_batches},
-                           {"motion_state", std::string(fw::to_string(status.state))},
-                           {"fallen", status.safety.fallen}};
-  if (paced) {
-    const auto& j = paced->jitter();
-    const auto& k = paced->compute();
-    report["jitter_us"] = {
-        {"p50", us(j.percentile(0.5))}, {"p99", us(j.percentile(0.99))}, {"max", us(j.max())}};
-    report["compute_us"] = {
-        {"p50", us(k.percentile(0.5))}, {"p99", us(k.percentile(0.99))}, {"max", us(k.max())}};
+  const nlohmann::json report =
+      loop_report(backend->name, rate_hz, loop, *firmware, paced.get(), *robot, instance,
+                  recorder ? &recorded : nullptr, args.get("record"));
+  if (recorder && !recorded.write_error.empty()) {
+    std::fprintf(stderr,
+                 "stride-fw: warning: --record: writing %s failed (%s); the log ends "
+                 "at the failure\n",
+                 args.get("record").c_str(), recorded.write_error.c_str());
   }
-  const auto& d = robot->diagnostics();
-  report["bus"] = {{"last_tx_us", us(d.last_tx_ns)},
-                   {"last_rx_us", us(d.last_rx_ns)},
-                   {"max_tx_us", us(d.max_tx_ns)},
-                   {"max_rx_us", us(d.max_rx_ns)}};
-  if (instance.report) instance.report(report);
-  if (recorder) {
-    report["record"] = {{"path", args.get("record")},
-                        {"ticks_recorded", recorded.ticks_recorded},
-                        {"ticks_dropped", recorded.ticks_dropped},
-                        {"bytes", recorded.bytes_written},
-                        {"write_error", recorded.write_error}};
-    if (!recorded.write_error.empty()) {
-      std::fprintf(stderr,
-                   "stride-fw: warning: --record: writing %s failed (%s); the log ends "
-                   "at the failure\n",
-                   args.get("record").c_str(), recorded.write_error.c_str());
-    }
-  }
-
   if (args.has("json")) {
     std::printf("%s\n", report.dump().c_str());
   } else {
-    std::printf("loop: %llu cycles at %.0f Hz, %llu missed ticks, motion %s\n",
-                static_cast<unsigned long long>(c.cycles), rate_hz,
-                static_cast<unsigned long long>(report["missed_ticks"].get<std::uint64_t>()),
-                std::string(fw::to_string(status.state)).c_str());
-    if (paced) {
-      std::printf("period jitter: p50 %.1f us, p99 %.1f us, max %.1f us\n",
-                  report["jitter_us"]["p50"].get<double>(),
-                  report["jitter_us"]["p99"].get<double>(),
-                  report["jitter_us"]["max"].get<double>());
-      std::printf("compute time:  p50 %.1f us, p99 %.1f us, max %.1f us\n",
-                  report["compute_us"]["p50"].get<double>(),
-                  report["compute_us"]["p99"].get<double>(),
-                  report["compute_us"]["max"].get<double>());
-    }
-    std::printf("bus: last tx %.1f us, last rx %.1f us\n", us(d.last_tx_ns), us(d.last_rx_ns));
-    if (recorder) {
-      std::printf("record: %llu ticks, %llu dropped, %llu bytes in %s\n",
-                  static_cast<unsigned long long>(recorded.ticks_recorded),
-                  static_cast<unsigned long long>(recorded.ticks_dropped),
-                  static_cast<unsigned long long>(recorded.bytes_written),
-                  args.get("record").c_str());
-    }
+    print_report(report);
   }
   return 0;
 }

@@ -103,53 +103,47 @@ void MotionManager::hold_soft(const hal::SensorFrame& sensors, hal::CommandFrame
   }
 }
 
-void MotionManager::step(const hal::SensorFrame& sensors, hal::Tick tick, const FallSignal& fall,
-                         hal::CommandFrame& out) noexcept {
-  const bool fallen = fall.fallen;
-  const hal::CommandFrame& last = out;  // holds the previous tick's commands
-  if (!started_) {
-    started_ = true;
-    enter(MotionState::kStand, stand_, sensors, last, tick);
-  }
-
-  // 1. Requests.
-  if (have_request_) {
-    have_request_ = false;
-    switch (pending_.kind) {
-      case MotionRequest::Kind::kStand:
-        want_walk_ = false;
-        want_script_ = -1;
-        if (state_ == MotionState::kWalk) walk_->request_stop();
-        if (state_ == MotionState::kScript) want_script_ = kStopScript;  // stand from here
-        break;
-      case MotionRequest::Kind::kWalk:
-        if (walk_ == nullptr) {
-          ++refused_;
-          break;
-        }
-        walk_vx_ = std::clamp(pending_.vx, -1.0, 1.0);
-        walk_vy_ = std::clamp(pending_.vy, -1.0, 1.0);
-        walk_vtheta_ = std::clamp(pending_.vtheta, -1.0, 1.0);
-        want_walk_ = true;
-        want_script_ = -1;
-        if (state_ == MotionState::kWalk) walk_->set_velocity(walk_vx_, walk_vy_, walk_vtheta_);
-        break;
-      case MotionRequest::Kind::kScript: {
-        const int index = script_ != nullptr ? script_->find(pending_.script_name()) : -1;
-        if (index < 0 || state_ == MotionState::kFallen || state_ == MotionState::kGetUp) {
-          ++refused_;
-          break;
-        }
-        want_script_ = index;
-        copy_name(want_script_name_, pending_.script_name());
-        want_walk_ = false;
-        if (state_ == MotionState::kWalk) walk_->request_stop();
+/// 1. The latest request (stand, walk, script) turned into what the manager wants next.
+void MotionManager::take_request() noexcept {
+  if (!have_request_) return;
+  have_request_ = false;
+  switch (pending_.kind) {
+    case MotionRequest::Kind::kStand:
+      want_walk_ = false;
+      want_script_ = -1;
+      if (state_ == MotionState::kWalk) walk_->request_stop();
+      if (state_ == MotionState::kScript) want_script_ = kStopScript;  // stand from here
+      break;
+    case MotionRequest::Kind::kWalk:
+      if (walk_ == nullptr) {
+        ++refused_;
         break;
       }
+      walk_vx_ = std::clamp(pending_.vx, -1.0, 1.0);
+      walk_vy_ = std::clamp(pending_.vy, -1.0, 1.0);
+      walk_vtheta_ = std::clamp(pending_.vtheta, -1.0, 1.0);
+      want_walk_ = true;
+      want_script_ = -1;
+      if (state_ == MotionState::kWalk) walk_->set_velocity(walk_vx_, walk_vy_, walk_vtheta_);
+      break;
+    case MotionRequest::Kind::kScript: {
+      const int index = script_ != nullptr ? script_->find(pending_.script_name()) : -1;
+      if (index < 0 || state_ == MotionState::kFallen || state_ == MotionState::kGetUp) {
+        ++refused_;
+        break;
+      }
+      want_script_ = index;
+      copy_name(want_script_name_, pending_.script_name());
+      want_walk_ = false;
+      if (state_ == MotionState::kWalk) walk_->request_stop();
+      break;
     }
   }
+}
 
-  // 2. Falls pre-empt everything but a get-up in progress.
+/// 2. Falls pre-empt everything but a get-up in progress.
+void MotionManager::note_fall(const FallSignal& fall, hal::Tick tick) noexcept {
+  const bool fallen = fall.fallen;
   if (fallen && state_ != MotionState::kFallen && state_ != MotionState::kGetUp) {
     relaxed_ = state_ == MotionState::kFalling;  // a protected fall relaxes through the impact
     state_ = MotionState::kFallen;
@@ -175,6 +169,63 @@ void MotionManager::step(const hal::SensorFrame& sensors, hal::Tick tick, const 
   if (state_ == MotionState::kFalling && fall.falling) falling_clear_since_ = tick;
   if (state_ == MotionState::kFalling && fall.tilt_rad > protection_.relax_tilt_rad())
     relaxed_ = true;
+}
+
+/// Lying: wait until the robot lies still (or long enough), then play the get-up script of the
+/// side it lies on; relaxed through a protected fall's impact, else held soft.
+void MotionManager::step_fallen(const hal::SensorFrame& sensors, hal::Tick tick, bool fallen,
+                                const hal::CommandFrame& last, hal::CommandFrame& out) noexcept {
+  const double lying = static_cast<double>(tick - fallen_since_) * period_s_;
+  const auto& gyro = sensors.cm730.gyro_rad_s;
+  const double rate_limit = params_.value(fallen_still_rate_);
+  if (std::abs(gyro[0]) >= rate_limit || std::abs(gyro[1]) >= rate_limit ||
+      std::abs(gyro[2]) >= rate_limit)
+    moving_since_fall_ = tick;
+  const double still = static_cast<double>(tick - moving_since_fall_) * period_s_;
+  if (!fallen) {  // righted by someone: stand up from here
+    enter(MotionState::kStand, stand_, sensors, last, tick);
+    stand_.step(sensors, tick, out);
+    return;
+  }
+  const bool settled =
+      still >= params_.value(fallen_still_time_) || lying >= params_.value(fallen_settle_time_);
+  if (params_.value(get_up_enabled_) != 0.0 && settled) {
+    const auto& a = sensors.cm730.accel_mps2;
+    const bool on_front = a[0] < 0.0;  // torso x axis points down
+    // On a side, wait until it lies still (it may still roll over), at most one more settle
+    // time, then play the script of the side the torso leans to: its first frames tip the
+    // robot onto its front or back, and the retry picks the script for that side. (Without
+    // this a robot lying still on a side stayed down for ever.)
+    const bool clear = std::abs(a[0]) > std::abs(a[1]) ||
+                       still >= params_.value(fallen_still_time_) ||
+                       lying >= 2.0 * params_.value(fallen_settle_time_);
+    const int index = on_front ? get_up_front_ : get_up_back_;
+    if (clear && index >= 0 &&
+        start_script(index, on_front ? "get_up_front" : "get_up_back", sensors, last, tick)) {
+      relaxed_ = false;
+      script_->step(sensors, tick, out);
+      return;
+    }
+  }
+  if (relaxed_ && lying < protection_.relax_time_s()) {  // through the impact: torque off
+    for (auto& c : out.servos) c.torque_enable = false;
+    return;
+  }
+  relaxed_ = false;
+  hold_soft(sensors, out);
+}
+
+void MotionManager::step(const hal::SensorFrame& sensors, hal::Tick tick, const FallSignal& fall,
+                         hal::CommandFrame& out) noexcept {
+  const bool fallen = fall.fallen;
+  const hal::CommandFrame& last = out;  // holds the previous tick's commands
+  if (!started_) {
+    started_ = true;
+    enter(MotionState::kStand, stand_, sensors, last, tick);
+  }
+
+  take_request();         // 1. requests
+  note_fall(fall, tick);  // 2. falls, detected or predicted
 
   // 3. Transitions and the active engine.
   switch (state_) {
@@ -215,47 +266,9 @@ void MotionManager::step(const hal::SensorFrame& sensors, hal::Tick tick, const 
       script_->step(sensors, tick, out);
       return;
 
-    case MotionState::kFallen: {
-      const double lying = static_cast<double>(tick - fallen_since_) * period_s_;
-      const auto& gyro = sensors.cm730.gyro_rad_s;
-      const double rate_limit = params_.value(fallen_still_rate_);
-      if (std::abs(gyro[0]) >= rate_limit || std::abs(gyro[1]) >= rate_limit ||
-          std::abs(gyro[2]) >= rate_limit)
-        moving_since_fall_ = tick;
-      const double still = static_cast<double>(tick - moving_since_fall_) * period_s_;
-      if (!fallen) {  // righted by someone: stand up from here
-        enter(MotionState::kStand, stand_, sensors, last, tick);
-        stand_.step(sensors, tick, out);
-        return;
-      }
-      const bool settled =
-          still >= params_.value(fallen_still_time_) || lying >= params_.value(fallen_settle_time_);
-      if (params_.value(get_up_enabled_) != 0.0 && settled) {
-        const auto& a = sensors.cm730.accel_mps2;
-        const bool on_front = a[0] < 0.0;  // torso x axis points down
-        // On a side, wait until it lies still (it may still roll over), at most one more settle
-        // time, then play the script of the side the torso leans to: its first frames tip the
-        // robot onto its front or back, and the retry picks the script for that side. (Without
-        // this a robot lying still on a side stayed down for ever.)
-        const bool clear = std::abs(a[0]) > std::abs(a[1]) ||
-                           still >= params_.value(fallen_still_time_) ||
-                           lying >= 2.0 * params_.value(fallen_settle_time_);
-        const int index = on_front ? get_up_front_ : get_up_back_;
-        if (clear && index >= 0 &&
-            start_script(index, on_front ? "get_up_front" : "get_up_back", sensors, last, tick)) {
-          relaxed_ = false;
-          script_->step(sensors, tick, out);
-          return;
-        }
-      }
-      if (relaxed_ && lying < protection_.relax_time_s()) {  // through the impact: torque off
-        for (auto& c : out.servos) c.torque_enable = false;
-        return;
-      }
-      relaxed_ = false;
-      hold_soft(sensors, out);
+    case MotionState::kFallen:
+      step_fallen(sensors, tick, fallen, last, out);
       return;
-    }
 
     case MotionState::kFalling:
       if (static_cast<double>(tick - falling_clear_since_) * period_s_ >=

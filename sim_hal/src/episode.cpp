@@ -30,6 +30,36 @@ std::string hash_hex(std::uint64_t hash) {
   return text;
 }
 
+namespace {
+
+/// The links' and the ball's poses at time `t`.
+PoseSnapshot snapshot(const SimWorld& world, double t) {
+  PoseSnapshot snapshot;
+  snapshot.time_s = t;
+  snapshot.links = world.link_poses();
+  snapshot.ball = world.ground_truth().ball_position;
+  return snapshot;
+}
+
+/// The impact's peaks from the first body contact over EpisodeOptions::impact_window_s, until
+/// EpisodeOptions::impact_over says the landing is over (`closed`).
+void measure_impact(const SimWorld& world, const EpisodeOptions& options, double t, bool& closed,
+                    ImpactMeasure& m) {
+  if (!m.body_contact_s && world.ground_truth().other_contacts > 0) m.body_contact_s = t;
+  if (m.body_contact_s && !closed && options.impact_over && options.impact_over()) closed = true;
+  if (m.body_contact_s && !closed && t <= *m.body_contact_s + options.impact_window_s) {
+    const SimWorld::PeriodPeaks& p = world.last_period_peaks();
+    m.peak_accel_mps2 = std::max(m.peak_accel_mps2, p.torso_accel_mps2);
+    m.peak_joint_torque_nm = std::max(m.peak_joint_torque_nm, p.joint_torque_nm);
+    if (p.servo_torque_nm > m.peak_servo_torque_nm) {
+      m.peak_servo_torque_nm = p.servo_torque_nm;
+      m.peak_servo_index = p.servo_index;
+    }
+  }
+}
+
+}  // namespace
+
 EpisodeResult run_episode(SimRobot& robot, const StepFunction& controller,
                           const EpisodeOptions& options) {
   EpisodeResult result;
@@ -59,29 +89,11 @@ EpisodeResult run_episode(SimRobot& robot, const StepFunction& controller,
     if (options.recorder) options.recorder->record(tick - first_tick, world, sensors, commands);
     if (options.on_tick) options.on_tick(tick - first_tick, world, sensors);
     while (next_snapshot < snapshot_times.size() && snapshot_times[next_snapshot] <= t + 1e-9) {
-      PoseSnapshot snapshot;
-      snapshot.time_s = t;
-      snapshot.links = world.link_poses();
-      snapshot.ball = world.ground_truth().ball_position;
-      result.snapshots.push_back(std::move(snapshot));
+      result.snapshots.push_back(snapshot(world, t));
       ++next_snapshot;
     }
     if (world.status() != WorldStatus::kRunning) break;
-    if (options.impact_metrics) {
-      ImpactMeasure& m = result.impact;
-      if (!m.body_contact_s && world.ground_truth().other_contacts > 0) m.body_contact_s = t;
-      if (m.body_contact_s && !impact_closed && options.impact_over && options.impact_over())
-        impact_closed = true;
-      if (m.body_contact_s && !impact_closed && t <= *m.body_contact_s + options.impact_window_s) {
-        const SimWorld::PeriodPeaks& p = world.last_period_peaks();
-        m.peak_accel_mps2 = std::max(m.peak_accel_mps2, p.torso_accel_mps2);
-        m.peak_joint_torque_nm = std::max(m.peak_joint_torque_nm, p.joint_torque_nm);
-        if (p.servo_torque_nm > m.peak_servo_torque_nm) {
-          m.peak_servo_torque_nm = p.servo_torque_nm;
-          m.peak_servo_index = p.servo_index;
-        }
-      }
-    }
+    if (options.impact_metrics) measure_impact(world, options, t, impact_closed, result.impact);
     if (t >= options.metrics_start_s) {
       const auto& a = sensors.cm730.accel_mps2;
       result.max_accel =

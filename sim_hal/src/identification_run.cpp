@@ -82,11 +82,8 @@ class Player {
   IdentificationSummary& out_;
 };
 
-}  // namespace
-
-Status record_identification(const IdentificationRun& run, WorldOptions world,
-                             const std::filesystem::path& log, IdentificationSummary& out) {
-  out = {};
+/// The run's parts are known, its durations in [0, 3600] s, its walk command in [-1, 1].
+Status check_run(const IdentificationRun& run) {
   const auto& known = identification_parts();
   for (const std::string& part : run.parts)
     if (std::find(known.begin(), known.end(), part) == known.end())
@@ -96,6 +93,56 @@ Status record_identification(const IdentificationRun& run, WorldOptions world,
     if (!(s >= 0.0 && s <= 3600.0)) return Status::error("part durations must be in [0, 3600] s");
   if (!(run.walk_vx >= -1.0 && run.walk_vx <= 1.0))
     return Status::error("walk command must be in [-1, 1]");
+  return Status::ok();
+}
+
+/// The flight recorder writing to `path`, its header naming the firmware's files and the sim HAL.
+Status open_recorder(const IdentificationRun& run, fw::Firmware& firmware,
+                     const std::filesystem::path& path, std::unique_ptr<fw::FlightRecorder>& out) {
+  fw::flight_log::HeaderInputs header;
+  header.params = &firmware.params();
+  header.servos = &firmware.servos();
+  header.servo_table_file = run.firmware.servo_table;
+  header.robot = &firmware.robot();
+  header.robot_description_file = run.firmware.robot_description.empty()
+                                      ? fw::RobotDescription::default_path()
+                                      : run.firmware.robot_description;
+  header.params_file = run.firmware.params_file.value_or(std::filesystem::path());
+  header.period_ns = firmware.period_ns();
+  header.hal = "sim";
+  fw::RecorderOptions recorder_options;
+  recorder_options.path = path;
+  // Large enough for the whole routine: a simulation running faster than the writer never
+  // drops a tick, so the log is the same on every host.
+  recorder_options.buffer_bytes = 128U << 20;
+  return fw::FlightRecorder::open(recorder_options, header, firmware.controller(), out);
+}
+
+/// One part of the routine, then the pause after it.
+void play_part(Player& player, const IdentificationRun& run, const std::string& part) {
+  if (part == "stand") {
+    player.wait(run.stand_s);
+  } else if (part == "walk") {
+    player.request(fw::MotionRequest::walk(0.0, 0.0, 0.0));
+    player.wait(run.walk_in_place_s);
+    player.request(fw::MotionRequest::stand());
+    player.wait(run.stop_s);
+    player.request(fw::MotionRequest::walk(run.walk_vx, 0.0, 0.0));
+    player.wait(run.walk_s);
+    player.request(fw::MotionRequest::stand());
+    player.wait(run.stop_s);
+  } else {
+    player.play(part, run.script_timeout_s);
+  }
+  player.wait(run.pause_s);
+}
+
+}  // namespace
+
+Status record_identification(const IdentificationRun& run, WorldOptions world,
+                             const std::filesystem::path& log, IdentificationSummary& out) {
+  out = {};
+  if (Status s = check_run(run); !s) return s;
 
   std::unique_ptr<fw::Firmware> firmware;
   if (Status s = fw::Firmware::create(run.firmware, firmware); !s) return s;
@@ -105,29 +152,10 @@ Status record_identification(const IdentificationRun& run, WorldOptions world,
   if (Status s = SimWorld::create(world, sim_world); !s) return s;
   SimRobot robot(std::move(sim_world));
 
-  fw::flight_log::HeaderInputs header;
-  header.params = &firmware->params();
-  header.servos = &firmware->servos();
-  header.servo_table_file = run.firmware.servo_table;
-  header.robot = &firmware->robot();
-  header.robot_description_file = run.firmware.robot_description.empty()
-                                      ? fw::RobotDescription::default_path()
-                                      : run.firmware.robot_description;
-  header.params_file = run.firmware.params_file.value_or(std::filesystem::path());
-  header.period_ns = firmware->period_ns();
-  header.hal = "sim";
   std::filesystem::path part_file = log;
   part_file += ".part";
-  fw::RecorderOptions recorder_options;
-  recorder_options.path = part_file;
-  // Large enough for the whole routine: a simulation running faster than the writer never
-  // drops a tick, so the log is the same on every host.
-  recorder_options.buffer_bytes = 128U << 20;
   std::unique_ptr<fw::FlightRecorder> recorder;
-  if (Status s =
-          fw::FlightRecorder::open(recorder_options, header, firmware->controller(), recorder);
-      !s)
-    return s;
+  if (Status s = open_recorder(run, *firmware, part_file, recorder); !s) return s;
 
   fw::ControlLoop loop(robot, firmware->controller(), firmware->params());
   loop.set_recorder(recorder.get());
@@ -137,21 +165,7 @@ Status record_identification(const IdentificationRun& run, WorldOptions world,
   for (const std::string& part : run.parts) {
     if (player.stopped()) break;
     out.part_start_s.emplace_back(part, player.now_s());
-    if (part == "stand") {
-      player.wait(run.stand_s);
-    } else if (part == "walk") {
-      player.request(fw::MotionRequest::walk(0.0, 0.0, 0.0));
-      player.wait(run.walk_in_place_s);
-      player.request(fw::MotionRequest::stand());
-      player.wait(run.stop_s);
-      player.request(fw::MotionRequest::walk(run.walk_vx, 0.0, 0.0));
-      player.wait(run.walk_s);
-      player.request(fw::MotionRequest::stand());
-      player.wait(run.stop_s);
-    } else {
-      player.play(part, run.script_timeout_s);
-    }
-    player.wait(run.pause_s);
+    play_part(player, run, part);
   }
   out.accel_bias_mps2 = robot.world().episode_accel_bias();
   out.gyro_bias_rad_s = robot.world().episode_gyro_bias();

@@ -241,15 +241,8 @@ void DynamixelRobot::decode_cm730(const std::uint8_t* data) noexcept {
   c.voltage_v = units::voltage_from_register(data[cm730::kVoltage - kCm730ReadAddress]);
 }
 
-void DynamixelRobot::read(SensorFrame& out) noexcept {
-  // The cycle's bus budget starts with its first transaction, the BULK_READ.
-  cycle_start_ns_ = monotonic_ns();
-  diagnostics_.last_tx_ns = 0;
-  diagnostics_.last_rx_ns = 0;
-  // Bulk-read list: active devices in order_, then skipped devices due for a retry.
-  std::array<BulkReadEntry, kDevices> entries{};
-  std::array<std::uint8_t, kDevices> entry_index{};
-  std::size_t count = 0;
+void DynamixelRobot::plan_bulk_read(BulkRound& round) const noexcept {
+  // Active devices in order_, then skipped devices due for a retry.
   const Tick tick = tick_;
   for (int pass = 0; pass < 2; ++pass) {
     for (const std::uint8_t i : order_) {
@@ -258,90 +251,92 @@ void DynamixelRobot::read(SensorFrame& out) noexcept {
           (tick + static_cast<Tick>(i)) % static_cast<Tick>(options_.retry_interval_ticks) == 0;
       const bool include = pass == 0 ? !skipped_[i] : (skipped_[i] && retry_due);
       if (!include) continue;
-      entries[count] = i == kCm730Index
-                           ? BulkReadEntry{kCm730Id, kCm730ReadAddress, kCm730ReadLength}
+      round.entries[round.count] =
+          i == kCm730Index ? BulkReadEntry{kCm730Id, kCm730ReadAddress, kCm730ReadLength}
                            : BulkReadEntry{device_id(i), kServoReadAddress, kServoReadLength};
-      entry_index[count++] = i;
+      round.device[round.count++] = i;
     }
   }
-  std::array<bool, kDevices> got{};
+}
+
+void DynamixelRobot::exchange_bulk_read(BulkRound& round) noexcept {
+  const std::size_t count = round.count;
+  if (count == 0) return;
+  const auto& entries = round.entries;
   std::size_t received = 0;
   const std::uint64_t bad_before = parser_.stats().bad_checksum;
-  std::array<bool, kDevices> corrupt{};
-  if (count > 0) {
-    const std::size_t n = v1::encode_bulk_read(tx_, std::span(entries.data(), count));
-    stream_->discard_input();
-    parser_.reset();
-    const std::uint32_t baud = stream_->baud();
-    std::int64_t reply_wire = 0;
-    for (std::size_t k = 0; k < count; ++k)
-      reply_wire += wire_time_ns(6U + entries[k].length, baud);
-    const std::int64_t budget_end =
-        cycle_start_ns_ + static_cast<std::int64_t>(options_.bus_budget_fraction *
-                                                    static_cast<double>(options_.period_ns));
-    const std::int64_t t_send = monotonic_ns();
-    std::int64_t deadline = t_send + wire_time_ns(n, baud) + reply_wire + options_.margin_ns;
-    deadline = std::min(deadline, std::max(budget_end, t_send + wire_time_ns(n, baud)));
-    if (send(std::span(tx_.data(), n), deadline)) {
-      const std::int64_t t_rx = monotonic_ns();
-      std::uint64_t seen_bad = bad_before;
-      while (received < count) {
-        while (parser_.next(packet_)) {
-          for (std::size_t k = 0; k < count; ++k) {
-            if (got[k] || entries[k].id != packet_.id) continue;
-            const std::size_t i = entry_index[k];
-            if (packet_.param_count != entries[k].length) {
-              corrupt[k] = true;
-              break;
-            }
-            got[k] = true;
-            ++received;
-            DeviceDiagnostics& d = diagnostics_.devices[i];
-            ++d.replies;
-            d.last_error_flags = packet_.error;
-            if (packet_.error != 0) ++d.error_replies;
-            if (i == kCm730Index) {
-              decode_cm730(packet_.params.data());
-            } else {
-              decode_servo(i, packet_.params.data());
-            }
-            break;
-          }
-        }
-        while (seen_bad < parser_.stats().bad_checksum) {
-          ++seen_bad;
-          for (std::size_t k = 0; k < count; ++k) {
-            if (entries[k].id == parser_.last_bad_id()) corrupt[k] = true;
-          }
-        }
-        // Replies come in list order: once the last device has answered, a missing earlier
-        // reply is lost for good, so there is nothing left to wait for.
-        if (received == count || got[count - 1]) break;
-        const std::ptrdiff_t r = stream_->read_some(rx_, deadline);
-        if (r <= 0) {
-          // Nothing more will come: a damaged length may hide complete packets behind it.
-          if (parser_.skip_incomplete()) continue;
+  const std::size_t n = v1::encode_bulk_read(tx_, std::span(entries.data(), count));
+  stream_->discard_input();
+  parser_.reset();
+  const std::uint32_t baud = stream_->baud();
+  std::int64_t reply_wire = 0;
+  for (std::size_t k = 0; k < count; ++k) reply_wire += wire_time_ns(6U + entries[k].length, baud);
+  const std::int64_t budget_end =
+      cycle_start_ns_ + static_cast<std::int64_t>(options_.bus_budget_fraction *
+                                                  static_cast<double>(options_.period_ns));
+  const std::int64_t t_send = monotonic_ns();
+  std::int64_t deadline = t_send + wire_time_ns(n, baud) + reply_wire + options_.margin_ns;
+  deadline = std::min(deadline, std::max(budget_end, t_send + wire_time_ns(n, baud)));
+  if (!send(std::span(tx_.data(), n), deadline)) return;
+  const std::int64_t t_rx = monotonic_ns();
+  std::uint64_t seen_bad = bad_before;
+  while (received < count) {
+    while (parser_.next(packet_)) {
+      for (std::size_t k = 0; k < count; ++k) {
+        if (round.got[k] || entries[k].id != packet_.id) continue;
+        const std::size_t i = round.device[k];
+        if (packet_.param_count != entries[k].length) {
+          round.corrupt[k] = true;
           break;
         }
-        diagnostics_.bytes_rx += static_cast<std::uint64_t>(r);
-        (void)parser_.feed(std::span<const std::uint8_t>(rx_.data(), static_cast<std::size_t>(r)));
+        round.got[k] = true;
+        ++received;
+        DeviceDiagnostics& d = diagnostics_.devices[i];
+        ++d.replies;
+        d.last_error_flags = packet_.error;
+        if (packet_.error != 0) ++d.error_replies;
+        if (i == kCm730Index) {
+          decode_cm730(packet_.params.data());
+        } else {
+          decode_servo(i, packet_.params.data());
+        }
+        break;
       }
-      diagnostics_.last_rx_ns = monotonic_ns() - t_rx;
-      diagnostics_.max_rx_ns = std::max(diagnostics_.max_rx_ns, diagnostics_.last_rx_ns);
     }
+    while (seen_bad < parser_.stats().bad_checksum) {
+      ++seen_bad;
+      for (std::size_t k = 0; k < count; ++k) {
+        if (entries[k].id == parser_.last_bad_id()) round.corrupt[k] = true;
+      }
+    }
+    // Replies come in list order: once the last device has answered, a missing earlier
+    // reply is lost for good, so there is nothing left to wait for.
+    if (received == count || round.got[count - 1]) break;
+    const std::ptrdiff_t r = stream_->read_some(rx_, deadline);
+    if (r <= 0) {
+      // Nothing more will come: a damaged length may hide complete packets behind it.
+      if (parser_.skip_incomplete()) continue;
+      break;
+    }
+    diagnostics_.bytes_rx += static_cast<std::uint64_t>(r);
+    (void)parser_.feed(std::span<const std::uint8_t>(rx_.data(), static_cast<std::size_t>(r)));
   }
-  // Health and the failure policy.
+  diagnostics_.last_rx_ns = monotonic_ns() - t_rx;
+  diagnostics_.max_rx_ns = std::max(diagnostics_.max_rx_ns, diagnostics_.last_rx_ns);
+}
+
+void DynamixelRobot::judge_bulk_read(const BulkRound& round) noexcept {
   bool blamed = false;
-  for (std::size_t k = 0; k < count; ++k) {
-    const std::size_t i = entry_index[k];
+  for (std::size_t k = 0; k < round.count; ++k) {
+    const std::size_t i = round.device[k];
     DeviceDiagnostics& d = diagnostics_.devices[i];
-    if (got[k]) {
+    if (round.got[k]) {
       d.consecutive_failures = 0;
       skipped_[i] = false;
       d.health = d.last_error_flags != 0 ? DeviceHealth::kError : DeviceHealth::kOk;
       continue;
     }
-    if (corrupt[k]) {
+    if (round.corrupt[k]) {
       ++d.corrupt_replies;
     } else {
       ++d.timeouts;
@@ -360,6 +355,17 @@ void DynamixelRobot::read(SensorFrame& out) noexcept {
       if (it != order_.end()) std::rotate(it, it + 1, order_.end());
     }
   }
+}
+
+void DynamixelRobot::read(SensorFrame& out) noexcept {
+  // The cycle's bus budget starts with its first transaction, the BULK_READ.
+  cycle_start_ns_ = monotonic_ns();
+  diagnostics_.last_tx_ns = 0;
+  diagnostics_.last_rx_ns = 0;
+  BulkRound round;
+  plan_bulk_read(round);
+  exchange_bulk_read(round);
+  judge_bulk_read(round);
   for (std::size_t i = 0; i < kServoCount; ++i) {
     state_.servos[i].health = diagnostics_.devices[i].health;
     state_.servos[i].error_flags = diagnostics_.devices[i].last_error_flags;

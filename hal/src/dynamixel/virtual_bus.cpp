@@ -278,68 +278,78 @@ void VirtualBus::handle(const Packet& packet, std::vector<std::uint8_t>& out,
   ++counters_.instructions;
   advance_time();
   const auto params = packet.parameters();
-  const bool broadcast = packet.id == kBroadcastId;
-
-  if (packet.instruction == instruction::kSyncWrite && broadcast) {
-    ++counters_.sync_writes;
-    if (params.size() < 2 || params[1] == 0) return;
-    const std::size_t record = params[1] + 1U;
-    if ((params.size() - 2) % record != 0) return;
-    for (std::size_t k = 2; k + record <= params.size(); k += record) {
-      Device* d = find(params[k]);
-      if (d != nullptr) {
-        (void)apply_write(*d, params[0], params.subspan(k + 1, params[1]));
-        d->command_error = 0;  // no status packet carries it
-      }
-    }
-    return;
+  if (packet.id != kBroadcastId) {
+    handle_addressed(packet, params, out, delay_us);
+  } else if (packet.instruction == instruction::kSyncWrite) {
+    handle_sync_write(params);
+  } else if (packet.instruction == instruction::kBulkRead) {
+    handle_bulk_read(params, out, delay_us);
+  } else {
+    handle_broadcast(packet, params);
   }
-  if (packet.instruction == instruction::kBulkRead && broadcast) {
-    if (options_.lockstep) physics_->advance(static_cast<double>(options_.period_ns) * 1e-9);
-    if (params.empty() || (params.size() - 1) % 3 != 0) {
-      ++counters_.bulk_reads;
-      return;
+}
+
+void VirtualBus::handle_sync_write(std::span<const std::uint8_t> params) {
+  ++counters_.sync_writes;
+  if (params.size() < 2 || params[1] == 0) return;
+  const std::size_t record = params[1] + 1U;
+  if ((params.size() - 2) % record != 0) return;
+  for (std::size_t k = 2; k + record <= params.size(); k += record) {
+    Device* d = find(params[k]);
+    if (d != nullptr) {
+      (void)apply_write(*d, params[0], params.subspan(k + 1, params[1]));
+      d->command_error = 0;  // no status packet carries it
     }
-    for (std::size_t k = 1; k + 3 <= params.size(); k += 3) {
-      Device* d = find(params[k + 1]);
-      if (d == nullptr || d->mem[mx1::kStatusReturnLevel] == 0) break;  // the chain stops here
-      refresh(*d);
-      const std::size_t address = params[k + 2];
-      const std::size_t length = params[k];
-      bool sent = false;
-      if (address + length > d->table->size) {
-        d->command_error |= error_bits::kRange;
-        sent = reply(*d, {}, out, delay_us);
-      } else {
-        sent = reply(*d, std::span<const std::uint8_t>(d->mem.data() + address, length), out,
-                     delay_us);
-      }
-      if (!sent) break;  // the next device waits for this one's status packet forever
-    }
+  }
+}
+
+void VirtualBus::handle_bulk_read(std::span<const std::uint8_t> params,
+                                  std::vector<std::uint8_t>& out, std::int64_t& delay_us) {
+  if (options_.lockstep) physics_->advance(static_cast<double>(options_.period_ns) * 1e-9);
+  if (params.empty() || (params.size() - 1) % 3 != 0) {
     ++counters_.bulk_reads;
     return;
   }
-  if (broadcast) {
-    // Broadcast WRITE / REG_WRITE / ACTION / RESET: every device executes, nobody answers.
-    for (Device& d : devices_) {
-      if (packet.instruction == instruction::kWrite && !params.empty()) {
-        (void)apply_write(d, params[0], params.subspan(1));
-      } else if (packet.instruction == instruction::kAction && d.registered) {
-        (void)apply_write(d, d.reg_address, d.reg_data);
-        d.registered = false;
-      } else if (packet.instruction == instruction::kRegWrite && !params.empty()) {
-        d.registered = true;
-        d.reg_address = params[0];
-        d.reg_data.assign(params.begin() + 1, params.end());
-      } else if (packet.instruction == instruction::kReset) {
-        reset_device(d);
-      }
-      d.command_error = 0;
-      d.mem[mx1::kRegistered] = d.registered ? 1 : 0;
+  for (std::size_t k = 1; k + 3 <= params.size(); k += 3) {
+    Device* d = find(params[k + 1]);
+    if (d == nullptr || d->mem[mx1::kStatusReturnLevel] == 0) break;  // the chain stops here
+    refresh(*d);
+    const std::size_t address = params[k + 2];
+    const std::size_t length = params[k];
+    bool sent = false;
+    if (address + length > d->table->size) {
+      d->command_error |= error_bits::kRange;
+      sent = reply(*d, {}, out, delay_us);
+    } else {
+      sent =
+          reply(*d, std::span<const std::uint8_t>(d->mem.data() + address, length), out, delay_us);
     }
-    return;
+    if (!sent) break;  // the next device waits for this one's status packet forever
   }
+  ++counters_.bulk_reads;  // after the replies: the faults count cycles by it (faults_active)
+}
 
+void VirtualBus::handle_broadcast(const Packet& packet, std::span<const std::uint8_t> params) {
+  for (Device& d : devices_) {
+    if (packet.instruction == instruction::kWrite && !params.empty()) {
+      (void)apply_write(d, params[0], params.subspan(1));
+    } else if (packet.instruction == instruction::kAction && d.registered) {
+      (void)apply_write(d, d.reg_address, d.reg_data);
+      d.registered = false;
+    } else if (packet.instruction == instruction::kRegWrite && !params.empty()) {
+      d.registered = true;
+      d.reg_address = params[0];
+      d.reg_data.assign(params.begin() + 1, params.end());
+    } else if (packet.instruction == instruction::kReset) {
+      reset_device(d);
+    }
+    d.command_error = 0;
+    d.mem[mx1::kRegistered] = d.registered ? 1 : 0;
+  }
+}
+
+void VirtualBus::handle_addressed(const Packet& packet, std::span<const std::uint8_t> params,
+                                  std::vector<std::uint8_t>& out, std::int64_t& delay_us) {
   Device* d = find(packet.id);
   if (d == nullptr) return;
   refresh(*d);

@@ -216,6 +216,38 @@ void VirtualBusV2::receive(std::span<const std::uint8_t> bytes, std::vector<std:
   }
 }
 
+void VirtualBusV2::handle_sync(std::uint8_t code, std::span<const std::uint8_t> p,
+                               std::vector<std::uint8_t>& out, std::int64_t& delay_us) {
+  if (p.size() < 4) return;
+  const std::uint16_t address = read_u16(p.data());
+  const std::uint16_t length = read_u16(p.data() + 2);
+  if (code == instruction::kSyncRead) {
+    // Replies in list order, each servo after its predecessor's status packet.
+    for (std::size_t k = 4; k < p.size(); ++k) {
+      Servo* s = find(p[k]);
+      if (s != nullptr && !read_reply(*s, address, length, out, delay_us)) break;
+    }
+    ++counters_.sync_reads;
+    return;
+  }
+  ++counters_.sync_writes;
+  if (length == 0) return;
+  for (std::size_t k = 4; k + 1 + length <= p.size(); k += 1U + length) {
+    if (Servo* s = find(p[k])) (void)write(*s, address, p.subspan(k + 1, length));
+  }
+}
+
+void VirtualBusV2::handle_bulk_read(std::span<const std::uint8_t> p, std::vector<std::uint8_t>& out,
+                                    std::int64_t& delay_us) {
+  for (std::size_t k = 0; k + 5 <= p.size(); k += 5) {
+    Servo* s = find(p[k]);
+    if (s != nullptr &&
+        !read_reply(*s, read_u16(p.data() + k + 1), read_u16(p.data() + k + 3), out, delay_us))
+      break;
+  }
+  ++counters_.bulk_reads;
+}
+
 void VirtualBusV2::handle(const Packet& packet, std::vector<std::uint8_t>& out,
                           std::int64_t& delay_us) {
   if (packet.is_status) return;
@@ -234,34 +266,11 @@ void VirtualBusV2::handle(const Packet& packet, std::vector<std::uint8_t>& out,
     return;
   }
   if (code == instruction::kSyncRead || code == instruction::kSyncWrite) {
-    if (!broadcast || p.size() < 4) return;
-    const std::uint16_t address = read_u16(p.data());
-    const std::uint16_t length = read_u16(p.data() + 2);
-    if (code == instruction::kSyncRead) {
-      // Replies in list order, each servo after its predecessor's status packet.
-      for (std::size_t k = 4; k < p.size(); ++k) {
-        Servo* s = find(p[k]);
-        if (s != nullptr && !read_reply(*s, address, length, out, delay_us)) break;
-      }
-      ++counters_.sync_reads;
-      return;
-    }
-    ++counters_.sync_writes;
-    if (length == 0) return;
-    for (std::size_t k = 4; k + 1 + length <= p.size(); k += 1U + length) {
-      if (Servo* s = find(p[k])) (void)write(*s, address, p.subspan(k + 1, length));
-    }
+    if (broadcast) handle_sync(code, p, out, delay_us);
     return;
   }
   if (code == instruction::kBulkRead) {
-    if (!broadcast) return;
-    for (std::size_t k = 0; k + 5 <= p.size(); k += 5) {
-      Servo* s = find(p[k]);
-      if (s != nullptr &&
-          !read_reply(*s, read_u16(p.data() + k + 1), read_u16(p.data() + k + 3), out, delay_us))
-        break;
-    }
-    ++counters_.bulk_reads;
+    if (broadcast) handle_bulk_read(p, out, delay_us);
     return;
   }
   for (Servo& s : servos_) {

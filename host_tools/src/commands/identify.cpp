@@ -23,6 +23,54 @@ namespace sim = stride::sim;
 
 const stride::tools::CommandErrors errors("identify");
 
+/// The routine's parts and their lengths from the command line.
+Status read_run(const stride::core::CliArgs& args, sim::IdentificationRun& run) {
+  run.parts.clear();
+  std::stringstream parts(args.get("parts"));
+  for (std::string part; std::getline(parts, part, ',');) run.parts.push_back(part);
+  if (run.parts.empty()) return Status::error("--parts: name at least one part");
+  if (Status s = args.get_double("stand-s", run.stand_s); !s) return s;
+  if (Status s = args.get_double("walk-s", run.walk_s); !s) return s;
+  if (!(run.stand_s >= 0.0 && run.stand_s <= 600.0))
+    return Status::error("--stand-s: must be in [0, 600], got " + args.get("stand-s"));
+  if (!(run.walk_s >= 0.0 && run.walk_s <= 600.0))
+    return Status::error("--walk-s: must be in [0, 600], got " + args.get("walk-s"));
+  run.walk_in_place_s = run.walk_s;
+  if (args.has("params")) run.firmware.params_file = args.get("params");
+  return Status::ok();
+}
+
+/// What was recorded: the log's length and where each part starts (or one JSON object).
+void print_summary(const sim::IdentificationSummary& summary, const std::filesystem::path& out,
+                   const sim::WorldOptions& world, bool json) {
+  if (json) {
+    nlohmann::json parts_json = nlohmann::json::object();
+    for (const auto& [name, start] : summary.part_start_s) parts_json[name] = start;
+    const nlohmann::json j = {
+        {"log", out.string()},
+        {"ticks", summary.ticks},
+        {"ticks_dropped", summary.ticks_dropped},
+        {"fell", summary.fell},
+        {"failure", summary.failure},
+        {"part_start_s", parts_json},
+        {"imu_bias",
+         {{"accel_mps2",
+           {summary.accel_bias_mps2.x(), summary.accel_bias_mps2.y(), summary.accel_bias_mps2.z()}},
+          {"gyro_rad_s",
+           {summary.gyro_bias_rad_s.x(), summary.gyro_bias_rad_s.y(),
+            summary.gyro_bias_rad_s.z()}}}},
+        {"world", sim::describe_world(world)}};
+    std::printf("%s\n", j.dump().c_str());
+  } else {
+    std::printf("%s: %lld ticks (%.1f s) in %s\n", out.string().c_str(),
+                static_cast<long long>(summary.ticks),
+                static_cast<double>(summary.ticks) * summary.period_s,
+                sim::describe_world(world).c_str());
+    for (const auto& [name, start] : summary.part_start_s)
+      std::printf("  %-15s from %6.2f s\n", name.c_str(), start);
+  }
+}
+
 }  // namespace
 
 int run_identify(int argc, char** argv) {
@@ -58,50 +106,14 @@ int run_identify(int argc, char** argv) {
     return errors.bad_input("--push: not available in the identification routine");
 
   sim::IdentificationRun run;
-  run.parts.clear();
-  std::stringstream parts(args.get("parts"));
-  for (std::string part; std::getline(parts, part, ',');) run.parts.push_back(part);
-  if (run.parts.empty()) return errors.bad_input("--parts: name at least one part");
-  if (Status s = args.get_double("stand-s", run.stand_s); !s) return errors.bad_input(s.message());
-  if (Status s = args.get_double("walk-s", run.walk_s); !s) return errors.bad_input(s.message());
-  if (!(run.stand_s >= 0.0 && run.stand_s <= 600.0))
-    return errors.bad_input("--stand-s: must be in [0, 600], got " + args.get("stand-s"));
-  if (!(run.walk_s >= 0.0 && run.walk_s <= 600.0))
-    return errors.bad_input("--walk-s: must be in [0, 600], got " + args.get("walk-s"));
-  run.walk_in_place_s = run.walk_s;
-  if (args.has("params")) run.firmware.params_file = args.get("params");
+  if (Status s = read_run(args, run); !s) return errors.bad_input(s.message());
   sim::WorldOptions world;
   if (Status s = sim::read_world_options(args, world); !s) return errors.bad_input(s.message());
 
   sim::IdentificationSummary summary;
   if (Status s = sim::record_identification(run, world, out, summary); !s)
     return errors.bad_input(s.message());
-  if (args.has("json")) {
-    nlohmann::json parts_json = nlohmann::json::object();
-    for (const auto& [name, start] : summary.part_start_s) parts_json[name] = start;
-    const nlohmann::json j = {
-        {"log", out.string()},
-        {"ticks", summary.ticks},
-        {"ticks_dropped", summary.ticks_dropped},
-        {"fell", summary.fell},
-        {"failure", summary.failure},
-        {"part_start_s", parts_json},
-        {"imu_bias",
-         {{"accel_mps2",
-           {summary.accel_bias_mps2.x(), summary.accel_bias_mps2.y(), summary.accel_bias_mps2.z()}},
-          {"gyro_rad_s",
-           {summary.gyro_bias_rad_s.x(), summary.gyro_bias_rad_s.y(),
-            summary.gyro_bias_rad_s.z()}}}},
-        {"world", sim::describe_world(world)}};
-    std::printf("%s\n", j.dump().c_str());
-  } else {
-    std::printf("%s: %lld ticks (%.1f s) in %s\n", out.string().c_str(),
-                static_cast<long long>(summary.ticks),
-                static_cast<double>(summary.ticks) * summary.period_s,
-                sim::describe_world(world).c_str());
-    for (const auto& [name, start] : summary.part_start_s)
-      std::printf("  %-15s from %6.2f s\n", name.c_str(), start);
-  }
+  print_summary(summary, out, world, args.has("json"));
   if (summary.fell || !summary.failure.empty()) {
     return errors.failure((summary.fell ? std::string("the robot fell") : summary.failure) +
                           " (the log up to there is kept)");

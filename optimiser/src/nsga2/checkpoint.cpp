@@ -118,6 +118,36 @@ bool parse_exact_double(const json& text, double& value) {
   return end == s.c_str() + s.size();
 }
 
+namespace {
+
+/// One member of a checkpoint's population: its genome, its exact results, rank and crowding
+/// (json::exception for a missing field, which the caller words).
+Status parse_member(const json& j, const ProblemShape& shape, Individual& ind) {
+  if (auto st = parse_genome(j, shape, ind); !st) return st;
+  if (auto st = parse_array(j.at("objectives"), "objectives", ind.result.objectives); !st) {
+    return st;
+  }
+  if (auto st = parse_array(j.at("constraints"), "constraints", ind.result.constraints); !st) {
+    return st;
+  }
+  if (!parse_exact_double(j.at("violation"), ind.result.violation) ||
+      !parse_exact_double(j.at("crowding"), ind.crowding)) {
+    return Status::error("checkpoint: violation or crowding is malformed");
+  }
+  if (ind.result.objectives.size() != static_cast<std::size_t>(shape.objectives) ||
+      ind.result.constraints.size() != static_cast<std::size_t>(shape.constraints)) {
+    return Status::error("checkpoint: an individual has the wrong number of results");
+  }
+  ind.result.failed = j.at("failed").get<bool>();
+  ind.result.reason = j.at("reason").get<std::string>();
+  ind.from_cache = j.at("from_cache").get<bool>();
+  ind.rank = j.at("rank").get<int>();
+  ind.evaluated = true;
+  return {};
+}
+
+}  // namespace
+
 json Nsga2::checkpoint() const {
   json population = json::array();
   for (const Individual& ind : population_) {
@@ -185,26 +215,7 @@ Status Nsga2::restore(const json& cp, const ProblemShape& shape,
     }
     for (const json& j : cp.at("population")) {
       Individual ind;
-      if (auto st = parse_genome(j, shape, ind); !st) return st;
-      if (auto st = parse_array(j.at("objectives"), "objectives", ind.result.objectives); !st) {
-        return st;
-      }
-      if (auto st = parse_array(j.at("constraints"), "constraints", ind.result.constraints); !st) {
-        return st;
-      }
-      if (!parse_exact_double(j.at("violation"), ind.result.violation) ||
-          !parse_exact_double(j.at("crowding"), ind.crowding)) {
-        return Status::error("checkpoint: violation or crowding is malformed");
-      }
-      if (ind.result.objectives.size() != static_cast<std::size_t>(shape.objectives) ||
-          ind.result.constraints.size() != static_cast<std::size_t>(shape.constraints)) {
-        return Status::error("checkpoint: an individual has the wrong number of results");
-      }
-      ind.result.failed = j.at("failed").get<bool>();
-      ind.result.reason = j.at("reason").get<std::string>();
-      ind.from_cache = j.at("from_cache").get<bool>();
-      ind.rank = j.at("rank").get<int>();
-      ind.evaluated = true;
+      if (auto st = parse_member(j, shape, ind); !st) return st;
       engine->population_.push_back(std::move(ind));
     }
     for (const json& j : cp.at("batch")) {

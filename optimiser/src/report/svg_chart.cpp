@@ -80,29 +80,24 @@ std::string tick_label(double value, double step) {
   return buf;
 }
 
-std::string render_chart(const ChartSpec& spec) {
-  const double W = spec.width, H = spec.height;
-  const double right = W - kLegendW, bottom = H - kBottomPad;
-  const AxisRange xr = spec.x_range.value_or(data_range(spec, true));
-  const AxisRange yr = spec.y_range.value_or(data_range(spec, false));
-  const std::vector<double> xt = nice_ticks(xr.lo, xr.hi), yt = nice_ticks(yr.lo, yr.hi);
-  const double x0 = spec.x_range ? xr.lo : xt.front(), x1 = spec.x_range ? xr.hi : xt.back();
-  const double y0 = spec.y_range ? yr.lo : yt.front(), y1 = spec.y_range ? yr.hi : yt.back();
-  const double xs = x1 > x0 ? x1 - x0 : 1.0, ys = y1 > y0 ? y1 - y0 : 1.0;
-  auto px = [&](double x) { return kLeft + (right - kLeft) * (x - x0) / xs; };
-  auto py = [&](double y) { return bottom - (bottom - kTop) * (y - y0) / ys; };
+namespace {
+
+/// The plot area in the picture [px] and the data range it shows.
+struct Plot {
+  double right = 0, bottom = 0;  ///< the plot area is kLeft..right, kTop..bottom
+  double x0 = 0, x1 = 1, y0 = 0, y1 = 1;
+  double xs = 1, ys = 1;  ///< x1 - x0 and y1 - y0 (1 for an empty range)
+  double px(double x) const { return kLeft + (right - kLeft) * (x - x0) / xs; }
+  double py(double y) const { return bottom - (bottom - kTop) * (y - y0) / ys; }
+};
+
+/// The title, axis labels, grid lines with their tick labels, and the plot area's frame.
+void draw_axes(std::ostringstream& svg, const ChartSpec& spec, const Plot& plot,
+               const std::vector<double>& xt, const std::vector<double>& yt) {
+  const double W = spec.width, H = spec.height, right = plot.right, bottom = plot.bottom;
   const double xstep = xt.size() > 1 ? xt[1] - xt[0] : 1.0;
   const double ystep = yt.size() > 1 ? yt[1] - yt[0] : 1.0;
-
-  std::ostringstream svg;
-  svg << "<svg xmlns=\"http://www.w3.org/2000/svg\"";
-  if (!spec.id.empty()) svg << " id=\"" << core::xml_escape(spec.id) << "\"";
-  // The plot area and its x range, for the page's scripts (the replay's time cursor).
-  svg << " data-plot=\"" << kLeft << ' ' << kTop << ' ' << num(right) << ' ' << num(bottom) << ' '
-      << num(x0) << ' ' << num(x1) << '"';
-  svg << " viewBox=\"0 0 " << W << ' ' << H << "\" width=\"" << W << "\" height=\"" << H
-      << "\" font-family=\"sans-serif\" font-size=\"12\">\n"
-      << "<rect width=\"" << W << "\" height=\"" << H << "\" fill=\"white\"/>\n"
+  svg << "<rect width=\"" << W << "\" height=\"" << H << "\" fill=\"white\"/>\n"
       << "<text x=\"" << num((kLeft + right) / 2) << "\" y=\"22\" text-anchor=\"middle\" "
       << "font-size=\"15\">" << core::xml_escape(spec.title) << "</text>\n"
       << "<text x=\"" << num((kLeft + right) / 2) << "\" y=\"" << num(H - 12)
@@ -111,22 +106,25 @@ std::string render_chart(const ChartSpec& spec) {
       << "\" text-anchor=\"middle\" transform=\"rotate(-90 16 " << num((kTop + bottom) / 2)
       << ")\">" << core::xml_escape(spec.y_label) << "</text>\n";
   for (double t : xt) {
-    if (t < x0 - 1e-9 * xs || t > x1 + 1e-9 * xs) continue;
-    svg << "<line x1=\"" << num(px(t)) << "\" x2=\"" << num(px(t)) << "\" y1=\"" << kTop
+    if (t < plot.x0 - 1e-9 * plot.xs || t > plot.x1 + 1e-9 * plot.xs) continue;
+    svg << "<line x1=\"" << num(plot.px(t)) << "\" x2=\"" << num(plot.px(t)) << "\" y1=\"" << kTop
         << "\" y2=\"" << num(bottom) << "\" stroke=\"#e4e4e4\"/>\n"
-        << "<text x=\"" << num(px(t)) << "\" y=\"" << num(bottom + 16)
+        << "<text x=\"" << num(plot.px(t)) << "\" y=\"" << num(bottom + 16)
         << "\" text-anchor=\"middle\">" << tick_label(t, xstep) << "</text>\n";
   }
   for (double t : yt) {
-    if (t < y0 - 1e-9 * ys || t > y1 + 1e-9 * ys) continue;
-    svg << "<line x1=\"" << kLeft << "\" x2=\"" << num(right) << "\" y1=\"" << num(py(t))
-        << "\" y2=\"" << num(py(t)) << "\" stroke=\"#e4e4e4\"/>\n"
-        << "<text x=\"" << kLeft - 6 << "\" y=\"" << num(py(t) + 4) << "\" text-anchor=\"end\">"
-        << tick_label(t, ystep) << "</text>\n";
+    if (t < plot.y0 - 1e-9 * plot.ys || t > plot.y1 + 1e-9 * plot.ys) continue;
+    svg << "<line x1=\"" << kLeft << "\" x2=\"" << num(right) << "\" y1=\"" << num(plot.py(t))
+        << "\" y2=\"" << num(plot.py(t)) << "\" stroke=\"#e4e4e4\"/>\n"
+        << "<text x=\"" << kLeft - 6 << "\" y=\"" << num(plot.py(t) + 4)
+        << "\" text-anchor=\"end\">" << tick_label(t, ystep) << "</text>\n";
   }
   svg << "<rect x=\"" << kLeft << "\" y=\"" << kTop << "\" width=\"" << num(right - kLeft)
       << "\" height=\"" << num(bottom - kTop) << "\" fill=\"none\" stroke=\"black\"/>\n";
+}
 
+/// Each series: its line and its markers (a tooltip on those with a tip).
+void draw_series(std::ostringstream& svg, const ChartSpec& spec, const Plot& plot) {
   for (const ChartSeries& s : spec.series) {
     svg << "<g";
     if (!s.css_class.empty()) svg << " class=\"" << core::xml_escape(s.css_class) << "\"";
@@ -134,12 +132,13 @@ std::string render_chart(const ChartSpec& spec) {
     if (s.line && s.points.size() > 1) {
       svg << "<polyline fill=\"none\" stroke=\"" << s.colour << "\" stroke-width=\"" << s.line_width
           << "\" points=\"";
-      for (const ChartPoint& p : s.points) svg << num(px(p.x)) << ',' << num(py(p.y)) << ' ';
+      for (const ChartPoint& p : s.points)
+        svg << num(plot.px(p.x)) << ',' << num(plot.py(p.y)) << ' ';
       svg << "\"/>\n";
     }
     if (s.marker_r > 0)
       for (const ChartPoint& p : s.points) {
-        svg << "<circle cx=\"" << num(px(p.x)) << "\" cy=\"" << num(py(p.y)) << "\" r=\""
+        svg << "<circle cx=\"" << num(plot.px(p.x)) << "\" cy=\"" << num(plot.py(p.y)) << "\" r=\""
             << s.marker_r << "\" "
             << (s.hollow ? "fill=\"none\" stroke=\"" + s.colour + "\" stroke-width=\"1.5\""
                          : "fill=\"" + s.colour + "\"");
@@ -151,14 +150,18 @@ std::string render_chart(const ChartSpec& spec) {
       }
     svg << "</g>\n";
   }
+}
 
-  // Named markers, their names placed where no earlier name is (beside, below, left, ...).
+/// Named markers, their names placed where no earlier name is (beside, below, left, ...); a
+/// marker off the scale sits on the frame and says so.
+void draw_markers(std::ostringstream& svg, const ChartSpec& spec, const Plot& plot) {
+  const double x0 = plot.x0, x1 = plot.x1, y0 = plot.y0, y1 = plot.y1;
   std::vector<std::array<double, 4>> placed;  // x0, y0, x1, y1 of names drawn
   for (const ChartMarker& m : spec.markers) {
     const bool off =
         m.x < x0 || m.x > x1 || m.y < y0 || m.y > y1 || !std::isfinite(m.x) || !std::isfinite(m.y);
-    const double cx = px(std::clamp(std::isfinite(m.x) ? m.x : x1, x0, x1));
-    const double cy = py(std::clamp(std::isfinite(m.y) ? m.y : y1, y0, y1));
+    const double cx = plot.px(std::clamp(std::isfinite(m.x) ? m.x : x1, x0, x1));
+    const double cy = plot.py(std::clamp(std::isfinite(m.y) ? m.y : y1, y0, y1));
     svg << "<g class=\"marker\">";
     marker_path(svg, m.shape, cx, cy, 6, "white", m.colour, 2.5);
     svg << "><title>" << core::xml_escape(m.tip.empty() ? m.label : m.tip) << "</title>";
@@ -168,7 +171,7 @@ std::string render_chart(const ChartSpec& spec) {
     double tx = cx + 9, ty = cy - 8;
     bool anchor_end = false;
     for (int attempt = 0; attempt < 12; ++attempt) {
-      const bool left = (attempt % 2 == 1) != (cx + 9 + tw > right);
+      const bool left = (attempt % 2 == 1) != (cx + 9 + tw > plot.right);
       const double dy = (attempt / 2 % 2 == 0 ? -8.0 : 18.0) +
                         (attempt / 4) * (attempt / 2 % 2 == 0 ? -15.0 : 15.0);
       const double bx0 = left ? cx - 9 - tw : cx + 9, by1 = cy + dy;
@@ -185,31 +188,62 @@ std::string render_chart(const ChartSpec& spec) {
         << "\" stroke=\"white\" stroke-width=\"3\" paint-order=\"stroke\">"
         << core::xml_escape(text) << "</text></g>\n";
   }
+}
 
-  if (spec.legend) {
-    double y = kTop + 8;
-    const double lx = right + 14;
-    for (const ChartSeries& s : spec.series) {
-      if (s.label.empty()) continue;
-      svg << "<line x1=\"" << num(lx) << "\" x2=\"" << num(lx + 22) << "\" y1=\"" << num(y)
-          << "\" y2=\"" << num(y) << "\" stroke=\"" << s.colour << "\" stroke-width=\"3\"/>";
-      if (s.marker_r > 0)
-        svg << "<circle cx=\"" << num(lx + 11) << "\" cy=\"" << num(y) << "\" r=\""
-            << std::min(s.marker_r, 5.0) << "\" "
-            << (s.hollow ? "fill=\"white\" stroke=\"" + s.colour + "\""
-                         : "fill=\"" + s.colour + "\"")
-            << "/>";
-      svg << "<text x=\"" << num(lx + 28) << "\" y=\"" << num(y + 4) << "\">"
-          << core::xml_escape(s.label) << "</text>\n";
-      y += 18;
-    }
-    for (const ChartMarker& m : spec.markers) {
-      marker_path(svg, m.shape, lx + 11, y, 5, "white", m.colour, 2);
-      svg << "/><text x=\"" << num(lx + 28) << "\" y=\"" << num(y + 4) << "\">"
-          << core::xml_escape(m.label) << "</text>\n";
-      y += 18;
-    }
+/// The legend right of the plot area: the labelled series, then the markers.
+void draw_legend(std::ostringstream& svg, const ChartSpec& spec, double right) {
+  double y = kTop + 8;
+  const double lx = right + 14;
+  for (const ChartSeries& s : spec.series) {
+    if (s.label.empty()) continue;
+    svg << "<line x1=\"" << num(lx) << "\" x2=\"" << num(lx + 22) << "\" y1=\"" << num(y)
+        << "\" y2=\"" << num(y) << "\" stroke=\"" << s.colour << "\" stroke-width=\"3\"/>";
+    if (s.marker_r > 0)
+      svg << "<circle cx=\"" << num(lx + 11) << "\" cy=\"" << num(y) << "\" r=\""
+          << std::min(s.marker_r, 5.0) << "\" "
+          << (s.hollow ? "fill=\"white\" stroke=\"" + s.colour + "\"" : "fill=\"" + s.colour + "\"")
+          << "/>";
+    svg << "<text x=\"" << num(lx + 28) << "\" y=\"" << num(y + 4) << "\">"
+        << core::xml_escape(s.label) << "</text>\n";
+    y += 18;
   }
+  for (const ChartMarker& m : spec.markers) {
+    marker_path(svg, m.shape, lx + 11, y, 5, "white", m.colour, 2);
+    svg << "/><text x=\"" << num(lx + 28) << "\" y=\"" << num(y + 4) << "\">"
+        << core::xml_escape(m.label) << "</text>\n";
+    y += 18;
+  }
+}
+
+}  // namespace
+
+std::string render_chart(const ChartSpec& spec) {
+  const double W = spec.width, H = spec.height;
+  Plot plot;
+  plot.right = W - kLegendW;
+  plot.bottom = H - kBottomPad;
+  const AxisRange xr = spec.x_range.value_or(data_range(spec, true));
+  const AxisRange yr = spec.y_range.value_or(data_range(spec, false));
+  const std::vector<double> xt = nice_ticks(xr.lo, xr.hi), yt = nice_ticks(yr.lo, yr.hi);
+  plot.x0 = spec.x_range ? xr.lo : xt.front();
+  plot.x1 = spec.x_range ? xr.hi : xt.back();
+  plot.y0 = spec.y_range ? yr.lo : yt.front();
+  plot.y1 = spec.y_range ? yr.hi : yt.back();
+  plot.xs = plot.x1 > plot.x0 ? plot.x1 - plot.x0 : 1.0;
+  plot.ys = plot.y1 > plot.y0 ? plot.y1 - plot.y0 : 1.0;
+
+  std::ostringstream svg;
+  svg << "<svg xmlns=\"http://www.w3.org/2000/svg\"";
+  if (!spec.id.empty()) svg << " id=\"" << core::xml_escape(spec.id) << "\"";
+  // The plot area and its x range, for the page's scripts (the replay's time cursor).
+  svg << " data-plot=\"" << kLeft << ' ' << kTop << ' ' << num(plot.right) << ' '
+      << num(plot.bottom) << ' ' << num(plot.x0) << ' ' << num(plot.x1) << '"';
+  svg << " viewBox=\"0 0 " << W << ' ' << H << "\" width=\"" << W << "\" height=\"" << H
+      << "\" font-family=\"sans-serif\" font-size=\"12\">\n";
+  draw_axes(svg, spec, plot, xt, yt);
+  draw_series(svg, spec, plot);
+  draw_markers(svg, spec, plot);
+  if (spec.legend) draw_legend(svg, spec, plot.right);
   svg << "</svg>\n";
   return svg.str();
 }

@@ -78,6 +78,10 @@ class MotionManager {
   StandEngine& stand() noexcept { return stand_; }
 
  private:
+  void take_request() noexcept;
+  void note_fall(const FallSignal& fall, hal::Tick tick) noexcept;
+  void step_fallen(const hal::SensorFrame& sensors, hal::Tick tick, bool fallen,
+                   const hal::CommandFrame& last, hal::CommandFrame& out) noexcept;
   void enter(MotionState state, MotionEngine& engine, const hal::SensorFrame& sensors,
              const hal::CommandFrame& last, hal::Tick tick) noexcept;
   bool start_script(int index, std::string_view name, const hal::SensorFrame& sensors,

@@ -39,6 +39,7 @@
 #include "stride/hal/dynamixel/byte_stream.hpp"
 #include "stride/hal/dynamixel/control_table.hpp"
 #include "stride/hal/dynamixel/packet_parser.hpp"
+#include "stride/hal/dynamixel/protocol.hpp"
 #include "stride/hal/dynamixel/units.hpp"
 #include "stride/hal/robot.hpp"
 
@@ -110,6 +111,22 @@ class DynamixelRobot final : public Robot {
   bool send(std::span<const std::uint8_t> packet, std::int64_t deadline_ns) noexcept;
   void decode_servo(std::size_t index, const std::uint8_t* data) noexcept;
   void decode_cm730(const std::uint8_t* data) noexcept;
+
+  /// One tick's BULK_READ: who is asked, in which order, and what came back.
+  struct BulkRound {
+    std::array<BulkReadEntry, kDevices> entries{};
+    std::array<std::uint8_t, kDevices> device{};  ///< device index of each entry
+    std::array<bool, kDevices> got{};             ///< a whole reply came
+    std::array<bool, kDevices> corrupt{};         ///< a damaged reply came
+    std::size_t count = 0;
+  };
+  /// The list: active devices in order_, then skipped ones due for a retry.
+  void plan_bulk_read(BulkRound& round) const noexcept;
+  /// Sends the BULK_READ and decodes the replies until the last one or the cycle's bus budget.
+  void exchange_bulk_read(BulkRound& round) noexcept;
+  /// Health and the failure policy: the first device that did not answer is blamed, moved to
+  /// the end of the list, and skipped after options_.max_consecutive_failures.
+  void judge_bulk_read(const BulkRound& round) noexcept;
 
   std::unique_ptr<ByteStream> stream_;
   Options options_;

@@ -68,7 +68,19 @@ class VirtualBus final : public BusResponder {
     std::vector<std::uint8_t> reg_data;
   };
 
+  /// One instruction packet: counts it, advances the clock, and hands it to the one below.
   void handle(const Packet& packet, std::vector<std::uint8_t>& out, std::int64_t& delay_us);
+  /// Broadcast SYNC_WRITE: every listed device writes its record; nobody answers.
+  void handle_sync_write(std::span<const std::uint8_t> params);
+  /// Broadcast BULK_READ: the listed devices answer in order (and a lockstep bus advances the
+  /// physics by one period first); the chain stops at a device that is silent.
+  void handle_bulk_read(std::span<const std::uint8_t> params, std::vector<std::uint8_t>& out,
+                        std::int64_t& delay_us);
+  /// Other broadcasts (WRITE, REG_WRITE, ACTION, RESET): every device executes, nobody answers.
+  void handle_broadcast(const Packet& packet, std::span<const std::uint8_t> params);
+  /// An instruction to one device, answered as its status return level says.
+  void handle_addressed(const Packet& packet, std::span<const std::uint8_t> params,
+                        std::vector<std::uint8_t>& out, std::int64_t& delay_us);
   Device* find(std::uint8_t id);
   void reset_device(Device& device);
   void refresh(Device& device);

@@ -64,6 +64,12 @@ class VirtualBusV2 final : public BusResponder {
   };
 
   void handle(const Packet& packet, std::vector<std::uint8_t>& out, std::int64_t& delay_us);
+  /// Broadcast SYNC_READ (`code`; replies in list order) or SYNC_WRITE (no replies).
+  void handle_sync(std::uint8_t code, std::span<const std::uint8_t> params,
+                   std::vector<std::uint8_t>& out, std::int64_t& delay_us);
+  /// Broadcast BULK_READ: each listed servo answers after its predecessor's status packet.
+  void handle_bulk_read(std::span<const std::uint8_t> params, std::vector<std::uint8_t>& out,
+                        std::int64_t& delay_us);
   Servo* find(std::uint8_t id);
   void reset(Servo& servo, bool ram_only);
   /// FACTORY_RESET with a valid option (0xFF, 0x01 or 0x02).
