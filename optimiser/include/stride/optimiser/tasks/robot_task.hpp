@@ -84,6 +84,9 @@ class RobotTask final : public Problem {
   sim::WorldOptions world_options(const sim::WorldSpec& spec) const;
   /// world_options(world_spec(world, draw)).
   sim::WorldOptions world_options(int world, std::uint64_t draw = 0) const;
+  /// The robot the episodes run (the config world's URDF, else the igus model); null if it
+  /// could not be loaded.
+  const std::shared_ptr<const sim::RobotModel>& robot_model() const { return robot_model_; }
   /// One episode in world `world` (0-based); a failure reason on a broken set-up or world.
   /// `capture`, if given, observes every tick (replays in `stride report`); it changes nothing.
   Status run_trial(const Genome& genome, int world, EpisodeScore& out,
