@@ -14,6 +14,8 @@
 //     between the start and 60 % of the replay), its time and the accelerometer charts' cursors
 //     follow the clock; the wheel zooms, a drag orbits and "reset view" restores the picture;
 //     at a recorded frame the drawn link origins are within 1.1 mm of the recorded ones;
+//   - with --world GROUND,GRASS_M,ROBOT: the run's own world drawn: the replay data and the 3D
+//     view's ground are GROUND with its layer's top at GRASS_M, the 3D robot is named ROBOT;
 //   - with --replay3d-unavailable REGEX: the 3D view says it is unavailable (or leaves an
 //     individual out) in words matching REGEX, without a console error;
 //   - screenshots of the whole page, of each section and of the replay after playing go to
@@ -22,7 +24,7 @@
 //     NAME-3d-orbited.png: zoomed in and turned).
 // usage: node check_page.cjs --chromium PATH --modules DIR --out OUT_DIR
 //          { --name NAME --page FILE --sections a,b,c [--replay N] [--expect-warnings]
-//            [--replay3d | --replay3d-unavailable REGEX] } ...
+//            [--replay3d | --replay3d-unavailable REGEX] [--world GROUND,GRASS_M,ROBOT] } ...
 // (one browser for all pages; exit status 1 if any page fails a check)
 'use strict';
 const path = require('path');
@@ -38,6 +40,10 @@ function parseArgs(argv) {
     else if (a === '--replay') page.replay = parseInt(argv[++i], 10);
     else if (a === '--replay3d') page.replay3d = true;
     else if (a === '--replay3d-unavailable') page.unavailable3d = new RegExp(argv[++i]);
+    else if (a === '--world') {
+      const [ground, grass, robot] = argv[++i].split(',');
+      page.world = {ground, grass_m: parseFloat(grass), robot};
+    }
     else if (['--page', '--sections'].includes(a)) page[a.slice(2)] = argv[++i];
     else out[a.replace(/^--/, '')] = argv[++i];
   }
@@ -190,6 +196,7 @@ async function checkPage(browser, args) {
     }
     let replay3d = null;
     if (args.replay3d) replay3d = await check3d(page, args, failures);
+    if (args.world) replay3d = {...replay3d, world: await checkWorld(page, args.world, failures)};
     if (args.unavailable3d) {
       await page.waitForFunction(() => document.querySelector('#replay3d .missing'),
                                  {timeout: 10000}).catch(() => {});
@@ -210,6 +217,26 @@ async function checkPage(browser, args) {
     await page.close();
   }
   return failures;
+}
+
+// The run's own world drawn: the page's data and the 3D view name its ground and its layer's
+// thickness, and the 3D robot is the run's URDF (its robot name), not the defaults.
+async function checkWorld(page, want, failures) {
+  const got = await page.evaluate(() => {
+    const data = JSON.parse(document.getElementById('replay-data').textContent);
+    const g = window.strideReplay3d && window.strideReplay3d.ground;
+    return {data_ground: data.ground, data_grass_m: data.grass_m,
+            robot: data.robot3d ? data.robot3d.name : null, drawn: g || null};
+  });
+  if (got.data_ground !== want.ground || got.data_grass_m !== want.grass_m)
+    failures.push('replay data: ground ' + got.data_ground + ' ' + got.data_grass_m + ' m, expected ' +
+                  want.ground + ' ' + want.grass_m + ' m');
+  if (!got.drawn || got.drawn.name !== want.ground || Math.abs(got.drawn.top_z - want.grass_m) > 1e-9)
+    failures.push('3D view: ground drawn as ' + JSON.stringify(got.drawn) + ', expected ' +
+                  want.ground + ' with its top at ' + want.grass_m + ' m');
+  if (got.robot !== want.robot)
+    failures.push('3D view: robot ' + got.robot + ', expected the run\'s ' + want.robot);
+  return got;
 }
 
 // The 3D view: drawn, the robot in its pixels, moved by the slider, in step with the clock and

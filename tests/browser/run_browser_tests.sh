@@ -1,10 +1,12 @@
 #!/usr/bin/env bash
-# Stride's report pages in a real browser: makes a tiny walk run and a tiny kick run (seconds),
-# `stride report` on each (the walk run with the validation.json its optimise wrote) and on a
-# run directory with nothing evaluated yet, and a
+# Stride's report pages in a real browser: makes a tiny walk run and a tiny kick run (seconds)
+# and a tinier walk run on the hard ground with a renamed URDF, `stride report` on each (the
+# walk run with the validation.json its optimise wrote) and on a run directory with nothing
+# evaluated yet, and a
 # `stride sim kick --html` page, then loads every page in headless Chromium (check_page.cjs:
 # no console error, no network, every section present and not empty, the replay drawn and its
-# time advancing after Play, the 3D view showing the robot and moved by the slider) and writes
+# time advancing after Play, the 3D view showing the robot and moved by the slider, the run's
+# own ground and robot drawn) and writes
 # screenshots to OUT_DIR. The 3D view's bad inputs: a page made without three.js, and copies of
 # the sim-kick page with its trajectory cut short or emptied, each saying so.
 #
@@ -52,6 +54,20 @@ echo "== tiny runs (pop 4, 2 generations)"
 # validation section; the kick run (--no-validate) has none.
 test -s "$runs/walk/validation.json"
 test ! -e "$runs/kick/validation.json"
+# A run in another world: the hard ground and the igus URDF under another robot name (its page
+# must draw that ground, 3 mm, and that robot, not the seed's 2 cm grass and the igus model).
+sed 's/<robot name="igus_op">/<robot name="igus_op_renamed">/' \
+  "$src/sim_hal/models/igus_op.urdf" >"$runs/igus_op_renamed.urdf"
+grep -q 'name="igus_op_renamed"' "$runs/igus_op_renamed.urdf"
+node -e '
+const fs = require("fs");
+const [from, to, urdf] = process.argv.slice(1);
+const c = JSON.parse(fs.readFileSync(from, "utf8"));
+c.world = {contact: "hard", urdf: urdf};
+fs.writeFileSync(to, JSON.stringify(c));
+' "$src/optimiser/configs/walk-demo.json" "$runs/walk-hard.json" "$runs/igus_op_renamed.urdf"
+"$stride" optimise --config "$runs/walk-hard.json" --out "$runs/walk-hard" --pop 4 \
+  --generations 1 --jobs 2 --no-validate >/dev/null 2>"$runs/walk-hard.log"
 # A run that has evaluated nothing yet.
 mkdir -p "$runs/empty"
 cp "$runs/walk/run.json" "$runs/empty/"
@@ -60,6 +76,7 @@ cp "$runs/walk/run.json" "$runs/empty/"
 echo "== stride report / stride sim --html"
 "$stride" report "$runs/walk"
 "$stride" report "$runs/kick"
+"$stride" report "$runs/walk-hard"
 "$stride" report "$runs/empty" 2>&1
 "$stride" sim kick --duration 6 --html "$runs/sim-kick.html"
 # The 3D view's bad inputs: no three.js at report time (one warning line, the page says so),
@@ -83,9 +100,11 @@ report_sections=settings,picks,pareto,hypervolume,accelerometer,poses,replay,par
 status=0
 node "$here/check_page.cjs" --chromium "$chromium" --modules "$modules" --out "$out" \
   --name walk --page "$runs/walk/report.html" --sections "$report_sections,validation" \
-  --replay 2 --replay3d \
+  --replay 2 --replay3d --world turf,0.005,igus_op \
   --name kick --page "$runs/kick/report.html" --sections "$report_sections" --replay 2 \
   --replay3d \
+  --name walk-hard --page "$runs/walk-hard/report.html" --sections "$report_sections" \
+  --replay 1 --replay3d --world hard,0.003,igus_op_renamed \
   --name empty --page "$runs/empty/report.html" --sections "$report_sections" --replay 1 \
   --expect-warnings \
   --name sim-kick --page "$runs/sim-kick.html" --sections episode,accelerometer,poses,replay \

@@ -113,7 +113,7 @@ void print_summary(const std::filesystem::path& dir, const stride::opt::RunConfi
   }
   if (!directions.empty())
     std::printf("\n%s", stride::opt::direction_table_text(directions).c_str());
-  if (validation.is_object() && validation.value("format", "") == "stride-validation-1")
+  if (stride::opt::is_validation_file(validation))
     std::printf("\n%s", stride::opt::validation_text(validation).c_str());
   else if (validation.is_null())
     std::printf("\nno validation.json (stride validate %s)\n", dir.c_str());

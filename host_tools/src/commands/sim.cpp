@@ -106,7 +106,8 @@ Status write_html(const stride::core::CliArgs& args, const std::string& params_n
                 result.fell ? "fell" : "standing", end, result.distance_m);
   episode.note = get_up.watched ? motion + ": " + outcome_text(result, get_up) : note;
   report::ReplayScene scene;
-  scene.grass_m = robot.world().ground().grass_thickness_m;  // the episode's (drawn) ground
+  scene.ground = sim::contact_kind_name(robot.world().ground());  // the episode's (drawn) ground
+  scene.grass_m = robot.world().ground().grass_thickness_m;
   scene.ball_radius_m = world.ball.present ? world.ball.radius_m : 0.0;
   if (motion == "walk") scene.goal_m = sim::EpisodeOptions{}.goal_distance_m;  // time_to_goal_s
   const std::vector<double> times =

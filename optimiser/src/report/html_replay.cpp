@@ -45,6 +45,14 @@ std::string base64(const std::string& bytes) {
   return out;
 }
 
+ReplayScene replay_scene(const sim::WorldOptions& world) {
+  ReplayScene scene;
+  scene.ground = sim::contact_kind_name(world.contact);
+  scene.grass_m = world.contact.grass_thickness_m;
+  if (world.ball.present) scene.ball_radius_m = world.ball.radius_m;
+  return scene;
+}
+
 nlohmann::json replay_data(const sim::RobotModel& model,
                            const std::vector<ReplayIndividual>& individuals,
                            const ReplayScene& scene) {
@@ -77,6 +85,7 @@ nlohmann::json replay_data(const sim::RobotModel& model,
   nlohmann::json out = {
       {"frame_dt", frame_dt},
       {"figure", {{"points", figure.point_count}, {"strokes", strokes}, {"circles", circles}}},
+      {"ground", scene.ground},
       {"grass_m", scene.grass_m},
       {"ball_radius_m", scene.ball_radius_m},
       {"goal_m", nullptr},

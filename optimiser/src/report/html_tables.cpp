@@ -139,14 +139,16 @@ static std::string stride_validation_html(const json& doc) {
       "<th>engine</th><th>step [us]</th><th>ground</th><th>friction +-</th><th>mass +-</th>"
       "<th>strength +-</th><th>latency p</th><th>ground +-</th><th>seeds</th>"
       "<th class=\"name\">note</th></tr>\n";
-  for (const json& w : doc["worlds"]) {
-    if (!w.is_object()) continue;
-    html += "<tr>" + cell(w.value("name", ""), "name") + cell(w.value("engine", ""));
+  for (const json& world : doc["worlds"]) {
+    if (!world.is_object()) continue;
+    const json w = validation_world_columns(world);
+    html += "<tr>" + cell(world.value("name", ""), "name") + cell(w.value("engine", ""));
     for (const char* k : {"physics_step_us", "contact", "friction_range", "mass_range",
                           "strength_range", "latency_probability", "contact_range"})
       html += cell(w.contains(k) ? scalar_text(w[k]) : "-");
-    html += cell(std::to_string(w.value("seeds", json::array()).size())) +
-            cell(w.contains("unavailable") ? "unavailable: " + scalar_text(w["unavailable"]) : "",
+    html += cell(std::to_string(world.value("seeds", json::array()).size())) +
+            cell(world.contains("unavailable") ? "unavailable: " + scalar_text(world["unavailable"])
+                                               : "",
                  "name") +
             "</tr>\n";
   }
@@ -201,9 +203,8 @@ std::string validation_table_html(const std::filesystem::path& file) {
     return missing_note(file.filename().string() +
                         " exists but cannot be parsed (not valid JSON).");
   }
-  if (doc.is_object() && doc.value("format", "") == "stride-validation-1" &&
-      doc.contains("worlds") && doc["worlds"].is_array() && doc.contains("table") &&
-      doc["table"].is_array())
+  if (is_validation_file(doc) && doc.contains("worlds") && doc["worlds"].is_array() &&
+      doc.contains("table") && doc["table"].is_array())
     return stride_validation_html(doc);
   std::vector<std::pair<std::string, const json*>> rows;
   collect_rows(doc, "", rows);

@@ -85,14 +85,16 @@ Status write_report_html(const fs::path& dir, const RobotTask& task, ReportOutco
     rows.push_back(std::move(row));
   }
 
-  sim::RobotModel model;
-  if (Status s = sim::RobotModel::load_file(sim::RobotModel::igus_path(), model); !s)
-    out.warnings.push_back("robot model: " + s.message());
-  ReplayScene scene;
-  scene.grass_m = sim::ContactOptions{}.grass_thickness_m;
+  // The run's own robot and ground: the world the re-runs above ran in (trial 0).
+  const sim::WorldOptions world = task.world_options(0);
+  sim::RobotModel loaded;  // the task loads it when it is made; if that failed, again here
+  if (task.robot_model() == nullptr)
+    if (Status s = sim::RobotModel::load_file(world.urdf, loaded); !s)
+      out.warnings.push_back("robot model: " + s.message());
+  const sim::RobotModel& model = task.robot_model() != nullptr ? *task.robot_model() : loaded;
+  ReplayScene scene = replay_scene(world);
   const TaskType* type = find_task_type(config.task);
   const bool ball = type != nullptr && type->uses_ball();
-  if (ball) scene.ball_radius_m = sim::BallOptions{}.radius_m;
   if (type != nullptr) scene.goal_m = type->replay_goal_m(config);
   double end = 0.0;
   for (const auto& r : replays) end = std::max(end, end_of(r));

@@ -42,9 +42,7 @@ class ValidationEpisodes final : public Problem {
   EvaluationOutcome evaluate(const Genome& genome) const override {
     const auto index = static_cast<std::size_t>(genome.reals.at(0));
     const Episode& e = episodes_.at(index);
-    const ValidationWorld& world = worlds_[e.world];
-    sim::WorldOptions options = world.options;
-    options.seed = world.seeds[e.seed];
+    const sim::WorldOptions options = validation_episode_world(task_, worlds_[e.world], e.seed);
     EpisodeOutcome& out = results_[index];
     if (Status s = task_.run_world(individuals_[e.individual].genome, options, out.score); !s) {
       out.setup_error = s.message();
@@ -135,16 +133,22 @@ Status validation_worlds(const RobotTask& task, const ValidationOptions& options
   if (options.seeds < 1 || options.seeds > 1000)
     return Status::error("--seeds: " + std::to_string(options.seeds) + " is outside [1, 1000]");
   const TaskConfig& config = task.config();
-  sim::WorldOptions base = task.world_options(0);
-  base.imu.set_noise(true);  // the run's IMU model, with its noise on
+  sim::WorldSpec base = task.world_spec(0);
+  base.noise = true;  // the run's IMU model, with its noise on
+  // Half the run's step, in whole microseconds (the table's unit).
   const std::int64_t step_ns =
-      options.physics_step_ns > 0 ? options.physics_step_ns : base.physics_step_ns / 2;
+      options.physics_step_ns > 0 ? options.physics_step_ns : base.physics_step_us * 1000 / 2;
+  if (step_ns % 1000 != 0)
+    return Status::error("--physics-step-us: half the run's step (" +
+                         std::to_string(base.physics_step_us) +
+                         " us) is not a whole number of microseconds; give the step");
   if (Status s = sim::check_physics_step(step_ns, task.control_period_ns(), "--physics-step-us");
       !s)
     return s;
   std::vector<std::uint64_t> seeds;
   for (int i = 0; i < options.seeds; ++i)
     seeds.push_back(config.trial_seed + kValidationSeedOffset + static_cast<std::uint64_t>(i));
+  base.seed = seeds.front();  // each world's spec is its first episode's (the record's seed)
   std::vector<sim::EngineKind> engines = options.engines;
   if (engines.empty())
     for (sim::EngineKind e : kAllEngines)
@@ -152,17 +156,16 @@ Status validation_worlds(const RobotTask& task, const ValidationOptions& options
   const TaskType* type = find_task_type(config.task);
   for (sim::EngineKind e : engines) {
     ValidationWorld w{std::string("engine ") + sim::to_string(e), base, seeds};
-    w.options.engine = e;
+    w.world.engine = e;
     // At most the step the task allows on that engine (a Simbody run's 2.5 ms is 2 ms on MuJoCo,
     // TaskType::trial_physics_step_us): the other engine checks the walk, not its own step.
     if (type != nullptr)
-      w.options.physics_step_ns =
-          std::min(w.options.physics_step_ns, type->trial_physics_step_us(e) * 1000);
+      w.world.physics_step_us = std::min(w.world.physics_step_us, type->trial_physics_step_us(e));
     out.push_back(std::move(w));
   }
   out.push_back({"fresh seeds", base, seeds});
   ValidationWorld wider{"wider randomisation", base, seeds};
-  sim::Randomisation& r = wider.options.randomise;
+  sim::Randomisation& r = wider.world.randomise;
   auto widen = [](double run, double floor) { return std::min(0.9, std::max(1.5 * run, floor)); };
   r.friction_range = widen(r.friction_range, 1.5 * TrialRandomisation{}.friction_range);
   r.mass_range = widen(r.mass_range, 1.5 * TrialRandomisation{}.mass_range);
@@ -175,17 +178,25 @@ Status validation_worlds(const RobotTask& task, const ValidationOptions& options
                            ? "step " + std::to_string(step_ns / 1000) + " us"
                            : std::string("half step"),
                        base, seeds};
-  half.options.physics_step_ns = step_ns;
+  half.world.physics_step_us = step_ns / 1000;
   out.push_back(std::move(half));
-  for (const char* ground : {"soft", "hard"}) {  // the grounds on either side of turf
+  // The grounds on either side of turf, with the run's friction (the one its ground had).
+  const double friction = task.world_options(base).contact.friction;
+  for (const char* ground : {"soft", "hard"}) {
     ValidationWorld w{std::string("ground ") + ground, base, seeds};
-    const double friction = w.options.contact.friction;
-    sim::parse_contact_kind(ground, w.options.contact);
-    w.options.contact.friction = friction;
-    w.options.randomise.contact_range = 0.0;
+    w.world.contact = ground;
+    w.world.friction = friction;
+    w.world.randomise.contact_range = 0.0;
     out.push_back(std::move(w));
   }
   return {};
+}
+
+sim::WorldOptions validation_episode_world(const RobotTask& task, const ValidationWorld& world,
+                                           std::size_t seed) {
+  sim::WorldSpec spec = world.world;
+  spec.seed = world.seeds.at(seed);
+  return task.world_options(spec);
 }
 
 Status run_validation(const ValidationSubject& subject, const ValidationOptions& options,

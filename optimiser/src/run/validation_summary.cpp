@@ -9,6 +9,7 @@
 
 #include "stride/optimiser/run/direction_speeds.hpp"
 #include "stride/optimiser/tasks/task_type.hpp"
+#include "stride/sim_hal/world_spec.hpp"
 
 namespace stride::opt {
 
@@ -21,19 +22,7 @@ json number_or_null(double v) {
 }
 
 json world_json(const ValidationWorld& w, const std::string& unavailable) {
-  const sim::WorldOptions& o = w.options;
-  json j = {{"name", w.name},
-            {"engine", sim::to_string(o.engine)},
-            {"physics_step_us", o.physics_step_ns / 1000},
-            {"imu_noise", true},
-            {"friction_range", o.randomise.friction_range},
-            {"mass_range", o.randomise.mass_range},
-            {"strength_range", o.randomise.strength_range},
-            {"latency_probability", o.randomise.latency_probability},
-            {"contact", sim::contact_kind_name(o.contact)},
-            {"contact_range", o.randomise.contact_range},
-            {"seeds", w.seeds}};
-  if (o.randomise.com_range > 0.0) j["com_range"] = o.randomise.com_range;
+  json j = {{"name", w.name}, {"world", sim::to_json(w.world)}, {"seeds", w.seeds}};
   if (!unavailable.empty()) j["unavailable"] = unavailable;
   return j;
 }
@@ -271,7 +260,7 @@ json summarise_validation(const std::filesystem::path& dir, const TaskConfig& co
                                 {"run_objectives", run_objectives},
                                 {"worlds", per_world}});
   }
-  return {{"format", "stride-validation-1"},
+  return {{"format", kValidationFormat},
           {"task", config.task},
           {"run_engines", engines},
           {"gate",
@@ -284,6 +273,34 @@ json summarise_validation(const std::filesystem::path& dir, const TaskConfig& co
           {"all_passed", all_passed}};
 }
 
+bool is_validation_file(const json& doc) {
+  if (!doc.is_object()) return false;
+  const std::string format = doc.value("format", "");
+  return format == kValidationFormat || format == "stride-validation-1";
+}
+
+json validation_world_columns(const json& world) {
+  if (!world.is_object()) return json::object();
+  if (!world.contains("world")) return world;  // stride-validation-1: the figures in place
+  json options = world["world"];
+  sim::WorldSpec spec;
+  // The robot does not change what the tables show, and its URDF may not be on this machine.
+  if (options.is_object()) options.erase("urdf");
+  if (!read_world_spec(options, "world.", spec)) return options;
+  const sim::WorldOptions o = spec.to_options();
+  json columns = {{"engine", sim::to_string(spec.engine)},
+                  {"physics_step_us", spec.physics_step_us},
+                  {"noise", spec.noise},
+                  {"contact", sim::contact_kind_name(o.contact)},
+                  {"friction_range", spec.randomise.friction_range},
+                  {"mass_range", spec.randomise.mass_range},
+                  {"strength_range", spec.randomise.strength_range},
+                  {"latency_probability", spec.randomise.latency_probability},
+                  {"contact_range", spec.randomise.contact_range}};
+  if (spec.randomise.com_range > 0.0) columns["com_range"] = spec.randomise.com_range;
+  return columns;
+}
+
 std::string validation_text(const json& result) {
   std::ostringstream out;
   char line[512];
@@ -292,17 +309,19 @@ std::string validation_text(const json& result) {
   out << "validation of a " << task << " run (objectives: "
       << (type != nullptr ? type->objective_legend() : std::string("f1, f2"))
       << ")\nworlds (IMU noise on in all):\n";
-  for (const json& w : result.value("worlds", json::array())) {
+  for (const json& world : result.value("worlds", json::array())) {
+    const json w = validation_world_columns(world);
     std::snprintf(
         line, sizeof line,
         "  %-20s %-7s step %4lld us, %s, friction +-%.3g, mass +-%.3g, strength "
         "+-%.3g, latency p %.2g, ground +-%.2g, %zu seeds%s%s\n",
-        w.value("name", "").c_str(), w.value("engine", "").c_str(),
+        world.value("name", "").c_str(), w.value("engine", "").c_str(),
         static_cast<long long>(w.value("physics_step_us", 0)), w.value("contact", "turf").c_str(),
         w.value("friction_range", 0.0), w.value("mass_range", 0.0), w.value("strength_range", 0.0),
         w.value("latency_probability", 0.0), w.value("contact_range", 0.0),
-        w.value("seeds", json::array()).size(), w.contains("unavailable") ? ": UNAVAILABLE, " : "",
-        w.contains("unavailable") ? w["unavailable"].get<std::string>().c_str() : "");
+        world.value("seeds", json::array()).size(),
+        world.contains("unavailable") ? ": UNAVAILABLE, " : "",
+        world.contains("unavailable") ? world["unavailable"].get<std::string>().c_str() : "");
     out << line;
   }
   std::snprintf(line, sizeof line, "%-26s %-20s %7s %5s %10s %10s %5s %8s %8s\n", "individual",

@@ -18,9 +18,8 @@ namespace stride::opt {
 
 namespace {
 
-/// The config's world with the trial's engine, seed, noise and randomisation: trial 1 of 1 is
-/// the nominal world (no noise, no randomisation); K > 1 trials are randomised worlds.
-sim::WorldOptions world_for_trial(const TaskConfig& config, int world, std::uint64_t draw) {
+/// The config's world with the trial's engine, seed, noise and randomisation (robot_task.hpp).
+sim::WorldSpec trial_world_spec(const TaskConfig& config, int world, std::uint64_t draw) {
   sim::WorldSpec spec = config.world;
   const int trial = world % config.trials;
   spec.engine =
@@ -35,10 +34,19 @@ sim::WorldOptions world_for_trial(const TaskConfig& config, int world, std::uint
     spec.randomise.contact_range = config.randomisation.contact_range;
     spec.randomise.com_range = config.randomisation.com_range;
   }
+  return spec;
+}
+
+/// The world `spec` names with what the task type adds: no ball unless the task kicks one.
+sim::WorldOptions task_world_options(const TaskConfig& config, const sim::WorldSpec& spec) {
   sim::WorldOptions w = spec.to_options();
   const TaskType* type = find_task_type(config.task);
   if (type == nullptr || !type->uses_ball()) w.ball.present = false;
   return w;
+}
+
+sim::WorldOptions world_for_trial(const TaskConfig& config, int world, std::uint64_t draw) {
+  return task_world_options(config, trial_world_spec(config, world, draw));
 }
 
 /// The simulated world of this thread on `kind`'s engine: made by the first episode the thread
@@ -153,6 +161,14 @@ std::optional<FrontReference> RobotTask::reference() const {
   r.ideal = config_.hv_ideal;
   r.nadir = config_.hv_nadir;
   return r;
+}
+
+sim::WorldSpec RobotTask::world_spec(int world, std::uint64_t draw) const {
+  return trial_world_spec(config_, world, draw);
+}
+
+sim::WorldOptions RobotTask::world_options(const sim::WorldSpec& spec) const {
+  return task_world_options(config_, spec);
 }
 
 sim::WorldOptions RobotTask::world_options(int world, std::uint64_t draw) const {

@@ -1,6 +1,7 @@
 // report.html end to end: a short walk run, `stride report` re-running Ind_O and the picks (the
 // re-run scores exactly what the run logged), every section on the page, no network resource;
-// run directories with pieces missing give a page and one warning line, never a failure;
+// the replays draw the run's own ground and robot (its world in run.json); run directories
+// with pieces missing give a page and one warning line, never a failure;
 // `stride sim --html` writes the one-episode page, with the 3D replay when three.js is there and
 // a note and one warning line when it is not. (The page in a real browser:
 // tests/browser/.)
@@ -130,12 +131,54 @@ TEST_F(ReportHtml, EverySectionAndTheReRunScoresWhatTheRunLogged) {
   }
   EXPECT_NEAR(replay["frame_dt"].get<double>(), 0.04, 1e-12);
   EXPECT_EQ(replay["robot3d"]["links"].size(), 21u);
+  // The run's own world: walk.json's faithful world is turf (5 mm) with the igus robot.
+  EXPECT_EQ(replay["ground"], "turf");
+  EXPECT_DOUBLE_EQ(replay["grass_m"].get<double>(), 0.005);
+  EXPECT_EQ(replay["robot3d"]["name"], "igus_op");
+  // The validation's worlds table, read from each world's options: the grounds by name.
+  const std::size_t worlds = html.find("<table id=\"validation-worlds\">");
+  ASSERT_NE(worlds, std::string::npos);
+  const std::string table = html.substr(worlds, html.find("</table>", worlds) - worlds);
+  for (const char* ground : {"<td>turf</td>", "<td>soft</td>", "<td>hard</td>"})
+    EXPECT_NE(table.find(ground), std::string::npos) << ground << " in " << table;
   const std::string svg = test::slurp(dir / "pareto_by_generation.svg");
   EXPECT_NE(svg.find(">Ind_O<"), std::string::npos);
   EXPECT_NE(svg.find("front/000.json"), std::string::npos);  // tooltips name the front files
   // The same run reported twice gives the same page (deterministic re-runs).
   ASSERT_EQ(stride({"report", dir.string()}, tmp_->path()).code, 0);
   EXPECT_EQ(test::slurp(dir / "report.html"), page);
+}
+
+// The replay data of a report page.
+nlohmann::json replay_data_of(const std::string& page) {
+  const std::size_t data = page.find("<script type=\"application/json\" id=\"replay-data\">");
+  if (data == std::string::npos) return nullptr;
+  const std::size_t start = page.find('>', data) + 1;
+  return nlohmann::json::parse(page.substr(start, page.find("</script>", start) - start));
+}
+
+TEST_F(ReportHtml, TheReplaysDrawTheRunsOwnGroundAndRobot) {
+  // The run's world in run.json changed to the hard ground and a URDF of another name: the
+  // re-runs run there, and the replays draw that ground and that robot.
+  const fs::path dir = copy_run("hard");
+  const fs::path urdf = tmp_->path() / "renamed.urdf";
+  std::string robot = test::slurp(fs::path(STRIDE_SOURCE_DIR) / "sim_hal/models/igus_op.urdf");
+  const std::string name = "<robot name=\"igus_op\">";
+  ASSERT_NE(robot.find(name), std::string::npos);
+  robot.replace(robot.find(name), name.size(), "<robot name=\"igus_renamed\">");
+  std::ofstream(urdf) << robot;
+  nlohmann::json run = nlohmann::json::parse(test::slurp(dir / "run.json"));
+  run["task"]["world"]["contact"] = "hard";
+  run["task"]["world"]["urdf"] = urdf.string();
+  std::ofstream(dir / "run.json", std::ios::trunc) << run.dump(1);
+  const Result r = stride({"report", dir.string()}, tmp_->path());
+  ASSERT_EQ(r.code, 0) << r.err;
+  const nlohmann::json replay = replay_data_of(test::slurp(dir / "report.html"));
+  ASSERT_TRUE(replay.is_object());
+  EXPECT_EQ(replay["ground"], "hard");
+  EXPECT_DOUBLE_EQ(replay["grass_m"].get<double>(), 0.003);
+  EXPECT_EQ(replay["robot3d"]["name"], "igus_renamed");
+  EXPECT_EQ(replay["ball_radius_m"], 0.0);  // a walk: no ball
 }
 
 TEST_F(ReportHtml, MissingPiecesGiveAPageAndOneWarningLine) {

@@ -70,39 +70,51 @@ TEST(ValidateCli, TinyWalkRunValidatesTheSameForAnyThreadCountAndReportShowsIt) 
   EXPECT_EQ(v, json::parse(by_optimise));
   EXPECT_NE(test::read_file(err).find("validate: "), std::string::npos);  // progress on stderr
 
-  EXPECT_EQ(v["format"], "stride-validation-1");
+  EXPECT_EQ(v["format"], "stride-validation-2");
   EXPECT_EQ(v["task"], "walk");
   EXPECT_EQ(v["run_engines"], json({"simbody"}));
   // The worlds: the other engine, fresh seeds, wider randomisation, half the run's 2.5 ms step
-  // (the walk's trial step),
-  // the soft and the hard ground.
+  // (the walk's trial step), the soft and the hard ground. Each world's options are a `world`
+  // object of the world option table's keys: what differs from the defaults (Simbody, no
+  // ranges, the base world's ground, noise on).
   const json& worlds = v["worlds"];
   ASSERT_EQ(worlds.size(), 6u);
+  auto option = [&worlds](std::size_t w, const char* key) {
+    return worlds[w]["world"].contains(key) ? worlds[w]["world"][key] : json();
+  };
   EXPECT_EQ(worlds[0]["name"], "engine mujoco");
-  EXPECT_EQ(worlds[0]["engine"], "mujoco");
-  EXPECT_EQ(worlds[0]["physics_step_us"], 2000);  // the step the walk allows on MuJoCo
+  EXPECT_EQ(option(0, "engine"), "mujoco");
+  EXPECT_EQ(option(0, "physics_step_us"), 2000);  // the step the walk allows on MuJoCo
   EXPECT_EQ(worlds[1]["name"], "fresh seeds");
   EXPECT_EQ(worlds[2]["name"], "wider randomisation");
-  EXPECT_DOUBLE_EQ(worlds[2]["friction_range"].get<double>(), 0.3);
-  EXPECT_DOUBLE_EQ(worlds[2]["mass_range"].get<double>(), 0.075);
-  EXPECT_DOUBLE_EQ(worlds[2]["strength_range"].get<double>(), 0.15);
-  EXPECT_DOUBLE_EQ(worlds[2]["latency_probability"].get<double>(), 0.5);
+  EXPECT_DOUBLE_EQ(option(2, "friction_range").get<double>(), 0.3);
+  EXPECT_DOUBLE_EQ(option(2, "mass_range").get<double>(), 0.075);
+  EXPECT_DOUBLE_EQ(option(2, "strength_range").get<double>(), 0.15);
+  EXPECT_DOUBLE_EQ(option(2, "latency_probability").get<double>(), 0.5);
   EXPECT_EQ(worlds[3]["name"], "half step");
-  EXPECT_EQ(worlds[3]["physics_step_us"], 1250);
-  for (std::size_t w = 0; w < 4; ++w) EXPECT_EQ(worlds[w]["contact"], "turf");
-  EXPECT_EQ(worlds[4]["name"], "ground soft");
-  EXPECT_EQ(worlds[4]["contact"], "soft");
-  EXPECT_EQ(worlds[5]["name"], "ground hard");
-  EXPECT_EQ(worlds[5]["contact"], "hard");
-  for (std::size_t w = 4; w < 6; ++w) {
-    EXPECT_EQ(worlds[w]["engine"], "simbody");  // the run's engine, step and randomisation
-    EXPECT_EQ(worlds[w]["physics_step_us"], 2500);
-    EXPECT_EQ(worlds[w]["friction_range"], worlds[1]["friction_range"]);
-    EXPECT_EQ(worlds[w]["contact_range"], 0.0);
+  EXPECT_EQ(option(3, "physics_step_us"), 1250);
+  for (std::size_t w = 0; w < 4; ++w) {
+    EXPECT_EQ(option(w, "base"), "faithful");  // its ground: turf
+    EXPECT_TRUE(option(w, "contact").is_null()) << worlds[w]["name"];
   }
-  for (const json& w : worlds) {
-    EXPECT_EQ(w["seeds"], json({1001, 1002, 1003})) << w["name"];  // trial_seed 1 + 1000 + i
-    EXPECT_FALSE(w.contains("unavailable")) << w["name"];
+  EXPECT_EQ(worlds[4]["name"], "ground soft");
+  EXPECT_EQ(option(4, "contact"), "soft");
+  EXPECT_EQ(worlds[5]["name"], "ground hard");
+  EXPECT_EQ(option(5, "contact"), "hard");
+  for (std::size_t w = 4; w < 6; ++w) {
+    EXPECT_TRUE(option(w, "engine").is_null());  // the run's engine (Simbody), step, ranges
+    EXPECT_EQ(option(w, "physics_step_us"), 2500);
+    EXPECT_EQ(option(w, "friction"), 1.0);  // turf's, the run's ground's
+    EXPECT_EQ(option(w, "friction_range"), option(1, "friction_range"));
+    EXPECT_TRUE(option(w, "contact_range").is_null());
+  }
+  for (std::size_t w = 0; w < worlds.size(); ++w) {
+    EXPECT_EQ(worlds[w]["seeds"], json({1001, 1002, 1003}))
+        << worlds[w]["name"];              // trial_seed 1 + 1000 + i
+    EXPECT_EQ(option(w, "seed"), 1001);    // the record is the first seed's world
+    EXPECT_NE(option(w, "noise"), "off");  // on (the default) in every world
+    EXPECT_FALSE(worlds[w].contains("imu_noise"));
+    EXPECT_FALSE(worlds[w].contains("unavailable")) << worlds[w]["name"];
   }
   // Ind_O first, then the picks of `stride report`.
   const json& individuals = v["individuals"];

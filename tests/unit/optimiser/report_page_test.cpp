@@ -1,6 +1,7 @@
 // Report building blocks: 1-2-5 ticks, charts with the legend outside the plot and tooltips,
-// the tolerant run-directory and validation.json readers, base64 and the stick figure, the 3D
-// replay's robot description and motion data and what its section says when a piece is missing.
+// the tolerant run-directory and validation.json readers, base64 and the stick figure, the
+// replay's scene (the world's own ground and ball), the 3D replay's robot description and
+// motion data and what its section says when a piece is missing.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -215,6 +216,29 @@ ReplayIndividual still_capture(const sim::RobotModel& model, int frames) {
     ind.capture.frames.push_back(s);
   }
   return ind;
+}
+
+TEST(ReportReplay, TheSceneIsTheWorldsOwnGroundAndBall) {
+  sim::RobotModel model;
+  ASSERT_TRUE(sim::RobotModel::load_file(sim::RobotModel::igus_path(), model));
+  sim::WorldOptions world;  // faithful: turf, 5 mm, a ball
+  ReplayScene scene = replay_scene(world);
+  EXPECT_EQ(scene.ground, "turf");
+  EXPECT_DOUBLE_EQ(scene.grass_m, 0.005);
+  EXPECT_DOUBLE_EQ(scene.ball_radius_m, world.ball.radius_m);
+  ASSERT_TRUE(sim::parse_contact_kind("hard", world.contact));
+  world.ball.present = false;
+  scene = replay_scene(world);
+  EXPECT_EQ(scene.ground, "hard");
+  EXPECT_DOUBLE_EQ(scene.grass_m, 0.003);
+  EXPECT_EQ(scene.ball_radius_m, 0.0);
+  const nlohmann::json data = replay_data(model, {still_capture(model, 2)}, scene);
+  EXPECT_EQ(data["ground"], "hard");
+  EXPECT_DOUBLE_EQ(data["grass_m"].get<double>(), 0.003);
+  world.contact = sim::ContactOptions::seed();
+  world.contact.grass_damping_n_s_m = 55.0;  // a calibrated ground: no name of its own
+  EXPECT_EQ(replay_scene(world).ground, "custom");
+  EXPECT_DOUBLE_EQ(replay_scene(world).grass_m, 0.02);
 }
 
 // Sets $STRIDE_THREE_JS for one scope.

@@ -1,7 +1,8 @@
 // Replay of simulated episodes side by side (report.html, stride sim --html). Embedded at
 // build time. Reads the JSON in #replay-data (written by html_replay.cpp):
 //   fps_dt: time between frames [s]; figure: {points, strokes: [[a, b, colour, width]],
-//   circles: [[point, radius_m]]}; grass_m; ball_radius_m (0: no ball); goal_m (or null);
+//   circles: [[point, radius_m]]}; ground (its name: seed, turf, soft, hard or custom);
+//   grass_m (the top of its soft layer); ball_radius_m (0: no ball); goal_m (or null);
 //   individuals: [{name, colour, note, end_s, frames, data}], data = base64 of little-endian
 //   int16 millimetres, per frame (points + 1 ball point) x (x, y, z).
 // Each individual gets a card with a side view (x right, following the torso), a front view
@@ -86,7 +87,7 @@
     const sy = function (z) { return y0 + GROUND - SCALE * z; };
     ctx.fillStyle = '#eef6fb';
     ctx.fillRect(0, y0, W, VIEW_H);
-    ctx.fillStyle = '#b7e3a1';
+    ctx.fillStyle = data.ground === 'hard' ? '#c9d0d8' : '#b7e3a1';  // carpet or grass
     ctx.fillRect(0, sy(data.grass_m), W, SCALE * data.grass_m);
     ctx.strokeStyle = '#6b4f2a';
     ctx.lineWidth = 2;

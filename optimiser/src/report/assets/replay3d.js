@@ -7,9 +7,10 @@
 // `motion` (base64 int16 per frame: torso mm, torso quaternion 1e-4, joint angles 1e-4 rad,
 // left and right foot force N, ball mm) and `motion_frames`. The links are the URDF's collision
 // boxes and spheres (studs dark), posed by forward kinematics from the torso pose and the joint
-// angles; grey balls mark the joints. Around them: the grass, a 0.5 m grid, the start and goal
-// lines, the ball; orange arrows beside the feet show each foot's contact force (0.4 cm per
-// newton, from the sole's height).
+// angles; grey balls mark the joints. Around them: the episode's ground (`ground`, its name,
+// and `grass_m`, the top of its layer), a 0.5 m grid, the start and goal lines, the ball;
+// orange arrows beside the feet show each foot's contact force (0.4 cm per newton, from the
+// sole's height).
 //
 // Time comes from replay.js (event 'stride-replay-time'): one clock, one slider for the 2D
 // cards, the 3D view and the accelerometer cursors. The camera is a small orbit control of our
@@ -106,13 +107,18 @@
   const sun = new THREE.DirectionalLight(0xffffff, 0.55);
   sun.position.set(2, -3, 6);
   scene.add(sun);
+  // The episode's own ground: its layer's top at grass_m, coloured by its kind (a grey-blue
+  // carpet for hard, green for the grass and turf grounds).
   const grass = data.grass_m || 0;
+  const groundColour = {seed: 0x8fcf78, turf: 0x7cc56a, soft: 0x9ad483, hard: 0xa9b4c2}[data.ground];
   const goal = data.goal_m;
   const fieldLength = Math.max(6, (goal || 0) + 4);
   const ground = new THREE.Mesh(new THREE.PlaneBufferGeometry(fieldLength + 4, 8),
-                                new THREE.MeshLambertMaterial({color: 0x8fcf78}));
+                                new THREE.MeshLambertMaterial({color: groundColour || 0x8fcf78}));
   ground.position.set(fieldLength / 2 - 1, 0, grass - 0.012);
   scene.add(ground);
+  api.ground = {name: data.ground || '', grass_m: grass, top_z: ground.position.z + 0.012,
+                colour: ground.material.color.getHex()};
   // Lines on the grass: a 0.5 m grid (flat strips, lit like the grass), the start and goal lines.
   function strip(x0, x1, y0, y1, colour, lift) {
     const m = new THREE.Mesh(new THREE.BoxBufferGeometry(x1 - x0, y1 - y0, 0.002),
@@ -121,8 +127,9 @@
     scene.add(m);
   }
   const gridX1 = Math.ceil(fieldLength - 1);
-  for (let x = -2; x <= gridX1; x += 0.5) strip(x - 0.004, x + 0.004, -3.5, 3.5, 0x6fae5c, 0);
-  for (let y = -3.5; y <= 3.5; y += 0.5) strip(-2, gridX1, y - 0.004, y + 0.004, 0x6fae5c, 0);
+  const gridColour = data.ground === 'hard' ? 0x8d98a6 : 0x6fae5c;
+  for (let x = -2; x <= gridX1; x += 0.5) strip(x - 0.004, x + 0.004, -3.5, 3.5, gridColour, 0);
+  for (let y = -3.5; y <= 3.5; y += 0.5) strip(-2, gridX1, y - 0.004, y + 0.004, gridColour, 0);
   strip(-0.01, 0.01, -3.5, 3.5, 0xffffff, 0.002);
   if (goal) strip(goal - 0.02, goal + 0.02, -3.5, 3.5, 0xd0021b, 0.002);
 

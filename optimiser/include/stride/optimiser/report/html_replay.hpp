@@ -17,6 +17,7 @@
 
 #include "stride/sim_hal/episode_capture.hpp"
 #include "stride/sim_hal/robot_model.hpp"
+#include "stride/sim_hal/world_options.hpp"
 
 namespace stride::opt::report {
 
@@ -28,10 +29,14 @@ struct ReplayIndividual {
 };
 
 struct ReplayScene {
-  double grass_m = 0.02;
+  std::string ground = "seed";   ///< the ground's name (sim::contact_kind_name): its colour
+  double grass_m = 0.02;         ///< the top of the ground's soft layer [m]
   double ball_radius_m = 0.0;    ///< 0: no ball in the world
   std::optional<double> goal_m;  ///< the walk's goal line [m] from the start
 };
+/// The scene of an episode in `world`: its ground (name and layer thickness) and its ball (if
+/// the world has one).
+ReplayScene replay_scene(const sim::WorldOptions& world);
 
 /// The JSON block replay.js reads.
 nlohmann::json replay_data(const sim::RobotModel& model,

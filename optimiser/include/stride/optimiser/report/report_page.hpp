@@ -5,10 +5,12 @@
 // run_trial, trial 0, the very world, seed and noise settings of the run's first trial (from
 // the task config in run.json), with an EpisodeCapturer watching; nothing is taken from the
 // optimisation's own episodes. For a single-trial task the re-run scores exactly what the log
-// says (the picks table shows both). Sections, in order: settings, picks (Ind_O against the
-// picks, changes in %), validation (only when validation.json exists), front by generation,
-// hypervolume, accelerometer, poses (strips at regular times, 9 frames 0.25 s apart: walk
-// from 4 s, kick from 1.5 s before the ball first moves), replay, parameters (Table E).
+// says (the picks table shows both). The replays and pose strips draw that world's robot (the
+// task's model: the config world's URDF, else igus) and its ground. Sections, in order:
+// settings, picks (Ind_O against the picks, changes in %), validation (only when
+// validation.json exists), front by generation, hypervolume, accelerometer, poses (strips at
+// regular times, 9 frames 0.25 s apart: walk from 4 s, kick from 1.5 s before the ball first
+// moves), replay, parameters (Table E).
 // A run directory with missing pieces gives a page that says what is missing in each section
 // and in the warnings list at the top.
 #pragma once

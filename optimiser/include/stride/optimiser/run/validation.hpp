@@ -85,18 +85,37 @@ struct ValidationSubject {
 Status load_validation_subject(const std::filesystem::path& dir, ValidationSubject& out,
                                const std::vector<std::size_t>& members = {});
 
-/// One validation world: its name, its options (seed set per episode) and the seeds.
+/// One validation world: its name, its options by name (the run's world, RobotTask::world_spec,
+/// with the validation's changes; the seed is set per episode) and the seeds.
 struct ValidationWorld {
   std::string name;
-  sim::WorldOptions options;
+  sim::WorldSpec world;
   std::vector<std::uint64_t> seeds;
 };
-/// The worlds for a task; bad options (an engine list, a step that does not divide the
-/// control period) are an error naming the option.
+/// The worlds for a task, each the run's first trial world (its WorldSpec) with IMU noise on
+/// and the world's changes set as options; bad options (an engine list, a step that does not
+/// divide the control period or whose half is not a whole microsecond) are an error naming the
+/// option.
 Status validation_worlds(const RobotTask& task, const ValidationOptions& options,
                          std::vector<ValidationWorld>& out);
+/// The options episode `seed` (index into world.seeds) of `world` runs in: the world's spec with
+/// that seed, through RobotTask::world_options (WorldSpec::to_options and the task's additions).
+sim::WorldOptions validation_episode_world(const RobotTask& task, const ValidationWorld& world,
+                                           std::size_t seed);
 
-/// Runs every individual in every world and summarises (format "stride-validation-1"). A
+/// The format validation.json is written in: each world's options are a `world` object of the
+/// world option table's keys (sim::to_json(WorldSpec)). "stride-validation-1" files had the
+/// figures in the world entry itself (imu_noise, contact, ranges); they are still read.
+inline constexpr const char* kValidationFormat = "stride-validation-2";
+/// True for a validation.json object of either format.
+bool is_validation_file(const nlohmann::json& doc);
+/// The figures the tables show of one entry of validation.json's `worlds`: engine,
+/// physics_step_us, contact (the ground's name, "custom" for a calibrated one), the ranges,
+/// latency_probability; the entry itself for a stride-validation-1 file, the `world` object as
+/// it stands if it cannot be read.
+nlohmann::json validation_world_columns(const nlohmann::json& world);
+
+/// Runs every individual in every world and summarises (format kValidationFormat). A
 /// missing Ind_O score in the log is computed with task.evaluate().
 Status run_validation(const ValidationSubject& subject, const ValidationOptions& options,
                       nlohmann::json& out);

@@ -75,8 +75,18 @@ class RobotTask final : public Problem {
   /// The config's further starts (TaskConfig::starts) as genomes; the error names the start
   /// and the gene whose value lies outside the gene's range.
   Status extra_start_genomes(std::vector<Genome>& out) const;
-  /// The options of world `world` (0-based, < config().world_count()) of the task's draw.
+  /// World `world` (0-based, < config().world_count()) of draw `draw` as options by name: the
+  /// config's world with the trial's engine, seed, noise and randomisation (trial 1 of 1 is the
+  /// nominal world: no noise, no randomisation; K > 1 trials are randomised worlds).
+  sim::WorldSpec world_spec(int world, std::uint64_t draw = 0) const;
+  /// The world `spec` names as the task's episodes run it: spec.to_options() and what the task
+  /// type adds (no ball unless the task uses one). Validation worlds are made with it too.
+  sim::WorldOptions world_options(const sim::WorldSpec& spec) const;
+  /// world_options(world_spec(world, draw)).
   sim::WorldOptions world_options(int world, std::uint64_t draw = 0) const;
+  /// The robot the episodes run (the config world's URDF, else the igus model); null if it
+  /// could not be loaded.
+  const std::shared_ptr<const sim::RobotModel>& robot_model() const { return robot_model_; }
   /// One episode in world `world` (0-based); a failure reason on a broken set-up or world.
   /// `capture`, if given, observes every tick (replays in `stride report`); it changes nothing.
   Status run_trial(const Genome& genome, int world, EpisodeScore& out,
