@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "robot_placement.hpp"
+#include "stride/firmware/parameter_store.hpp"
 #include "stride/sim_hal/collision_points.hpp"
 #include "stride/sim_hal/grounds.hpp"
 #include "stride/sim_hal/physics_engine.hpp"
@@ -101,8 +102,8 @@ Status SimWorld::Impl::configure() {
     return Status::error("contact: thickness, damping and friction must be >= 0, stiffness > 0");
   if (!(o.randomise.contact_range >= 0.0 && o.randomise.contact_range <= kMaxContactRange))
     return Status::error("contact_range: must be in 0..1");
-  if (!(o.randomise.com_range >= 0.0 && o.randomise.com_range <= 0.05))
-    return Status::error("com_range: must be in 0..0.05 m");
+  if (!(o.randomise.com_range >= 0.0 && o.randomise.com_range <= kMaxComRange))
+    return Status::error("com_range: must be in 0.." + fw::format_number(kMaxComRange) + " m");
   for (const TorsoPush& p : o.pushes)
     if (!(p.time_s >= 0.0) || !std::isfinite(p.time_s) || !std::isfinite(p.direction_rad) ||
         !(p.impulse_n_s >= 0.0) || !std::isfinite(p.impulse_n_s))

@@ -27,7 +27,7 @@ namespace stride::sim {
 
 struct WorldFile {
   WorldPreset base = WorldPreset::kFaithful;
-  double supply_voltage_v = 14.8;  ///< the robot's battery (WorldOptions::battery_voltage_v)
+  double supply_voltage_v = kNominalSupplyVoltage;  ///< the robot's battery (WorldOptions::battery_voltage_v)
   RobotCalibration robot;
   Eigen::Vector3d gyro_bias_rad_s = Eigen::Vector3d::Zero();  ///< fixed IMU biases, torso frame
   Eigen::Vector3d accel_bias_mps2 = Eigen::Vector3d::Zero();
