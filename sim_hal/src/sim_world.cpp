@@ -84,17 +84,7 @@ Status SimWorld::Impl::configure() {
   if (Status s = check_physics_step(o.physics_step_ns, o.control_period_ns); !s) return s;
   if (!(o.battery_voltage_v > 0.0) || !(o.max_speed > 0.0))
     return Status::error("battery voltage and max speed must be positive");
-  const RobotCalibration& c = o.robot;
-  if (!(c.torque_scale_mx64 > 0.0 && c.torque_scale_mx64 < 10.0) ||
-      !(c.torque_scale_mx106 > 0.0 && c.torque_scale_mx106 < 10.0) ||
-      !(c.friction_scale >= 0.0 && c.friction_scale < 10.0) ||
-      !(c.trunk_mass_scale > 0.0 && c.trunk_mass_scale < 10.0) ||
-      !(c.trunk_com_offset_m.array().abs() < 0.5).all() || c.latency_ticks < 0 ||
-      c.latency_ticks > RobotCalibration::kMaxLatencyTicks)
-    return Status::error(
-        "robot calibration: torque, friction and trunk mass scales must be in (0, 10), the "
-        "trunk's centre-of-mass offset within 0.5 m, latency 0.." +
-        std::to_string(RobotCalibration::kMaxLatencyTicks) + " ticks");
+  if (Status s = check_calibration(calibration_of(o)); !s) return s;
   if (!(o.contact.grass_thickness_m >= 0.0) || !(o.contact.grass_stiffness_n_m > 0.0) ||
       !(o.contact.ground_stiffness_n_m > 0.0) || !(o.contact.friction >= 0.0) ||
       !(o.contact.tangential_stiffness_n_m > 0.0) || !(o.contact.grass_damping_n_s_m >= 0.0) ||
