@@ -27,14 +27,8 @@ sim::WorldOptions world_for_trial(const TaskConfig& config, int world, std::uint
       config.engines[static_cast<std::size_t>(world / config.trials) % config.engines.size()];
   spec.seed = trial_world_seed(config, trial, draw);
   spec.noise = config.trials > 1 && config.randomisation.imu_noise;
-  spec.randomise = {};
-  if (config.trials > 1) {
-    spec.randomise.friction_range = config.randomisation.friction_range;
-    spec.randomise.mass_range = config.randomisation.mass_range;
-    spec.randomise.strength_range = config.randomisation.strength_range;
-    spec.randomise.contact_range = config.randomisation.contact_range;
-    spec.randomise.com_range = config.randomisation.com_range;
-  }
+  spec.randomise =
+      config.trials > 1 ? sim::Randomisation(config.randomisation) : sim::Randomisation{};
   sim::WorldOptions w = spec.to_options();
   const TaskType* type = find_task_type(config.task);
   if (type == nullptr || !type->uses_ball()) w.ball.present = false;
