@@ -95,8 +95,9 @@ Status trunk_scale_for_mass(const WorldOptions& world, double robot_mass_kg, dou
   const double trunk = model->links().front().mass;
   const double total = model->total_mass();
   out = 1.0 + (robot_mass_kg - total) / trunk;
-  const double lo = total - 0.7 * trunk, hi = total + 2.0 * trunk;
-  if (!std::isfinite(robot_mass_kg) || out < 0.3 || out > 3.0) {
+  const sim::CalibrationQuantity& range = *sim::find_calibration_quantity("trunk_mass");
+  const double lo = total + (range.min - 1.0) * trunk, hi = total + (range.max - 1.0) * trunk;
+  if (!std::isfinite(robot_mass_kg) || out < range.min || out > range.max) {
     char text[160];
     std::snprintf(text, sizeof text,
                   "--robot-mass: %.3g kg is too far from the model's %.3f kg (allowed %.2f to "

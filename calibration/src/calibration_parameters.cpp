@@ -1,11 +1,13 @@
-// The values stride calibrate fits (calibration.hpp): their names, units, bounds and steps,
-// which the routine does not identify (the warnings, from the drawn-robot study of
-// tests/bench/RESULTS.md), and reading and setting each in a world file.
+// The values stride calibrate fits (calibration.hpp): their search bounds and steps, which the
+// routine does not identify (the warnings, from the drawn-robot study of tests/bench/RESULTS.md),
+// and reading and setting each in a world file. Their names, units, words and ranges are the
+// world file's calibration quantities (sim::calibration_quantities, world_file.hpp).
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "stride/calibration/calibration.hpp"
@@ -15,34 +17,61 @@ namespace stride::calibration {
 using sim::RobotCalibration;
 using sim::WorldFile;
 
-const std::vector<CalibrationParameter>& calibration_parameters() {
+namespace {
+
+/// How stride calibrate fits one calibration quantity (its name, unit, words and range are
+/// sim::calibration_quantities()'s): the search bounds, inside the quantity's range (a test
+/// holds), the first step and the warnings.
+struct FitBounds {
+  std::string_view name;
+  double lower = 0.0, upper = 0.0, step = 0.0;
+  std::string caution = {}, caution_with = {}, caution_with_why = {};
+};
+
+const std::vector<FitBounds>& fit_bounds() {
   static const std::string kServo =
       "the routine's slow motions let the MX torque scales and the friction trade against each "
       "other and against the model's other differences";
   static const std::string kCom =
       "the routine tells the trunk's centre of mass only when little else differs, and then to "
       "about 2.5 mm";
-  static const std::vector<CalibrationParameter> params = {
-      {"torque_mx64", "x", "MX-64 torque scale", 0.5, 1.5, 0.1, false,
+  static const std::vector<FitBounds> bounds = {
+      {"torque_mx64", 0.5, 1.5, 0.1,
        "the routine hardly loads the arms and the head, which the MX-64s move"},
-      {"torque_mx106", "x", "MX-106 torque scale", 0.5, 1.5, 0.1, false, kServo},
-      {"friction", "x", "servo friction scale", 0.2, 3.0, 0.2, false, kServo},
-      {"voltage", "V", "supply voltage", 11.0, 16.8, 0.5, false,
+      {"torque_mx106", 0.5, 1.5, 0.1, kServo},
+      {"friction", 0.2, 3.0, 0.2, kServo},
+      {"voltage", 11.0, 16.8, 0.5,
        "it trades against the MX-106 torque; the logs measure it (leave it out of --fit)"},
-      {"latency", "ticks", "bus latency", 0.0, RobotCalibration::kMaxLatencyTicks, 1.0, true},
-      {"trunk_mass", "x", "trunk mass scale", 0.7, 1.5, 0.05, false,
+      {"latency", 0.0, RobotCalibration::kMaxLatencyTicks, 1.0},
+      {"trunk_mass", 0.7, 1.5, 0.05,
        "it trades against the MX-106 torque and the supply; weigh the robot (--robot-mass)"},
-      {"trunk_com_x", "m", "trunk centre of mass, forward", -0.04, 0.04, 0.005, false, kCom},
-      {"trunk_com_y", "m", "trunk centre of mass, left", -0.04, 0.04, 0.005, false, kCom},
-      {"gyro_bias_x", "rad/s", "gyro bias x", -0.2, 0.2, 0.02},
-      {"gyro_bias_y", "rad/s", "gyro bias y", -0.2, 0.2, 0.02},
-      {"gyro_bias_z", "rad/s", "gyro bias z", -0.2, 0.2, 0.02},
-      {"accel_bias_x", "m/s^2", "accelerometer bias x", -1.0, 1.0, 0.1},
-      {"accel_bias_y", "m/s^2", "accelerometer bias y", -1.0, 1.0, 0.1, false, "", "trunk_com_y",
+      {"trunk_com_x", -0.04, 0.04, 0.005, kCom},
+      {"trunk_com_y", -0.04, 0.04, 0.005, kCom},
+      {"gyro_bias_x", -0.2, 0.2, 0.02},
+      {"gyro_bias_y", -0.2, 0.2, 0.02},
+      {"gyro_bias_z", -0.2, 0.2, 0.02},
+      {"accel_bias_x", -1.0, 1.0, 0.1},
+      {"accel_bias_y", -1.0, 1.0, 0.1, "", "trunk_com_y",
        "the accelerometer's y also reads the trunk's roll, which the trunk's lateral centre of "
        "mass moves through the servos' compliance; fit it without trunk_com_y"},
-      {"accel_bias_z", "m/s^2", "accelerometer bias z", -1.0, 1.0, 0.1},
+      {"accel_bias_z", -1.0, 1.0, 0.1},
   };
+  return bounds;
+}
+
+}  // namespace
+
+const std::vector<CalibrationParameter>& calibration_parameters() {
+  // In the quantities' order; a quantity without fit bounds is not fitted.
+  static const std::vector<CalibrationParameter> params = [] {
+    std::vector<CalibrationParameter> out;
+    for (const sim::CalibrationQuantity& q : sim::calibration_quantities())
+      for (const FitBounds& f : fit_bounds())
+        if (f.name == q.name)
+          out.push_back({std::string(q.name), std::string(q.unit), std::string(q.what), f.lower,
+                         f.upper, f.step, q.whole, f.caution, f.caution_with, f.caution_with_why});
+    return out;
+  }();
   return params;
 }
 
@@ -97,34 +126,13 @@ std::string warning_mark(const CalibrationParameter& p) {
 }
 
 double calibration_value(const WorldFile& w, const std::string& name) {
-  const RobotCalibration& c = w.robot;
-  if (name == "torque_mx64") return c.torque_scale_mx64;
-  if (name == "torque_mx106") return c.torque_scale_mx106;
-  if (name == "friction") return c.friction_scale;
-  if (name == "voltage") return w.supply_voltage_v;
-  if (name == "latency") return c.latency_ticks;
-  if (name == "trunk_mass") return c.trunk_mass_scale;
-  if (name == "trunk_com_x") return c.trunk_com_offset_m.x();
-  if (name == "trunk_com_y") return c.trunk_com_offset_m.y();
-  const int axis = name.back() - 'x';
-  if (name.rfind("gyro_bias_", 0) == 0) return w.gyro_bias_rad_s[axis];
-  if (name.rfind("accel_bias_", 0) == 0) return w.accel_bias_mps2[axis];
-  return std::numeric_limits<double>::quiet_NaN();
+  const sim::CalibrationQuantity* q = sim::find_calibration_quantity(name);
+  return q != nullptr ? q->get(w) : std::numeric_limits<double>::quiet_NaN();
 }
 
 void set_calibration_value(WorldFile& w, const std::string& name, double v) {
-  RobotCalibration& c = w.robot;
-  if (name == "torque_mx64") c.torque_scale_mx64 = v;
-  if (name == "torque_mx106") c.torque_scale_mx106 = v;
-  if (name == "friction") c.friction_scale = v;
-  if (name == "voltage") w.supply_voltage_v = v;
-  if (name == "latency") c.latency_ticks = static_cast<int>(std::lround(v));
-  if (name == "trunk_mass") c.trunk_mass_scale = v;
-  if (name == "trunk_com_x") c.trunk_com_offset_m.x() = v;
-  if (name == "trunk_com_y") c.trunk_com_offset_m.y() = v;
-  const int axis = name.back() - 'x';
-  if (name.rfind("gyro_bias_", 0) == 0) w.gyro_bias_rad_s[axis] = v;
-  if (name.rfind("accel_bias_", 0) == 0) w.accel_bias_mps2[axis] = v;
+  if (const sim::CalibrationQuantity* q = sim::find_calibration_quantity(name); q != nullptr)
+    q->set(w, v);
 }
 
 }  // namespace stride::calibration

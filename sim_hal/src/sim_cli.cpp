@@ -59,27 +59,20 @@ Status read_engine_list(const core::CliArgs& args, const std::string& name,
 
 namespace {
 
-/// ", calibrated robot (...)" naming what differs from the nominal robot, or "".
+/// ", calibrated robot (...)" naming each calibration quantity that differs from the nominal
+/// robot in the quantity's words and unit, or "".
 std::string describe_calibration(const WorldOptions& o) {
-  const RobotCalibration& c = o.robot;
-  const RobotCalibration nominal;
+  const WorldFile calibration = calibration_of(o), nominal;
   std::string parts;
-  const auto add = [&parts](const std::string& name, double value) {
-    char text[64];
-    std::snprintf(text, sizeof text, "%s%s %.4g", parts.empty() ? "" : ", ", name.c_str(), value);
+  for (const CalibrationQuantity& q : calibration_quantities()) {
+    const double value = q.get(calibration);
+    if (value == q.get(nominal)) continue;
+    char text[96];
+    std::snprintf(text, sizeof text, "%s%.*s %.4g%s%.*s", parts.empty() ? "" : "; ",
+                  static_cast<int>(q.what.size()), q.what.data(), value, q.unit == "x" ? "" : " ",
+                  q.unit == "x" ? 0 : static_cast<int>(q.unit.size()), q.unit.data());
     parts += text;
-  };
-  if (o.battery_voltage_v != WorldOptions{}.battery_voltage_v) add("supply V", o.battery_voltage_v);
-  if (c.torque_scale_mx64 != nominal.torque_scale_mx64) add("MX-64 torque x", c.torque_scale_mx64);
-  if (c.torque_scale_mx106 != nominal.torque_scale_mx106)
-    add("MX-106 torque x", c.torque_scale_mx106);
-  if (c.friction_scale != nominal.friction_scale) add("friction x", c.friction_scale);
-  if (c.latency_ticks != nominal.latency_ticks) add("latency ticks", c.latency_ticks);
-  if (c.trunk_mass_scale != nominal.trunk_mass_scale) add("trunk mass x", c.trunk_mass_scale);
-  if (c.trunk_com_offset_m.x() != 0.0) add("trunk CoM x +m", c.trunk_com_offset_m.x());
-  if (c.trunk_com_offset_m.y() != 0.0) add("trunk CoM y +m", c.trunk_com_offset_m.y());
-  if (!o.imu.gyro_bias.isZero()) add("|gyro bias| rad/s", o.imu.gyro_bias.norm());
-  if (!o.imu.accel_bias.isZero()) add("|accel bias| m/s^2", o.imu.accel_bias.norm());
+  }
   return parts.empty() ? "" : ", calibrated robot (" + parts + ")";
 }
 

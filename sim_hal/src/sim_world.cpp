@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "robot_placement.hpp"
+#include "stride/firmware/parameter_store.hpp"
 #include "stride/sim_hal/collision_points.hpp"
 #include "stride/sim_hal/grounds.hpp"
 #include "stride/sim_hal/physics_engine.hpp"
@@ -83,17 +84,7 @@ Status SimWorld::Impl::configure() {
   if (Status s = check_physics_step(o.physics_step_ns, o.control_period_ns); !s) return s;
   if (!(o.battery_voltage_v > 0.0) || !(o.max_speed > 0.0))
     return Status::error("battery voltage and max speed must be positive");
-  const RobotCalibration& c = o.robot;
-  if (!(c.torque_scale_mx64 > 0.0 && c.torque_scale_mx64 < 10.0) ||
-      !(c.torque_scale_mx106 > 0.0 && c.torque_scale_mx106 < 10.0) ||
-      !(c.friction_scale >= 0.0 && c.friction_scale < 10.0) ||
-      !(c.trunk_mass_scale > 0.0 && c.trunk_mass_scale < 10.0) ||
-      !(c.trunk_com_offset_m.array().abs() < 0.5).all() || c.latency_ticks < 0 ||
-      c.latency_ticks > RobotCalibration::kMaxLatencyTicks)
-    return Status::error(
-        "robot calibration: torque, friction and trunk mass scales must be in (0, 10), the "
-        "trunk's centre-of-mass offset within 0.5 m, latency 0.." +
-        std::to_string(RobotCalibration::kMaxLatencyTicks) + " ticks");
+  if (Status s = check_calibration(calibration_of(o)); !s) return s;
   if (!(o.contact.grass_thickness_m >= 0.0) || !(o.contact.grass_stiffness_n_m > 0.0) ||
       !(o.contact.ground_stiffness_n_m > 0.0) || !(o.contact.friction >= 0.0) ||
       !(o.contact.tangential_stiffness_n_m > 0.0) || !(o.contact.grass_damping_n_s_m >= 0.0) ||
@@ -101,8 +92,8 @@ Status SimWorld::Impl::configure() {
     return Status::error("contact: thickness, damping and friction must be >= 0, stiffness > 0");
   if (!(o.randomise.contact_range >= 0.0 && o.randomise.contact_range <= kMaxContactRange))
     return Status::error("contact_range: must be in 0..1");
-  if (!(o.randomise.com_range >= 0.0 && o.randomise.com_range <= 0.05))
-    return Status::error("com_range: must be in 0..0.05 m");
+  if (!(o.randomise.com_range >= 0.0 && o.randomise.com_range <= kMaxComRange))
+    return Status::error("com_range: must be in 0.." + fw::format_number(kMaxComRange) + " m");
   for (const TorsoPush& p : o.pushes)
     if (!(p.time_s >= 0.0) || !std::isfinite(p.time_s) || !std::isfinite(p.direction_rad) ||
         !(p.impulse_n_s >= 0.0) || !std::isfinite(p.impulse_n_s))

@@ -18,160 +18,269 @@ constexpr double kMinStepUs = 1.0, kMaxStepUs = 20000.0;
 /// A relative randomisation range below 1 (a scale never reaches 0).
 constexpr double kMaxRange = 0.99;
 
+using nlohmann::json;
+
+Status set_base(WorldSpec& s, const std::string& value, double, const std::string& shown) {
+  if (looks_like_world_file(value)) {
+    WorldFile file;
+    if (Status st = load_world_file(value, file); !st)
+      return Status::error(shown + ": " + st.message());
+    s.use_world_file(std::move(file), value);
+    return {};
+  }
+  WorldPreset preset = WorldPreset::kFaithful;
+  if (!parse_world_preset(value, preset))
+    return Status::error(shown + ": expected faithful, seed or a world file (.json), got '" +
+                         value + "'");
+  s.base = preset;
+  s.file.reset();
+  s.file_path.clear();
+  return {};
+}
+
+Status set_urdf(WorldSpec& s, const std::string& value, double, const std::string& shown) {
+  std::error_code error;
+  if (value.empty() || !std::filesystem::is_regular_file(value, error))
+    return Status::error(shown + ": no such file '" + value + "'");
+  auto model = std::make_shared<RobotModel>();
+  if (Status st = RobotModel::load_file(value, *model); !st)
+    return Status::error(shown + ": " + st.message());
+  s.urdf = value;
+  s.model = std::move(model);
+  return {};
+}
+
+Status add_push(WorldSpec& s, const std::string& value, double, const std::string& shown) {
+  TorsoPush push;
+  // The time is checked against the episode by its runner.
+  if (Status st = parse_push(value, std::numeric_limits<double>::infinity(), push, shown); !st)
+    return st;
+  s.pushes.push_back(push);
+  return {};
+}
+
+/// An optional field as JSON: null when unset.
+template <typename T>
+json optional_json(const std::optional<T>& value) {
+  return value ? json(*value) : json();
+}
+
+/// A default's value as the help shows it: a name as is, a number as the parameters print it.
+std::string default_text(const json& value) {
+  if (value.is_string()) return value.get<std::string>();
+  if (value.is_number_float()) return fw::format_number(value.get<double>());
+  return value.dump();
+}
+
+// The rows name only the fields they give (designated initialisers); GCC 12 warns of the
+// fields left at their defaults, which is the point.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
+
+/// One of the per-reset randomisation ranges: a number in [0, max] bound to `field`.
+template <double Randomisation::*field>
+WorldOptionInfo randomisation_row(std::string_view key, std::string_view unit,
+                                  std::string_view help, double max) {
+  return {.key = key,
+          .unit = unit,
+          .help = help,
+          .value = WorldValue::kNumber,
+          .min = 0.0,
+          .max = max,
+          .randomisation = true,
+          .set = [](WorldSpec& s, const std::string&, double v, const std::string&) -> Status {
+            s.randomise.*field = v;
+            return {};
+          },
+          .get = [](const WorldSpec& s) { return json(s.randomise.*field); }};
+}
+
+std::vector<WorldOptionInfo> make_table() {
+  using V = WorldValue;
+  using S = WorldSpec;
+  using Text = const std::string&;
+  std::vector<WorldOptionInfo> table = {
+      {.key = "base",
+       .help = "named world: faithful (identified servo law, CM730 IMU, turf), seed (the "
+               "thesis's: seed servo law, ideal IMU, 2 cm grass) or a world file (.json, from "
+               "stride calibrate); servo_law, imu and contact override its parts",
+       .value = V::kWorld,
+       .choices = {"faithful", "seed"},
+       .always_written = true,
+       .set = set_base,
+       .get = [](const S& s) { return s.file ? to_json(*s.file) : json(to_string(s.base)); }},
+      {.key = "engine",
+       .help = "physics engine: simbody (Stride's contact) or mujoco (MuJoCo's)",
+       .choices = {"simbody", "mujoco"},
+       .set = [](S& s, Text v, double, Text) -> Status {
+         parse_engine_kind(v, s.engine);
+         return {};
+       },
+       .get = [](const S& s) { return json(to_string(s.engine)); }},
+      {.key = "physics_step_us",
+       .unit = "us",
+       .help = "fixed physics step, dividing the firmware's control period",
+       .value = V::kInteger,
+       .min = kMinStepUs,
+       .max = kMaxStepUs,
+       .always_written = true,
+       .set = [](S& s, Text, double v, Text) -> Status {
+         s.physics_step_us = static_cast<std::int64_t>(v);
+         return {};
+       },
+       .get = [](const S& s) { return json(s.physics_step_us); }},
+      {.key = "servo_law",
+       .default_text = "the world's",
+       .help = "servo model: seed (Gazebo figures) or identified (MX, BAM M6)",
+       .choices = {"seed", "identified"},
+       .set = [](S& s, Text v, double, Text) -> Status {
+         s.servo_law = v == "seed" ? ServoLaw::kSeed : ServoLaw::kIdentified;
+         return {};
+       },
+       .get =
+           [](const S& s) {
+             return s.servo_law ? json(*s.servo_law == ServoLaw::kSeed ? "seed" : "identified")
+                                : json();
+           }},
+      {.key = "imu",
+       .default_text = "the world's",
+       .help = "IMU model: ideal (true value plus white noise), cm730 (chips and the stock "
+               "CM730) or cm730-nimbro (chips and the CM730 with NimbRo's firmware: 16-bit "
+               "registers, a magnetometer)",
+       .choices = {"ideal", "cm730", "cm730-nimbro"},
+       .set = [](S& s, Text v, double, Text) -> Status {
+         s.imu = v == "cm730"          ? ImuKind::kCm730
+                 : v == "cm730-nimbro" ? ImuKind::kCm730Nimbro
+                                       : ImuKind::kIdeal;
+         return {};
+       },
+       .get = [](const S& s) { return s.imu ? json(to_string(*s.imu)) : json(); }},
+      {.key = "mag_disturbance",
+       .unit = "gauss",
+       .default_text = fw::format_number(ImuChain::cm730_nimbro().magnetometer.disturbance_gauss),
+       .help = "amplitude of the floor's magnetic disturbance the cm730-nimbro magnetometer "
+               "reads (per horizontal axis, varying over 3 m; sim_hal/models/README.md "
+               "\"Magnetometer\")",
+       .value = V::kNumber,
+       .min = 0.0,
+       .max = 0.5,
+       .set = [](S& s, Text, double v, Text) -> Status {
+         s.mag_disturbance = v;
+         return {};
+       },
+       .get = [](const S& s) { return optional_json(s.mag_disturbance); }},
+      {.key = "contact",
+       .default_text = "the world's",
+       .help = "field contact: seed (the seed's 2 cm grass; a standing robot's studs sink "
+               "5.3 mm), turf (a 5 mm layer over solid ground, 4.7 mm), soft (a deep turf: "
+               "15 mm layer, more damping, 4.0 mm) or hard (a carpet or stiff floor, 0.4 mm); "
+               "sim_hal/models/README.md \"Grounds\"",
+       .choices = {"seed", "turf", "soft", "hard"},
+       .set = [](S& s, Text v, double, Text) -> Status {
+         s.contact = v;
+         return {};
+       },
+       .get = [](const S& s) { return optional_json(s.contact); }},
+      {.key = "friction",
+       .default_text = "the contact's, " + fw::format_number(ContactOptions::turf().friction),
+       .help = "Coulomb friction coefficient of feet and links on the field",
+       .value = V::kNumber,
+       .min = 0.05,
+       .max = 3.0,
+       .set = [](S& s, Text, double v, Text) -> Status {
+         s.friction = v;
+         return {};
+       },
+       .get = [](const S& s) { return optional_json(s.friction); }},
+      {.key = "urdf",
+       .help = "robot description (URDF) to simulate instead of the igus model",
+       .value = V::kPath,
+       .set = set_urdf,
+       .get =
+           [](const S& s) {
+             return s.urdf.empty() ? json() : json(std::filesystem::absolute(s.urdf).string());
+           }},
+      {.key = "noise",
+       .help = "sensor noise and per-episode IMU bias: on or off",
+       .choices = {"on", "off"},
+       .set = [](S& s, Text v, double, Text) -> Status {
+         s.noise = v == "on";
+         return {};
+       },
+       .get = [](const S& s) { return json(s.noise ? "on" : "off"); }},
+      {.key = "seed",
+       .help = "world random seed (randomisation and sensor noise)",
+       .value = V::kInteger,
+       .min = 0.0,
+       .max = 9007199254740992.0,
+       .set = [](S& s, Text, double v, Text) -> Status {
+         s.seed = static_cast<std::uint64_t>(v);
+         return {};
+       },
+       .get = [](const S& s) { return json(s.seed); }},
+      randomisation_row<&Randomisation::friction_range>(
+          "friction_range", "", "friction scale drawn at each reset, uniform 1 +- range",
+          kMaxRange),
+      randomisation_row<&Randomisation::mass_range>(
+          "mass_range", "", "per-link mass and inertia scale drawn at each reset, 1 +- range",
+          kMaxRange),
+      randomisation_row<&Randomisation::strength_range>(
+          "strength_range", "", "per-servo stall torque scale drawn at each reset, 1 +- range",
+          kMaxRange),
+      randomisation_row<&Randomisation::latency_probability>(
+          "latency_probability", "",
+          "chance per reset of one control period of extra command latency", 1.0),
+      randomisation_row<&Randomisation::contact_range>(
+          "contact_range", "",
+          "ground drawn at each reset: u uniform in +-range, the contact's stiffness, damping "
+          "and layer thickness moved |u| of the way (log scale) towards hard (u < 0) or soft "
+          "(u > 0); 1 spans hard..soft",
+          kMaxContactRange),
+      randomisation_row<&Randomisation::com_range>(
+          "com_range", "m",
+          "trunk centre of mass moved at each reset, x and y uniform in +-range "
+          "(make_variants.py: 0.01)",
+          kMaxComRange),
+      {.key = "latency_ticks",
+       .default_text = "the world file's, " + std::to_string(RobotCalibration{}.latency_ticks),
+       .help = "control periods between a command and the servos acting on it",
+       .value = V::kInteger,
+       .min = 0.0,
+       .max = static_cast<double>(RobotCalibration::kMaxLatencyTicks),
+       .set = [](S& s, Text, double v, Text) -> Status {
+         s.latency_ticks = static_cast<int>(v);
+         return {};
+       },
+       .get = [](const S& s) { return optional_json(s.latency_ticks); }},
+      {.key = "push",
+       .help = "T,DIR,IMPULSE: push the trunk T s after the start, DIR "
+               "forward|backward|left|right or degrees anticlockwise from the robot's heading, "
+               "IMPULSE in N s (a force over 10 ms at the trunk's centre of mass); repeatable",
+       .value = V::kPushes,
+       .set = add_push,
+       .get =
+           [](const S& s) {
+             if (s.pushes.empty()) return json();
+             json pushes = json::array();
+             for (const TorsoPush& p : s.pushes) pushes.push_back(push_text(p));
+             return pushes;
+           },
+       .clear = [](S& s) { s.pushes.clear(); }},
+  };
+  // The defaults the help shows are the values a default spec holds.
+  const WorldSpec defaults;
+  for (WorldOptionInfo& o : table)
+    if (o.default_text.empty())
+      if (const json v = o.get(defaults); !v.is_null()) o.default_text = default_text(v);
+  return table;
+}
+
+#pragma GCC diagnostic pop
+
 }  // namespace
 
 const std::vector<WorldOptionInfo>& world_option_table() {
-  using V = WorldValue;
-  static const std::vector<WorldOptionInfo> table = {
-      {"base",
-       "",
-       "faithful",
-       "named world: faithful (identified servo law, CM730 IMU, turf), seed (the thesis's: seed "
-       "servo law, ideal IMU, 2 cm grass) or a world file (.json, from stride calibrate); "
-       "servo_law, imu and contact override its parts",
-       V::kName,
-       {"faithful", "seed"}},
-      {"engine",
-       "",
-       "simbody",
-       "physics engine: simbody (Stride's contact) or mujoco (MuJoCo's)",
-       V::kName,
-       {"simbody", "mujoco"}},
-      {"physics_step_us",
-       "us",
-       "2000",
-       "fixed physics step, dividing the firmware's control period",
-       V::kInteger,
-       {},
-       kMinStepUs,
-       kMaxStepUs},
-      {"servo_law",
-       "",
-       "the world's",
-       "servo model: seed (Gazebo figures) or identified (MX, BAM M6)",
-       V::kName,
-       {"seed", "identified"}},
-      {"imu",
-       "",
-       "the world's",
-       "IMU model: ideal (true value plus white noise), cm730 (chips and the stock CM730) or "
-       "cm730-nimbro (chips and the CM730 with NimbRo's firmware: 16-bit registers, a "
-       "magnetometer)",
-       V::kName,
-       {"ideal", "cm730", "cm730-nimbro"}},
-      {"mag_disturbance",
-       "gauss",
-       "0.03",
-       "amplitude of the floor's magnetic disturbance the cm730-nimbro magnetometer reads "
-       "(per horizontal axis, varying over 3 m; sim_hal/models/README.md \"Magnetometer\")",
-       V::kNumber,
-       {},
-       0.0,
-       0.5},
-      {"contact",
-       "",
-       "the world's",
-       "field contact: seed (the seed's 2 cm grass; a standing robot's studs sink 5.3 mm), turf "
-       "(a 5 mm layer over solid ground, 4.7 mm), soft (a deep turf: 15 mm layer, more damping, "
-       "4.0 mm) or hard (a carpet or stiff floor, 0.4 mm); sim_hal/models/README.md \"Grounds\"",
-       V::kName,
-       {"seed", "turf", "soft", "hard"}},
-      {"friction",
-       "",
-       "the contact's, 1",
-       "Coulomb friction coefficient of feet and links on the field",
-       V::kNumber,
-       {},
-       0.05,
-       3.0},
-      {"urdf",
-       "",
-       "",
-       "robot description (URDF) to simulate instead of the igus model",
-       V::kPath,
-       {}},
-      {"noise",
-       "",
-       "on",
-       "sensor noise and per-episode IMU bias: on or off",
-       V::kName,
-       {"on", "off"}},
-      {"seed",
-       "",
-       "1",
-       "world random seed (randomisation and sensor noise)",
-       V::kInteger,
-       {},
-       0.0,
-       9007199254740992.0},
-      {"friction_range",
-       "",
-       "0",
-       "friction scale drawn at each reset, uniform 1 +- range",
-       V::kNumber,
-       {},
-       0.0,
-       kMaxRange},
-      {"mass_range",
-       "",
-       "0",
-       "per-link mass and inertia scale drawn at each reset, 1 +- range",
-       V::kNumber,
-       {},
-       0.0,
-       kMaxRange},
-      {"strength_range",
-       "",
-       "0",
-       "per-servo stall torque scale drawn at each reset, 1 +- range",
-       V::kNumber,
-       {},
-       0.0,
-       kMaxRange},
-      {"latency_probability",
-       "",
-       "0",
-       "chance per reset of one control period of extra command latency",
-       V::kNumber,
-       {},
-       0.0,
-       1.0},
-      {"contact_range",
-       "",
-       "0",
-       "ground drawn at each reset: u uniform in +-range, the contact's stiffness, damping and "
-       "layer thickness moved |u| of the way (log scale) towards hard (u < 0) or soft (u > 0); "
-       "1 spans hard..soft",
-       V::kNumber,
-       {},
-       0.0,
-       kMaxContactRange},
-      {"com_range",
-       "m",
-       "0",
-       "trunk centre of mass moved at each reset, x and y uniform in +-range (make_variants.py: "
-       "0.01)",
-       V::kNumber,
-       {},
-       0.0,
-       0.05},
-      {"latency_ticks",
-       "",
-       "the world file's, 0",
-       "control periods between a command and the servos acting on it",
-       V::kInteger,
-       {},
-       0.0,
-       static_cast<double>(RobotCalibration::kMaxLatencyTicks)},
-      {"push",
-       "",
-       "",
-       "T,DIR,IMPULSE: push the trunk T s after the start, DIR forward|backward|left|right or "
-       "degrees anticlockwise from the robot's heading, IMPULSE in N s (a force over 10 ms at the "
-       "trunk's centre of mass); repeatable",
-       V::kPushes,
-       {}},
-  };
+  static const std::vector<WorldOptionInfo> table = make_table();
   return table;
 }
 
@@ -220,115 +329,32 @@ Status check_physics_step(std::int64_t step_ns, std::int64_t control_period_ns,
   return {};
 }
 
-namespace {
-
-/// The name option `key` takes from `value` (already checked against the choices).
-Status set_name(WorldSpec& s, std::string_view key, const std::string& value) {
-  if (key == "engine") {
-    parse_engine_kind(value, s.engine);
-  } else if (key == "servo_law") {
-    s.servo_law = value == "seed" ? ServoLaw::kSeed : ServoLaw::kIdentified;
-  } else if (key == "imu") {
-    s.imu = value == "cm730"          ? ImuKind::kCm730
-            : value == "cm730-nimbro" ? ImuKind::kCm730Nimbro
-                                      : ImuKind::kIdeal;
-  } else if (key == "contact") {
-    s.contact = value;
-  } else if (key == "noise") {
-    s.noise = value == "on";
-  }
-  return {};
-}
-
-void set_number(WorldSpec& s, std::string_view key, double v) {
-  if (key == "physics_step_us") s.physics_step_us = static_cast<std::int64_t>(v);
-  if (key == "friction") s.friction = v;
-  if (key == "seed") s.seed = static_cast<std::uint64_t>(v);
-  if (key == "friction_range") s.randomise.friction_range = v;
-  if (key == "mass_range") s.randomise.mass_range = v;
-  if (key == "strength_range") s.randomise.strength_range = v;
-  if (key == "latency_probability") s.randomise.latency_probability = v;
-  if (key == "contact_range") s.randomise.contact_range = v;
-  if (key == "com_range") s.randomise.com_range = v;
-  if (key == "latency_ticks") s.latency_ticks = static_cast<int>(v);
-  if (key == "mag_disturbance") s.mag_disturbance = v;
-}
-
-Status set_base(WorldSpec& s, const std::string& value, const std::string& shown) {
-  if (looks_like_world_file(value)) {
-    WorldFile file;
-    if (Status st = load_world_file(value, file); !st)
-      return Status::error(shown + ": " + st.message());
-    s.base = file.base;
-    s.file = file;
-    s.file_path = value;
-    return {};
-  }
-  WorldPreset preset = WorldPreset::kFaithful;
-  if (!parse_world_preset(value, preset))
-    return Status::error(shown + ": expected faithful, seed or a world file (.json), got '" +
-                         value + "'");
-  s.base = preset;
-  s.file.reset();
-  s.file_path.clear();
-  return {};
-}
-
-Status set_urdf(WorldSpec& s, const std::string& value, const std::string& shown) {
-  std::error_code error;
-  if (value.empty() || !std::filesystem::is_regular_file(value, error))
-    return Status::error(shown + ": no such file '" + value + "'");
-  auto model = std::make_shared<RobotModel>();
-  if (Status st = RobotModel::load_file(value, *model); !st)
-    return Status::error(shown + ": " + st.message());
-  s.urdf = value;
-  s.model = std::move(model);
-  return {};
-}
-
-}  // namespace
-
 Status WorldSpec::set(const WorldOptionInfo& option, const std::string& value,
                       const std::string& shown) {
-  switch (option.value) {
-    case WorldValue::kName: {
-      if (option.key == "base") return set_base(*this, value, shown);
-      bool known = false;
-      for (const std::string_view c : option.choices) known = known || c == value;
-      if (!known)
-        return Status::error(shown + ": expected " + world_option_choices(option) + ", got '" +
-                             value + "'");
-      return set_name(*this, option.key, value);
-    }
-    case WorldValue::kInteger:
-    case WorldValue::kNumber: {
-      const bool integer = option.value == WorldValue::kInteger;
-      char* end = nullptr;
-      const double v = std::strtod(value.c_str(), &end);
-      if (value.empty() || *end != '\0' || !std::isfinite(v) || (integer && v != std::floor(v)))
-        return Status::error(shown + ": expected " + (integer ? "an integer" : "a number") +
-                             (option.unit.empty() ? "" : " of " + std::string(option.unit)) +
-                             ", got '" + value + "'");
-      if (!(v >= option.min && v <= option.max))
-        return Status::error(shown + ": must be in " + fw::format_number(option.min) + ".." +
-                             fw::format_number(option.max) +
-                             (option.unit.empty() ? "" : " " + std::string(option.unit)) +
-                             ", got " + value);
-      set_number(*this, option.key, v);
-      return {};
-    }
-    case WorldValue::kPath:
-      return set_urdf(*this, value, shown);
-    case WorldValue::kPushes: {
-      TorsoPush push;
-      // The time is checked against the episode by its runner.
-      if (Status s = parse_push(value, std::numeric_limits<double>::infinity(), push, shown); !s)
-        return s;
-      pushes.push_back(push);
-      return {};
-    }
+  double number = 0.0;
+  if (option.value == WorldValue::kName) {
+    bool known = false;
+    for (const std::string_view c : option.choices) known = known || c == value;
+    if (!known)
+      return Status::error(shown + ": expected " + world_option_choices(option) + ", got '" +
+                           value + "'");
   }
-  return {};
+  if (option.value == WorldValue::kInteger || option.value == WorldValue::kNumber) {
+    const bool integer = option.value == WorldValue::kInteger;
+    char* end = nullptr;
+    number = std::strtod(value.c_str(), &end);
+    if (value.empty() || *end != '\0' || !std::isfinite(number) ||
+        (integer && number != std::floor(number)))
+      return Status::error(shown + ": expected " + (integer ? "an integer" : "a number") +
+                           (option.unit.empty() ? "" : " of " + std::string(option.unit)) +
+                           ", got '" + value + "'");
+    if (!(number >= option.min && number <= option.max))
+      return Status::error(shown + ": must be in " + fw::format_number(option.min) + ".." +
+                           fw::format_number(option.max) +
+                           (option.unit.empty() ? "" : " " + std::string(option.unit)) + ", got " +
+                           value);
+  }
+  return option.set(*this, value, number, shown);
 }
 
 Status WorldSpec::set(std::string_view key, const std::string& value, const std::string& shown) {
@@ -339,27 +365,14 @@ Status WorldSpec::set(std::string_view key, const std::string& value, const std:
 }
 
 bool WorldSpec::is_set(std::string_view key) const {
-  const WorldSpec d;
-  if (key == "base") return base != d.base || file.has_value();
-  if (key == "engine") return engine != d.engine;
-  if (key == "physics_step_us") return physics_step_us != d.physics_step_us;
-  if (key == "servo_law") return servo_law.has_value();
-  if (key == "imu") return imu.has_value();
-  if (key == "mag_disturbance") return mag_disturbance.has_value();
-  if (key == "contact") return contact.has_value();
-  if (key == "friction") return friction.has_value();
-  if (key == "urdf") return !urdf.empty();
-  if (key == "noise") return noise != d.noise;
-  if (key == "seed") return seed != d.seed;
-  if (key == "friction_range") return randomise.friction_range != 0.0;
-  if (key == "mass_range") return randomise.mass_range != 0.0;
-  if (key == "strength_range") return randomise.strength_range != 0.0;
-  if (key == "latency_probability") return randomise.latency_probability != 0.0;
-  if (key == "contact_range") return randomise.contact_range != 0.0;
-  if (key == "com_range") return randomise.com_range != 0.0;
-  if (key == "latency_ticks") return latency_ticks.has_value();
-  if (key == "push") return !pushes.empty();
-  return false;
+  const WorldOptionInfo* option = find_world_option(key);
+  return option != nullptr && option->get(*this) != option->get(WorldSpec{});
+}
+
+void WorldSpec::use_world_file(WorldFile world, std::filesystem::path path) {
+  base = world.base;
+  file = std::move(world);
+  file_path = std::move(path);
 }
 
 WorldOptions WorldSpec::to_options() const {

@@ -3,7 +3,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <filesystem>
 #include <sstream>
 
 #include "stride/sim_hal/world_spec.hpp"
@@ -37,19 +36,17 @@ Status read_world_spec(const nlohmann::json& object, const std::string& prefix, 
     const WorldOptionInfo* option = find_world_option(key);
     if (option == nullptr)
       return Status::error(shown + ": unknown world option (known: " + world_option_keys() + ")");
-    if (key == "base" && value.is_object()) {  // a world file by value
+    if (option->value == WorldValue::kWorld && value.is_object()) {  // a world file by value
       WorldFile file;
       if (Status s = parse_world_file(value, file); !s)
         return Status::error(shown + ": " + s.message());
-      spec.base = file.base;
-      spec.file = file;
-      spec.file_path.clear();
+      spec.use_world_file(std::move(file));
       continue;
     }
-    if (option->value == WorldValue::kPushes) {
+    if (option->value == WorldValue::kPushes) {  // the list replaces what the spec held
       if (!value.is_array())
         return Status::error(shown + ": must be a list of \"T,DIR,IMPULSE\" strings");
-      spec.pushes.clear();
+      option->clear(spec);
       for (std::size_t i = 0; i < value.size(); ++i) {
         const std::string item = shown + "[" + std::to_string(i) + "]";
         if (!value[i].is_string())
@@ -58,9 +55,9 @@ Status read_world_spec(const nlohmann::json& object, const std::string& prefix, 
       }
       continue;
     }
+    const bool name = option->value == WorldValue::kName || option->value == WorldValue::kWorld;
     if (value.is_object() || value.is_array() || value.is_null())
-      return Status::error(shown + ": must be a " +
-                           (option->value == WorldValue::kName ? "name" : "value") + ", got " +
+      return Status::error(shown + ": must be a " + (name ? "name" : "value") + ", got " +
                            value.dump());
     if (Status s = spec.set(*option, option_text(value), shown); !s) return s;
   }
@@ -69,33 +66,12 @@ Status read_world_spec(const nlohmann::json& object, const std::string& prefix, 
 }
 
 nlohmann::json to_json(const WorldSpec& s) {
+  const WorldSpec defaults;
   nlohmann::json j = nlohmann::json::object();
-  if (s.file) {
-    j["base"] = to_json(*s.file);  // by value, so that the record stands alone
-  } else {
-    j["base"] = to_string(s.base);
-  }
-  if (s.is_set("engine")) j["engine"] = to_string(s.engine);
-  j["physics_step_us"] = s.physics_step_us;
-  if (s.servo_law) j["servo_law"] = *s.servo_law == ServoLaw::kSeed ? "seed" : "identified";
-  if (s.imu) j["imu"] = to_string(*s.imu);
-  if (s.mag_disturbance) j["mag_disturbance"] = *s.mag_disturbance;
-  if (s.contact) j["contact"] = *s.contact;
-  if (s.friction) j["friction"] = *s.friction;
-  if (!s.urdf.empty()) j["urdf"] = std::filesystem::absolute(s.urdf).string();
-  if (s.is_set("noise")) j["noise"] = s.noise ? "on" : "off";
-  if (s.is_set("seed")) j["seed"] = s.seed;
-  if (s.is_set("friction_range")) j["friction_range"] = s.randomise.friction_range;
-  if (s.is_set("mass_range")) j["mass_range"] = s.randomise.mass_range;
-  if (s.is_set("strength_range")) j["strength_range"] = s.randomise.strength_range;
-  if (s.is_set("latency_probability")) j["latency_probability"] = s.randomise.latency_probability;
-  if (s.is_set("contact_range")) j["contact_range"] = s.randomise.contact_range;
-  if (s.is_set("com_range")) j["com_range"] = s.randomise.com_range;
-  if (s.latency_ticks) j["latency_ticks"] = *s.latency_ticks;
-  if (!s.pushes.empty()) {
-    nlohmann::json pushes = nlohmann::json::array();
-    for (const TorsoPush& p : s.pushes) pushes.push_back(push_text(p));
-    j["push"] = pushes;
+  for (const WorldOptionInfo& o : world_option_table()) {
+    nlohmann::json value = o.get(s);
+    if (value.is_null() || (!o.always_written && value == o.get(defaults))) continue;
+    j[std::string(o.key)] = std::move(value);
   }
   return j;
 }

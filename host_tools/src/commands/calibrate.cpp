@@ -135,16 +135,15 @@ Status read_fit_options(const core::CliArgs& args, calibration::CalibrationOptio
 }
 
 /// The replay world (noise off unless asked: the logged sensors carry the robot's noise) and
-/// the fit's start: the world file given with --world, else the world's preset.
+/// the fit's start: the world file given with --world (read once, with the world's other
+/// options), else the named world's nominal robot.
 Status read_world(const core::CliArgs& args, sim::WorldOptions& world, sim::WorldFile& start) {
-  if (Status s = sim::read_world_options(args, world); !s) return s;
-  if (args.get_all("noise").empty()) world.imu.set_noise(false);
-  start.base = world.servo.law == sim::ServoLaw::kSeed ? sim::WorldPreset::kSeed
-                                                       : sim::WorldPreset::kFaithful;
-  const std::string world_arg = args.get("world", "faithful");
-  if (sim::looks_like_world_file(world_arg))
-    if (Status s = sim::load_world_file(world_arg, start); !s)
-      return Status::error("--world: " + s.message());
+  sim::WorldSpec spec;
+  if (Status s = sim::read_world_spec(args, spec); !s) return s;
+  if (args.get_all("noise").empty()) spec.noise = false;
+  world = spec.to_options();
+  start = spec.file.value_or(sim::WorldFile{});
+  start.base = spec.base;
   return {};
 }
 

@@ -26,14 +26,8 @@ sim::WorldSpec trial_world_spec(const TaskConfig& config, int world, std::uint64
       config.engines[static_cast<std::size_t>(world / config.trials) % config.engines.size()];
   spec.seed = trial_world_seed(config, trial, draw);
   spec.noise = config.trials > 1 && config.randomisation.imu_noise;
-  spec.randomise = {};
-  if (config.trials > 1) {
-    spec.randomise.friction_range = config.randomisation.friction_range;
-    spec.randomise.mass_range = config.randomisation.mass_range;
-    spec.randomise.strength_range = config.randomisation.strength_range;
-    spec.randomise.contact_range = config.randomisation.contact_range;
-    spec.randomise.com_range = config.randomisation.com_range;
-  }
+  spec.randomise =
+      config.trials > 1 ? sim::Randomisation(config.randomisation) : sim::Randomisation{};
   return spec;
 }
 

@@ -95,11 +95,11 @@ std::string option_text(const nlohmann::json& v) {
   return v.is_string() ? v.get<std::string>() : v.dump();
 }
 
-/// The world options a task's trials set (trial_seed, randomisation), not its world.
-constexpr const char* kTrialWorldOptions[] = {"noise",          "seed",
-                                              "friction_range", "mass_range",
-                                              "strength_range", "latency_probability",
-                                              "contact_range",  "com_range"};
+/// A world option a task's trials set (trial_seed, randomisation), not its world: the noise,
+/// the seed and the table's randomisation ranges.
+bool set_per_trial(const sim::WorldOptionInfo& o) {
+  return o.randomisation || o.key == "noise" || o.key == "seed";
+}
 
 /// A parameter file named by a config field (`params`, `starts[i]`); the error starts with the
 /// field.
@@ -125,9 +125,9 @@ Status parse_robot(const nlohmann::json& doc, TaskConfig& c) {
     const auto& w = doc.at("world");
     spec = sim::WorldSpec{};  // the world replaces the one before
     if (w.is_object() && !w.contains("format")) {
-      for (const char* key : kTrialWorldOptions)
-        if (w.contains(key))
-          return Status::error("world." + std::string(key) +
+      for (const sim::WorldOptionInfo& o : sim::world_option_table())
+        if (set_per_trial(o) && w.contains(std::string(o.key)))
+          return Status::error("world." + std::string(o.key) +
                                ": set per trial by the task (trial_seed, randomisation), not "
                                "in world");
       if (Status s = sim::read_world_spec(w, "world", spec); !s) return s;
@@ -171,8 +171,8 @@ Status parse_robot(const nlohmann::json& doc, TaskConfig& c) {
   const bool step_given =
       doc.contains("physics_step_us") || (doc.contains("world") && doc.at("world").is_object() &&
                                           doc.at("world").contains("physics_step_us"));
-  c.trial_step_from_task = !step_given && spec.base == sim::WorldPreset::kFaithful &&
-                           !spec.file && find_task_type(c.task) != nullptr;
+  c.trial_step_from_task = !step_given && spec.base == sim::WorldPreset::kFaithful && !spec.file &&
+                           find_task_type(c.task) != nullptr;
   c.world = std::move(spec);
   apply_task_trial_step(c);
   if (doc.contains("params")) {
@@ -348,22 +348,17 @@ Status parse_trials(const nlohmann::json& doc, TaskConfig& c) {
         return Status::error("randomisation.imu_noise: must be true or false");
       c.randomisation.imu_noise = r.at("imu_noise").get<bool>();
     }
-    // The ranges as the world option table has them (names, range, message).
+    // The ranges are the world option table's randomisation rows (names, range, message).
     sim::WorldSpec ranges;
-    for (auto [name, target] : {std::pair{"friction_range", &c.randomisation.friction_range},
-                                {"mass_range", &c.randomisation.mass_range},
-                                {"strength_range", &c.randomisation.strength_range},
-                                {"contact_range", &c.randomisation.contact_range},
-                                {"com_range", &c.randomisation.com_range}}) {
-      if (!r.contains(name)) continue;
+    ranges.randomise = c.randomisation;
+    for (const sim::WorldOptionInfo& o : sim::world_option_table()) {
+      const std::string name(o.key);
+      if (!o.randomisation || !r.contains(name)) continue;
       if (!r.at(name).is_number())
-        return Status::error(std::string("randomisation.") + name + ": must be a number");
-      if (Status s =
-              ranges.set(name, option_text(r.at(name)), std::string("randomisation.") + name);
-          !s)
-        return s;
-      *target = r.at(name).get<double>();
+        return Status::error("randomisation." + name + ": must be a number");
+      if (Status s = ranges.set(o, option_text(r.at(name)), "randomisation." + name); !s) return s;
     }
+    static_cast<sim::Randomisation&>(c.randomisation) = ranges.randomise;
   }
   return {};
 }

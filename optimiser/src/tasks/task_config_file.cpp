@@ -45,6 +45,26 @@ Status load_task_config(const std::filesystem::path& path, TaskConfig& out) {
   return {};
 }
 
+namespace {
+
+/// The trials' randomisation through the world option table's randomisation rows. The ranges
+/// a run's record has always held are written always; a later one (com_range,
+/// latency_probability) only when set, so that the record of a run from before it stays equal.
+nlohmann::json randomisation_json(const TrialRandomisation& r) {
+  nlohmann::json j = {{"imu_noise", r.imu_noise}};
+  sim::WorldSpec ranges;
+  ranges.randomise = r;
+  for (const sim::WorldOptionInfo& o : sim::world_option_table()) {
+    if (!o.randomisation) continue;
+    const bool always = o.key == "friction_range" || o.key == "mass_range" ||
+                        o.key == "strength_range" || o.key == "contact_range";
+    if (always || ranges.is_set(o.key)) j[std::string(o.key)] = o.get(ranges);
+  }
+  return j;
+}
+
+}  // namespace
+
 nlohmann::json to_json(const TaskConfig& c) {
   nlohmann::json genes = nlohmann::json::array();
   for (const auto& g : c.genes)
@@ -64,14 +84,7 @@ nlohmann::json to_json(const TaskConfig& c) {
                       {"trials", c.trials},
                       {"aggregate", c.aggregate == Aggregate::kMean ? "mean" : "worst"},
                       {"trial_seed", c.trial_seed},
-                      {"randomisation",
-                       {{"imu_noise", c.randomisation.imu_noise},
-                        {"friction_range", c.randomisation.friction_range},
-                        {"mass_range", c.randomisation.mass_range},
-                        {"strength_range", c.randomisation.strength_range},
-                        {"contact_range", c.randomisation.contact_range}}}};
-  // Only when set, so that the record of a run from before it stays equal.
-  if (c.randomisation.com_range != 0.0) j["randomisation"]["com_range"] = c.randomisation.com_range;
+                      {"randomisation", randomisation_json(c.randomisation)}};
   nlohmann::json engines = nlohmann::json::array();
   for (sim::EngineKind e : c.engines) engines.push_back(sim::to_string(e));
   j["engines"] = engines;

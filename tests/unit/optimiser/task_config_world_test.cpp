@@ -1,4 +1,5 @@
-// Task configs and their worlds: the ground range, the robot and world fields, a world object of
+// Task configs and their worlds: the ground range and every randomisation range of the world
+// option table, the robot and world fields, a world object of
 // the table's options, base parameters and a world file reach every trial world, and a bad value
 // names its field.
 #include <gtest/gtest.h>
@@ -52,6 +53,40 @@ TEST(TaskConfig, TheContactRangeReachesTheTrialsAndNamesTheFieldOnError) {
   EXPECT_EQ(error_of(d),
             "world.contact_range: set per trial by the task (trial_seed, randomisation), not in "
             "world");
+}
+
+// The trials' randomisation is the world option table's randomisation rows: every range the
+// table has reaches each trial world (the command latency too) and survives run.json, whose
+// record of a run without the later ranges stays as it was.
+TEST(TaskConfig, EveryRandomisationRangeOfTheTableReachesTheTrials) {
+  auto d = minimal();
+  d["trials"] = 2;
+  nlohmann::json ranges = nlohmann::json::object();
+  double value = 0.0;
+  for (const sim::WorldOptionInfo& o : sim::world_option_table())
+    if (o.randomisation) ranges[std::string(o.key)] = value += 0.005;
+  ASSERT_EQ(ranges.size(), 6u);
+  d["randomisation"] = ranges;
+  TaskConfig c;
+  ASSERT_TRUE(parse_task_config(d, c));
+  sim::WorldSpec trial;
+  trial.randomise = RobotTask(c).world_options(1).randomise;
+  TaskConfig back;
+  ASSERT_TRUE(parse_task_config(to_json(c), back));
+  sim::WorldSpec read_back;
+  read_back.randomise = back.randomisation;
+  for (const auto& [key, v] : ranges.items()) {
+    EXPECT_EQ(sim::find_world_option(key)->get(trial), v) << key;
+    EXPECT_EQ(sim::find_world_option(key)->get(read_back), v) << key;
+  }
+  const nlohmann::json record = to_json(TaskConfig{})["randomisation"];
+  EXPECT_EQ(record, (nlohmann::json{{"imu_noise", true},
+                                    {"friction_range", 0.2},
+                                    {"mass_range", 0.05},
+                                    {"strength_range", 0.1},
+                                    {"contact_range", 0.0}}));
+  d["randomisation"] = {{"latency_probability", 2}};
+  EXPECT_EQ(error_of(d), "randomisation.latency_probability: must be in 0..1, got 2");
 }
 
 TEST(TaskConfig, RobotFieldsReachTheWorldsAndNameTheFieldOnError) {

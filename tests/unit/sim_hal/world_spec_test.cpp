@@ -1,12 +1,16 @@
-// The world option table and WorldSpec (issue 31 point 1): one table drives the flags, the
-// JSON reader and the help; the options are independent of their order; every kind of value
-// gets one message naming the option as given; a spec survives its JSON.
+// The world option table and WorldSpec (issue 31 point 1, issue 44 point 2): one table drives
+// the flags, the JSON reader and the help, each row bound to its field; the options are
+// independent of their order; every kind of value gets one message naming the option as
+// given; a spec survives its JSON; the default world is one world wherever it is asked for.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <string>
 #include <vector>
 
+#include "stride/firmware/parameter_store.hpp"
 #include "stride/sim_hal/sim_cli.hpp"
 #include "stride/sim_hal/world_spec.hpp"
 
@@ -155,6 +159,123 @@ TEST(WorldSpec, ASpecSurvivesItsJson) {
   EXPECT_EQ(to_json(back), j);
   EXPECT_EQ(read_world_spec({{"push", "1,left,1"}}, "world", back).message(),
             "world.push: must be a list of \"T,DIR,IMPULSE\" strings");
+}
+
+/// A value of `o` other than its default: the last name, the middle of the range, a file.
+std::string other_value(const WorldOptionInfo& o) {
+  switch (o.value) {
+    case WorldValue::kWorld:
+    case WorldValue::kName:
+      return std::string(o.choices.back());
+    case WorldValue::kInteger:
+    case WorldValue::kNumber: {
+      double v = o.min + 0.5 * (o.max - o.min);
+      if (o.value == WorldValue::kInteger) v = std::floor(v);
+      char text[40];
+      std::snprintf(text, sizeof text, "%.17g", v);
+      return text;
+    }
+    case WorldValue::kPath:
+      return RobotModel::igus_path().string();
+    case WorldValue::kPushes:
+      return "1,left,2";
+  }
+  return "";
+}
+
+// Every row is bound to its field: a value set by its name is set, written to JSON, read back
+// from it and equal, so that a row whose binding is missing or reaches another field fails.
+TEST(WorldSpec, EveryRowRoundTripsThroughItsField) {
+  const WorldSpec defaults;
+  for (const WorldOptionInfo& o : world_option_table()) {
+    SCOPED_TRACE(std::string(o.key));
+    ASSERT_NE(o.set, nullptr);
+    ASSERT_NE(o.get, nullptr);
+    if (o.value == WorldValue::kPushes) {
+      ASSERT_NE(o.clear, nullptr);
+    }
+    EXPECT_FALSE(defaults.is_set(o.key));
+    WorldSpec spec;
+    ASSERT_TRUE(spec.set(o.key, other_value(o), std::string(o.key)));
+    EXPECT_TRUE(spec.is_set(o.key));
+    for (const WorldOptionInfo& other : world_option_table())  // and no other field
+      if (other.key != o.key) {
+        EXPECT_FALSE(spec.is_set(other.key)) << other.key;
+      }
+    const nlohmann::json j = to_json(spec);
+    ASSERT_TRUE(j.contains(std::string(o.key)));
+    WorldSpec back;
+    ASSERT_TRUE(read_world_spec(j, "world", back));
+    EXPECT_TRUE(back.is_set(o.key));
+    EXPECT_EQ(o.get(back), o.get(spec));
+    EXPECT_EQ(to_json(back), j);
+  }
+  // A default spec writes the options written always and nothing else.
+  const nlohmann::json written = to_json(defaults);
+  for (const auto& [key, value] : written.items())
+    EXPECT_TRUE(find_world_option(key)->always_written) << key;
+}
+
+// The help's default is the value a default spec holds, not a second copy of it.
+TEST(WorldSpec, TheHelpShowsTheDefaultsTheCodeUses) {
+  const WorldSpec defaults;
+  for (const WorldOptionInfo& o : world_option_table()) {
+    const nlohmann::json v = o.get(defaults);
+    if (v.is_null()) continue;
+    const std::string text =
+        v.is_string() ? v.get<std::string>() : fw::format_number(v.get<double>());
+    EXPECT_EQ(o.default_text, text) << o.key;
+  }
+  EXPECT_EQ(find_world_option("physics_step_us")->default_text,
+            std::to_string(kDefaultPhysicsStepUs));
+  EXPECT_EQ(find_world_option("noise")->default_text, "on");
+}
+
+/// The figures of two worlds that the options and the presets reach.
+void expect_same_world(const WorldOptions& a, const WorldOptions& b) {
+  EXPECT_EQ(a.engine, b.engine);
+  EXPECT_EQ(a.urdf, b.urdf);
+  EXPECT_EQ(a.physics_step_ns, b.physics_step_ns);
+  EXPECT_EQ(a.control_period_ns, b.control_period_ns);
+  EXPECT_EQ(a.battery_voltage_v, b.battery_voltage_v);
+  EXPECT_EQ(a.servo.law, b.servo.law);
+  EXPECT_EQ(a.imu_kind(), b.imu_kind());
+  EXPECT_EQ(a.imu.chain.noise, b.imu.chain.noise);
+  EXPECT_EQ(a.imu.accel_noise_std, b.imu.accel_noise_std);
+  EXPECT_EQ(a.imu.gyro_noise_std, b.imu.gyro_noise_std);
+  EXPECT_EQ(a.imu.accel_bias_std, b.imu.accel_bias_std);
+  EXPECT_EQ(a.imu.gyro_bias_std, b.imu.gyro_bias_std);
+  EXPECT_EQ(a.imu.chain.magnetometer.disturbance_gauss, b.imu.chain.magnetometer.disturbance_gauss);
+  EXPECT_EQ(contact_kind_name(a.contact), contact_kind_name(b.contact));
+  EXPECT_EQ(a.contact.friction, b.contact.friction);
+  EXPECT_EQ(a.seed, b.seed);
+  EXPECT_EQ(a.robot.latency_ticks, b.robot.latency_ticks);
+  EXPECT_EQ(a.robot.torque_scale_mx106, b.robot.torque_scale_mx106);
+  EXPECT_EQ(a.randomise.friction_range, b.randomise.friction_range);
+  EXPECT_EQ(a.randomise.com_range, b.randomise.com_range);
+  EXPECT_EQ(a.pushes.size(), b.pushes.size());
+}
+
+// One default world: the command line's with no flags is WorldSpec{}'s, and a bare
+// WorldOptions{} is that world with the sensor noise off (its one documented difference).
+TEST(WorldSpec, TheDefaultWorldIsOneWorld) {
+  WorldOptions flags;
+  ASSERT_TRUE(parse_flags({}, flags));
+  const WorldOptions spec = WorldSpec{}.to_options();
+  expect_same_world(flags, spec);
+  EXPECT_GT(spec.imu.gyro_noise_std, 0.0);  // --noise defaults to on
+  WorldOptions bare;
+  EXPECT_EQ(bare.imu.gyro_noise_std, 0.0);
+  bare.imu.set_noise(true);
+  expect_same_world(bare, spec);
+  WorldSpec quiet;
+  ASSERT_TRUE(quiet.set("noise", "off", "noise"));
+  expect_same_world(WorldOptions{}, quiet.to_options());
+  // The faithful preset is the member initialisers' world: applying it restores them.
+  WorldOptions back;
+  back.apply(WorldPreset::kSeed);
+  back.apply(WorldPreset::kFaithful);
+  expect_same_world(back, WorldOptions{});
 }
 
 }  // namespace

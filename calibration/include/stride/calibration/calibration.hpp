@@ -46,12 +46,13 @@
 
 namespace stride::calibration {
 
-/// A parameter the calibration can fit (`--fit NAME`).
+/// A parameter the calibration can fit (`--fit NAME`): a world file's calibration quantity
+/// (sim::calibration_quantities: name, unit, words, whole) and how it is fitted.
 struct CalibrationParameter {
   std::string name;
   std::string unit;
   std::string what;
-  double lower = 0.0, upper = 0.0;  ///< search bounds
+  double lower = 0.0, upper = 0.0;  ///< search bounds, inside the quantity's range
   double step = 0.0;                ///< the fit's initial step
   bool whole = false;               ///< whole numbers (the latency)
   /// Empty for a value the identification routine identifies; else why it does not, which

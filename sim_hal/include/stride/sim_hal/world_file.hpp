@@ -11,11 +11,16 @@
 //    "imu": {"gyro_bias_rad_s": [0, 0, 0], "accel_bias_mps2": [0, 0, 0]},
 //    "calibration": {...}}   // stride calibrate's record: logs, fitted values, uncertainties
 //
-// Unknown fields and out-of-range values are errors naming the field.
+// Unknown fields and out-of-range values are errors naming the field. Each calibrated value
+// has one name, unit, range and description, in calibration_quantities(): the world file reads
+// it in that range, SimWorld refuses a world outside it, `stride calibrate --fit` fits it
+// within bounds inside it and describe_world names it with its words.
 #pragma once
 
 #include <filesystem>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>
@@ -27,7 +32,8 @@ namespace stride::sim {
 
 struct WorldFile {
   WorldPreset base = WorldPreset::kFaithful;
-  double supply_voltage_v = 14.8;  ///< the robot's battery (WorldOptions::battery_voltage_v)
+  double supply_voltage_v =
+      kNominalSupplyVoltage;  ///< the robot's battery (WorldOptions::battery_voltage_v)
   RobotCalibration robot;
   Eigen::Vector3d gyro_bias_rad_s = Eigen::Vector3d::Zero();  ///< fixed IMU biases, torso frame
   Eigen::Vector3d accel_bias_mps2 = Eigen::Vector3d::Zero();
@@ -38,6 +44,30 @@ struct WorldFile {
   /// Sets the calibration alone (the voltage, RobotCalibration, the IMU's fixed biases).
   void apply_calibration(WorldOptions& options) const;
 };
+
+/// One calibrated value of a world file (issue 44 point 2): its one name (`stride calibrate
+/// --fit NAME`), where the file holds it, unit, words, range and field.
+struct CalibrationQuantity {
+  std::string_view name;        ///< "torque_mx106"
+  std::string_view field;       ///< in the world file: "robot.torque_scale.MX-106"
+  std::string_view unit;        ///< "x" for a scale
+  std::string_view what;        ///< "MX-106 torque scale"
+  double min = 0.0, max = 0.0;  ///< the range (inclusive)
+  bool whole = false;           ///< whole numbers (the latency)
+  double (*get)(const WorldFile& world) = nullptr;
+  void (*set)(WorldFile& world, double value) = nullptr;  ///< rounds a whole value
+};
+
+/// Every calibrated value, in the order stride calibrate fits and reports them. Its nominal
+/// value is a default WorldFile's.
+const std::vector<CalibrationQuantity>& calibration_quantities();
+/// The quantity of `name`, or null.
+const CalibrationQuantity* find_calibration_quantity(std::string_view name);
+/// The calibration `options` simulate, as a world file holds it (base: the faithful world).
+WorldFile calibration_of(const WorldOptions& options);
+/// An error naming the first value of `world` outside its range ("robot calibration: MX-106
+/// torque scale must be in 0.1..3 x, got 7"), else ok.
+Status check_calibration(const WorldFile& world);
 
 /// Parses a world file's JSON; the error names the field.
 Status parse_world_file(const nlohmann::json& doc, WorldFile& out);

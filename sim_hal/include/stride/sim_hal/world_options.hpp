@@ -144,6 +144,9 @@ struct ServoOptions {
   double rotor_inertia_kg_m2 = 6.0e-8;
 };
 
+/// The largest centre-of-mass randomisation, Randomisation::com_range [m].
+inline constexpr double kMaxComRange = 0.05;
+
 /// Seeded randomisation applied at every reset (relative ranges are uniform +-range).
 struct Randomisation {
   double friction_range = 0.0;       ///< friction coefficient scale
@@ -210,8 +213,18 @@ const char* to_string(WorldPreset preset);
 /// "faithful" or "seed"; false for anything else.
 bool parse_world_preset(std::string_view text, WorldPreset& out);
 
-/// The world options are the defaults of a WorldOptions (the faithful world); WorldPreset
-/// kSeed is the thesis's world.
+/// The default world's physics step [us] and random seed (WorldSpec's defaults, which
+/// WorldOptions' member initialisers share).
+inline constexpr std::int64_t kDefaultPhysicsStepUs = 2000;
+inline constexpr std::uint64_t kDefaultWorldSeed = 1;
+/// The igus robot's nominal supply voltage [V] (WorldOptions' and a world file's default).
+inline constexpr double kNominalSupplyVoltage = 14.8;
+
+/// The models of a world: the member initialisers are the faithful world (WorldPreset
+/// kFaithful; kSeed is the thesis's world) with the sensor noise off, the quiet world the tests
+/// and benches build on. A command's default world is WorldSpec{}.to_options() (world_spec.hpp:
+/// the same world with the noise on, as `--noise` defaults); ask for it there rather than
+/// repeating its options here.
 struct WorldOptions {
   EngineKind engine = EngineKind::kSimbody;
   std::filesystem::path urdf = RobotModel::igus_path();
@@ -222,9 +235,9 @@ struct WorldOptions {
   /// Servo models in servo order (default: the shipped servo table's models).
   std::array<fw::ServoModel, hal::kServoCount> servo_models{};
   bool servo_models_from_table = true;
-  std::int64_t physics_step_ns = 2'000'000;     ///< fixed integration step
+  std::int64_t physics_step_ns = kDefaultPhysicsStepUs * 1000;  ///< fixed integration step
   std::int64_t control_period_ns = 10'000'000;  ///< one advance_period(); multiple of the step
-  double battery_voltage_v = 14.8;
+  double battery_voltage_v = kNominalSupplyVoltage;
   double gravity_mps2 = 9.81;
   ServoOptions servo;
   ContactOptions contact = ContactOptions::turf();
@@ -232,7 +245,7 @@ struct WorldOptions {
   ImuOptions imu;
   Randomisation randomise;
   RobotCalibration robot;
-  std::uint64_t seed = 1;
+  std::uint64_t seed = kDefaultWorldSeed;
   /// A state with a speed above this [rad/s or m/s] counts as exploded.
   double max_speed = 200.0;
   /// Pushes on the trunk during each episode (times from the episode's reset).

@@ -1,10 +1,12 @@
 // A simulated world as its options name it (WorldSpec), and the one table of those options:
-// names, units, defaults, ranges and help lines. The command-line flags (sim_cli.hpp: stride
-// sim, stride-fw --hal sim, stride vbus --sim, stride identify/calibrate/replay), a task
-// config's `world` object (and its old flat fields), run.json and stride validate's overrides
-// all read an option through this table, so that it has one name, one range and one error
-// message everywhere. WorldSpec::to_options is the one place that maps the names to the models
-// (WorldOptions: servo laws, IMU chains, contact parameters).
+// names, units, ranges and help lines, each row bound to its WorldSpec field (whose member
+// initialiser is the option's default, the one place a default is written). The command-line
+// flags (sim_cli.hpp: stride sim, stride-fw --hal sim, stride vbus --sim, stride
+// identify/calibrate/replay), a task config's `world` object (and its old flat fields and its
+// trials' randomisation), run.json and stride validate's overrides all read an option through
+// this table, so that it has one name, one range and one error message everywhere.
+// WorldSpec::to_options is the one place that maps the names to the models (WorldOptions: servo
+// laws, IMU chains, contact parameters).
 //
 // Names: the JSON key ("physics_step_us"); its flag is "--" with '-' for '_'
 // ("--physics-step-us"), except base, whose flag is --world. Errors read
@@ -34,8 +36,11 @@
 
 namespace stride::sim {
 
+struct WorldSpec;
+
 /// What an option's value is.
 enum class WorldValue : std::uint8_t {
+  kWorld,    ///< a named world (one of `choices`) or a world file (a path or, in JSON, an object)
   kName,     ///< one of `choices`
   kInteger,  ///< an integer in [min, max]
   kNumber,   ///< a real number in [min, max]
@@ -43,14 +48,37 @@ enum class WorldValue : std::uint8_t {
   kPushes,   ///< repeatable "T,DIR,IMPULSE" (parse_push)
 };
 
+/// One option: its name, help and range, and its binding to its WorldSpec field. Everything
+/// that handles options (WorldSpec::set and is_set, to_json, read_world_spec, the flags and
+/// their help) loops over the table and reaches the field through `set` and `get` only, so that
+/// adding an option is one row (and its field).
 struct WorldOptionInfo {
-  std::string_view key;           ///< JSON key
-  std::string_view unit;          ///< "" for names and plain numbers
-  std::string_view default_text;  ///< shown in help ("" for none)
+  std::string_view key;   ///< JSON key
+  std::string_view unit;  ///< "" for names and plain numbers
+  /// Shown in help ("" for none). Left empty in the table's rows for an option with a value by
+  /// default: the table fills it in from `get` of a default WorldSpec, so that the help shows
+  /// the value the code uses. An option unset by default says what it then is.
+  std::string default_text;
   std::string_view help;
   WorldValue value = WorldValue::kName;
-  std::vector<std::string_view> choices;  ///< kName: the allowed names
+  std::vector<std::string_view> choices;  ///< kWorld, kName: the allowed names
   double min = 0.0, max = 0.0;            ///< kInteger, kNumber: the range (inclusive)
+  /// to_json writes the option even at its default (base and physics_step_us).
+  bool always_written = false;
+  /// A per-reset randomisation range (a field of Randomisation): a task config's trial
+  /// randomisation reads and writes it too (optimiser/src/tasks/task_config.cpp).
+  bool randomisation = false;
+  /// Stores a checked value in the field: `text` as given (a name in `choices`, a number, a
+  /// path, one push) and, for kInteger and kNumber, `number` its value in [min, max]. A value
+  /// whose check needs its meaning (a world file, a URDF, a push) is checked here; the error
+  /// names `shown`. Nothing changes on an error.
+  Status (*set)(WorldSpec& spec, const std::string& text, double number,
+                const std::string& shown) = nullptr;
+  /// The field as a `world` object holds it; null when unset (an optional field without a
+  /// value, no URDF, no pushes). An option is set when this differs from a default WorldSpec's.
+  nlohmann::json (*get)(const WorldSpec& spec) = nullptr;
+  /// kPushes: empties the list (a `world` object's list replaces what it held).
+  void (*clear)(WorldSpec& spec) = nullptr;
 };
 
 /// Every option of a world, in the order the help lists them: base, engine, physics_step_us,
@@ -71,13 +99,16 @@ std::string world_option_keys();
 std::string world_option_choices(const WorldOptionInfo& option);
 
 /// A world by its options, each unset part taken from the base world. Plain values in the
-/// table's units, independent of the order they were given in.
+/// table's units, independent of the order they were given in. Its member initialisers are
+/// the world's defaults, the one place they are written: the command line's default world is
+/// WorldSpec{}.to_options() (the faithful world, noise on), and the help's defaults are read
+/// from a default WorldSpec.
 struct WorldSpec {
   WorldPreset base = WorldPreset::kFaithful;
   std::optional<WorldFile> file;    ///< a world file as the base (its base world and calibration)
   std::filesystem::path file_path;  ///< where `file` came from ("" for an inline object)
   EngineKind engine = EngineKind::kSimbody;
-  std::int64_t physics_step_us = 2000;
+  std::int64_t physics_step_us = kDefaultPhysicsStepUs;
   std::optional<ServoLaw> servo_law;        ///< unset: the base world's
   std::optional<ImuKind> imu;               ///< unset: the base world's
   std::optional<double> mag_disturbance;    ///< [gauss]; unset: MagnetometerSpec's
@@ -86,7 +117,7 @@ struct WorldSpec {
   std::filesystem::path urdf;               ///< empty: the igus model
   std::shared_ptr<const RobotModel> model;  ///< `urdf` parsed when it was set
   bool noise = true;                        ///< sensor noise and per-reset IMU bias
-  std::uint64_t seed = 1;
+  std::uint64_t seed = kDefaultWorldSeed;
   /// Per-reset randomisation: friction, mass and strength ranges, latency probability, ground.
   Randomisation randomise;
   std::optional<int> latency_ticks;  ///< unset: the world file's (nominal 0)
@@ -100,6 +131,8 @@ struct WorldSpec {
   Status set(std::string_view key, const std::string& value, const std::string& shown);
   /// True if `key` was given a value other than its default.
   bool is_set(std::string_view key) const;
+  /// A world file as the base (`path` where it came from, "" for a `world` object's).
+  void use_world_file(WorldFile world, std::filesystem::path path = {});
 
   /// The world these options describe (the one mapping from names to models). The control
   /// period is WorldOptions' default; the caller sets the firmware's.

@@ -36,18 +36,18 @@ struct TaskGene {
 
 enum class Aggregate : std::uint8_t { kMean, kWorst };
 
-/// Randomised conditions of one robust trial (relative ranges, uniform +-range).
-struct TrialRandomisation {
+/// Randomised conditions of robust trials: the world's per-reset ranges (sim::Randomisation,
+/// read and written by the world option table's randomisation rows under the same names, ranges
+/// and messages) at the trials' defaults, and the IMU noise. The ground (contact_range), the
+/// trunk's centre of mass (com_range) and the command latency (latency_probability) are off
+/// unless asked for, drawing nothing.
+struct TrialRandomisation : sim::Randomisation {
   bool imu_noise = true;
-  double friction_range = 0.2;
-  double mass_range = 0.05;
-  double strength_range = 0.1;
-  /// The ground drawn per trial between hard and soft (sim::Randomisation::contact_range);
-  /// 0 (the default): every trial on the world's ground, drawing nothing.
-  double contact_range = 0.0;
-  /// Robot variants per trial: the trunk's centre of mass moved up to +-com_range in x and y
-  /// [m] (sim::Randomisation::com_range); 0 (the default): none, drawing nothing.
-  double com_range = 0.0;
+  TrialRandomisation() {
+    friction_range = 0.2;
+    mass_range = 0.05;
+    strength_range = 0.1;
+  }
 };
 
 /// The physics step of a walk or kick optimisation's trials on Simbody in the faithful world
