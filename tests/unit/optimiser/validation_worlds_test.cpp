@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "minimal_task_config.hpp"
+#include "same_world.hpp"
 #include "stride/optimiser/run/validation.hpp"
 #include "stride/optimiser/run/validation_summary.hpp"
 #include "stride/optimiser/tasks/robot_task.hpp"
@@ -72,50 +73,6 @@ std::vector<OldWorld> old_validation_worlds(const RobotTask& task,
     out.push_back(w);
   }
   return out;
-}
-
-// Every figure of the options that a validation world changes or carries from the run.
-void expect_same_world(const sim::WorldOptions& a, const sim::WorldOptions& b,
-                       const std::string& where) {
-  SCOPED_TRACE(where);
-  EXPECT_EQ(a.engine, b.engine);
-  EXPECT_EQ(a.seed, b.seed);
-  EXPECT_EQ(a.physics_step_ns, b.physics_step_ns);
-  EXPECT_EQ(a.control_period_ns, b.control_period_ns);
-  EXPECT_EQ(a.urdf, b.urdf);
-  EXPECT_EQ(a.model, b.model);
-  EXPECT_EQ(a.ball.present, b.ball.present);
-  EXPECT_EQ(a.servo.law, b.servo.law);
-  EXPECT_EQ(a.robot.latency_ticks, b.robot.latency_ticks);
-  EXPECT_EQ(a.battery_voltage_v, b.battery_voltage_v);
-  EXPECT_EQ(a.pushes.size(), b.pushes.size());
-  // Randomisation.
-  EXPECT_EQ(a.randomise.friction_range, b.randomise.friction_range);
-  EXPECT_EQ(a.randomise.mass_range, b.randomise.mass_range);
-  EXPECT_EQ(a.randomise.strength_range, b.randomise.strength_range);
-  EXPECT_EQ(a.randomise.latency_probability, b.randomise.latency_probability);
-  EXPECT_EQ(a.randomise.contact_range, b.randomise.contact_range);
-  EXPECT_EQ(a.randomise.com_range, b.randomise.com_range);
-  // Contact, figure by figure.
-  const sim::ContactOptions &c = a.contact, &d = b.contact;
-  EXPECT_EQ(c.grass_thickness_m, d.grass_thickness_m);
-  EXPECT_EQ(c.grass_stiffness_n_m, d.grass_stiffness_n_m);
-  EXPECT_EQ(c.grass_damping_n_s_m, d.grass_damping_n_s_m);
-  EXPECT_EQ(c.ground_stiffness_n_m, d.ground_stiffness_n_m);
-  EXPECT_EQ(c.ground_damping_n_s_m, d.ground_damping_n_s_m);
-  EXPECT_EQ(c.friction, d.friction);
-  EXPECT_EQ(c.tangential_stiffness_n_m, d.tangential_stiffness_n_m);
-  EXPECT_EQ(c.tangential_damping_n_s_m, d.tangential_damping_n_s_m);
-  EXPECT_EQ(c.ball_robot_stiffness_n_m, d.ball_robot_stiffness_n_m);
-  EXPECT_EQ(c.ball_robot_damping_n_s_m, d.ball_robot_damping_n_s_m);
-  EXPECT_EQ(c.mujoco_solid_ground, d.mujoco_solid_ground);
-  // The IMU: its chain and its noise.
-  EXPECT_EQ(a.imu_kind(), b.imu_kind());
-  EXPECT_EQ(a.imu.chain.noise, b.imu.chain.noise);
-  EXPECT_EQ(a.imu.accel_noise_std, b.imu.accel_noise_std);
-  EXPECT_EQ(a.imu.gyro_noise_std, b.imu.gyro_noise_std);
-  EXPECT_EQ(a.imu.accel_bias_std, b.imu.accel_bias_std);
-  EXPECT_EQ(a.imu.gyro_bias_std, b.imu.gyro_bias_std);
 }
 
 // The worlds of `config` with `options` against the old mapping, every seed of every world.

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "same_world.hpp"
 #include "stride/firmware/parameter_store.hpp"
 #include "stride/sim_hal/sim_cli.hpp"
 #include "stride/sim_hal/world_spec.hpp"
@@ -229,31 +230,6 @@ TEST(WorldSpec, TheHelpShowsTheDefaultsTheCodeUses) {
   EXPECT_EQ(find_world_option("physics_step_us")->default_text,
             std::to_string(kDefaultPhysicsStepUs));
   EXPECT_EQ(find_world_option("noise")->default_text, "on");
-}
-
-/// The figures of two worlds that the options and the presets reach.
-void expect_same_world(const WorldOptions& a, const WorldOptions& b) {
-  EXPECT_EQ(a.engine, b.engine);
-  EXPECT_EQ(a.urdf, b.urdf);
-  EXPECT_EQ(a.physics_step_ns, b.physics_step_ns);
-  EXPECT_EQ(a.control_period_ns, b.control_period_ns);
-  EXPECT_EQ(a.battery_voltage_v, b.battery_voltage_v);
-  EXPECT_EQ(a.servo.law, b.servo.law);
-  EXPECT_EQ(a.imu_kind(), b.imu_kind());
-  EXPECT_EQ(a.imu.chain.noise, b.imu.chain.noise);
-  EXPECT_EQ(a.imu.accel_noise_std, b.imu.accel_noise_std);
-  EXPECT_EQ(a.imu.gyro_noise_std, b.imu.gyro_noise_std);
-  EXPECT_EQ(a.imu.accel_bias_std, b.imu.accel_bias_std);
-  EXPECT_EQ(a.imu.gyro_bias_std, b.imu.gyro_bias_std);
-  EXPECT_EQ(a.imu.chain.magnetometer.disturbance_gauss, b.imu.chain.magnetometer.disturbance_gauss);
-  EXPECT_EQ(contact_kind_name(a.contact), contact_kind_name(b.contact));
-  EXPECT_EQ(a.contact.friction, b.contact.friction);
-  EXPECT_EQ(a.seed, b.seed);
-  EXPECT_EQ(a.robot.latency_ticks, b.robot.latency_ticks);
-  EXPECT_EQ(a.robot.torque_scale_mx106, b.robot.torque_scale_mx106);
-  EXPECT_EQ(a.randomise.friction_range, b.randomise.friction_range);
-  EXPECT_EQ(a.randomise.com_range, b.randomise.com_range);
-  EXPECT_EQ(a.pushes.size(), b.pushes.size());
 }
 
 // One default world: the command line's with no flags is WorldSpec{}'s, and a bare
