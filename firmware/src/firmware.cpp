@@ -8,7 +8,9 @@
 #include <exception>
 
 #include "stride/firmware/script/script_engine.hpp"
+#include "stride/firmware/walk/spline_walk_engine.hpp"
 #include "stride/firmware/walk/walk_engine.hpp"
+#include "stride/firmware/walk/walk_selector.hpp"
 
 #ifndef STRIDE_FIRMWARE_DATA_DIR
 #define STRIDE_FIRMWARE_DATA_DIR "."
@@ -23,7 +25,9 @@ std::filesystem::path data_dir() {
 // The motion engines the controller drives. Each engine registers its parameters in its
 // constructor, before the parameter file is applied.
 struct Firmware::Engines {
-  std::unique_ptr<WalkEngine> walk_engine;
+  std::unique_ptr<WalkEngine> walk_engine;               // the seed's ZMP walk (walk.*)
+  std::unique_ptr<SplineWalkEngine> spline_walk_engine;  // the spline walk (walk.spline.*)
+  std::unique_ptr<WalkSelector> walk_selector;           // walk.engine chooses one of them
   WalkControl* walk = nullptr;
   ScriptControl* script = nullptr;
   std::unique_ptr<ScriptEngine> script_engine;
@@ -86,12 +90,17 @@ Status Firmware::create(const FirmwareOptions& options, const FirmwareFiles& fil
   fw->engines_ = std::make_unique<Engines>();
   // The motion engines register their parameters here, before the parameter file applies.
   try {
-    fw->engines_->walk_engine =
+    auto& engines = *fw->engines_;
+    engines.walk_engine =
         std::make_unique<WalkEngine>(fw->params_, fw->servos_, fw->period_ns_, fw->robot_);
+    engines.spline_walk_engine =
+        std::make_unique<SplineWalkEngine>(fw->params_, fw->servos_, fw->period_ns_, fw->robot_);
+    engines.walk_selector = std::make_unique<WalkSelector>(fw->params_, *engines.walk_engine,
+                                                           *engines.spline_walk_engine);
   } catch (const std::exception& e) {
     return Status::error(e.what());
   }
-  fw->engines_->walk = fw->engines_->walk_engine.get();
+  fw->engines_->walk = fw->engines_->walk_selector.get();
   // Scripts are loaded before the controller: the motion manager resolves the get-up scripts.
   fw->engines_->script_engine =
       std::make_unique<ScriptEngine>(fw->period_ns_, fw->params_, fw->servos_);

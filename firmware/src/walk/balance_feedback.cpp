@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 namespace stride::fw::walk {
 namespace {
@@ -14,43 +15,44 @@ double deadband(double value, double band) {
 
 }  // namespace
 
-BalanceFeedback::BalanceFeedback(ParameterStore& store, double period_s)
+BalanceFeedback::BalanceFeedback(ParameterStore& store, double period_s, std::string_view prefix)
     : store_(store), period_s_(period_s) {
+  const std::string p(prefix);
   ankle_pitch_gain_ =
-      store.add_real("walk.balance.ankle_pitch_gain", 0.3043, 0.0, 1.0, "s",
+      store.add_real(p + ".balance.ankle_pitch_gain", 0.3043, 0.0, 1.0, "s",
                      "support ankle pitch added per rad/s of torso pitch rate (0: off)");
   ankle_roll_gain_ =
-      store.add_real("walk.balance.ankle_roll_gain", 0.9589, 0.0, 1.0, "s",
+      store.add_real(p + ".balance.ankle_roll_gain", 0.9589, 0.0, 1.0, "s",
                      "support ankle roll added per rad/s of torso roll rate (0: off)");
   hip_pitch_gain_ =
-      store.add_real("walk.balance.hip_pitch_gain", 0.3629, 0.0, 1.0, "s",
+      store.add_real(p + ".balance.hip_pitch_gain", 0.3629, 0.0, 1.0, "s",
                      "support hip pitch added per rad/s of torso pitch rate (0: off)");
-  hip_roll_gain_ = store.add_real("walk.balance.hip_roll_gain", 0.0178, 0.0, 1.0, "s",
+  hip_roll_gain_ = store.add_real(p + ".balance.hip_roll_gain", 0.0178, 0.0, 1.0, "s",
                                   "support hip roll added per rad/s of torso roll rate (0: off)");
-  filter_time_ = store.add_real("walk.balance.filter_time", 0.055, 0.0, 1.0, "s",
+  filter_time_ = store.add_real(p + ".balance.filter_time", 0.055, 0.0, 1.0, "s",
                                 "low-pass time constant of the gyro feedback");
-  deadband_ = store.add_real("walk.balance.deadband", 0.1859, 0.0, 2.0, "rad/s",
+  deadband_ = store.add_real(p + ".balance.deadband", 0.1859, 0.0, 2.0, "rad/s",
                              "gyro rates below this are ignored");
-  max_shift_ = store.add_real("walk.balance.max_shift", 0.2711, 0.0, 1.0, "rad",
+  max_shift_ = store.add_real(p + ".balance.max_shift", 0.2711, 0.0, 1.0, "rad",
                               "largest joint shift the feedback may add");
   pitch_angle_gain_ =
-      store.add_real("walk.balance.pitch_angle_gain", 0.0, 0.0, 20.0, "1/s",
+      store.add_real(p + ".balance.pitch_angle_gain", 0.0, 0.0, 20.0, "1/s",
                      "torso pitch error (rad) added to the fed-back pitch rate (0: off)");
   roll_angle_gain_ =
-      store.add_real("walk.balance.roll_angle_gain", 0.0, 0.0, 20.0, "1/s",
+      store.add_real(p + ".balance.roll_angle_gain", 0.0, 0.0, 20.0, "1/s",
                      "torso roll error (rad) added to the fed-back roll rate (0: off)");
   tilt_filter_time_ =
-      store.add_real("walk.balance.tilt_filter_time", 0.8442, 0.05, 10.0, "s",
+      store.add_real(p + ".balance.tilt_filter_time", 0.8442, 0.05, 10.0, "s",
                      "complementary filter time constant of the torso tilt estimate");
   tilt_reference_time_ =
-      store.add_real("walk.balance.tilt_reference_time", 0.0, 0.0, 20.0, "s",
+      store.add_real(p + ".balance.tilt_reference_time", 0.0, 0.0, 20.0, "s",
                      "time constant of the slow mean tilt the tilt term holds the torso to "
                      "(0: the tilt at the walk's start)");
   double_support_weight_ =
-      store.add_real("walk.balance.double_support_weight", 0.7912, 0.0, 1.0, "1",
+      store.add_real(p + ".balance.double_support_weight", 0.7912, 0.0, 1.0, "1",
                      "share of the feedback the swing leg takes while both feet are down");
   start_sway_steps_ =
-      store.add_real("walk.balance.start_sway_steps", 1.4887, 0.0, 10.0, "steps",
+      store.add_real(p + ".balance.start_sway_steps", 1.4887, 0.0, 10.0, "steps",
                      "steps over which the ZMP excursion ramps to full after the start (0: off)");
 }
 

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 namespace stride::fw::walk {
 namespace {
@@ -11,35 +12,36 @@ constexpr double kGravity = 9.81;
 
 }  // namespace
 
-CaptureStep::CaptureStep(ParameterStore& store, double period_s)
+CaptureStep::CaptureStep(ParameterStore& store, double period_s, std::string_view prefix)
     : store_(store), period_s_(period_s) {
-  step_gain_x_ = store.add_real("walk.capture.step_gain_x", 0.0, 0.0, 3.0, "1",
+  const std::string p(prefix);
+  step_gain_x_ = store.add_real(p + ".capture.step_gain_x", 0.0, 0.0, 3.0, "1",
                                 "next footstep moved forward per m of capture-point deviation "
                                 "(0: off)");
-  step_gain_y_ = store.add_real("walk.capture.step_gain_y", 0.0, 0.0, 3.0, "1",
+  step_gain_y_ = store.add_real(p + ".capture.step_gain_y", 0.0, 0.0, 3.0, "1",
                                 "next footstep moved sideways per m of capture-point deviation "
                                 "(0: off)");
-  max_step_x_ = store.add_real("walk.capture.max_step_x", 0.05, 0.0, 0.15, "m",
+  max_step_x_ = store.add_real(p + ".capture.max_step_x", 0.05, 0.0, 0.15, "m",
                                "largest forward or backward footstep correction");
-  max_step_y_ = store.add_real("walk.capture.max_step_y", 0.04, 0.0, 0.1, "m",
+  max_step_y_ = store.add_real(p + ".capture.max_step_y", 0.04, 0.0, 0.1, "m",
                                "largest sideways footstep correction");
-  timing_gain_ = store.add_real("walk.capture.timing_gain", 0.0, 0.0, 50.0, "1/m",
+  timing_gain_ = store.add_real(p + ".capture.timing_gain", 0.0, 0.0, 50.0, "1/m",
                                 "phase rate change per m of lateral capture-point deviation "
                                 "towards the swing side (0: off)");
-  max_timing_ = store.add_real("walk.capture.max_timing", 0.3, 0.0, 0.6, "1",
+  max_timing_ = store.add_real(p + ".capture.max_timing", 0.3, 0.0, 0.6, "1",
                                "largest relative change of the phase rate");
-  com_height_ = store.add_real("walk.capture.com_height", 0.42, 0.2, 0.7, "m",
+  com_height_ = store.add_real(p + ".capture.com_height", 0.42, 0.2, 0.7, "m",
                                "pendulum height of the capture-point estimate");
-  learn_steps_ = store.add_real("walk.capture.learn_steps", 4.0, 0.5, 50.0, "step pairs",
+  learn_steps_ = store.add_real(p + ".capture.learn_steps", 4.0, 0.5, 50.0, "step pairs",
                                 "time constant of the learned expected tilt per phase");
-  rate_filter_time_ = store.add_real("walk.capture.rate_filter_time", 0.05, 0.0, 1.0, "s",
+  rate_filter_time_ = store.add_real(p + ".capture.rate_filter_time", 0.05, 0.0, 1.0, "s",
                                      "low-pass time constant of the tilt deviation's rate");
-  tilt_filter_time_ = store.add_real("walk.capture.tilt_filter_time", 0.3, 0.02, 5.0, "s",
+  tilt_filter_time_ = store.add_real(p + ".capture.tilt_filter_time", 0.3, 0.02, 5.0, "s",
                                      "complementary filter time constant of the trunk tilt");
-  touchdown_load_ = store.add_real("walk.capture.touchdown_load", 0.08, 0.0, 1.0, "1",
+  touchdown_load_ = store.add_real(p + ".capture.touchdown_load", 0.08, 0.0, 1.0, "1",
                                    "swing knee load (fraction of stall torque) that ends a step "
                                    "late in its phase (0: the clock ends every step)");
-  touchdown_phase_ = store.add_real("walk.capture.touchdown_phase", 0.7, 0.5, 1.0, "1",
+  touchdown_phase_ = store.add_real(p + ".capture.touchdown_phase", 0.7, 0.5, 1.0, "1",
                                     "earliest step phase a touchdown may end the step at");
 }
 

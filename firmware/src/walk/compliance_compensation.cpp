@@ -34,15 +34,17 @@ Eigen::Vector3d perpendicular(const Eigen::Vector3d& v, const Eigen::Vector3d& u
 }  // namespace
 
 ComplianceCompensation::ComplianceCompensation(ParameterStore& store, const RobotDescription& robot,
-                                               const ServoTable& servos, double period_s)
+                                               const ServoTable& servos, double period_s,
+                                               std::string_view prefix)
     : store_(store), robot_(robot), period_s_(period_s) {
-  gain_ = store.add_real("walk.compliance.gain", 1.0, 0.0, 1.5, "1",
+  const std::string p(prefix);
+  gain_ = store.add_real(p + ".compliance.gain", 1.0, 0.0, 1.5, "1",
                          "share of the servos' predicted deflection under the expected joint "
                          "torque added to the leg goals (0: off)");
-  back_emf_gain_ = store.add_real("walk.compliance.back_emf_gain", 0.0, 0.0, 1.5, "1",
+  back_emf_gain_ = store.add_real(p + ".compliance.back_emf_gain", 0.0, 0.0, 1.5, "1",
                                   "share of the back-EMF at the planned joint speed added to the "
                                   "leg goals (0: off)");
-  max_offset_ = store.add_real("walk.compliance.max_offset", 0.15, 0.0, 0.3, "rad",
+  max_offset_ = store.add_real(p + ".compliance.max_offset", 0.15, 0.0, 0.3, "rad",
                                "largest compensation added to one joint");
   for (std::size_t k = 0; k < kLegServos.size(); ++k)
     leg_servos_[k] = servo_index(servos, kLegServos[k]);

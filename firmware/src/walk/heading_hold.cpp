@@ -3,20 +3,22 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 namespace stride::fw::walk {
 
-HeadingHold::HeadingHold(ParameterStore& store, double period_s)
-    : store_(store), period_s_(period_s), magnetic_(store, period_s) {
-  gain_ = store.add_real("walk.balance.heading_gain", 0.5, 0.0, 2.0, "1/step",
+HeadingHold::HeadingHold(ParameterStore& store, double period_s, std::string_view prefix)
+    : store_(store), period_s_(period_s), magnetic_(store, period_s, prefix) {
+  const std::string p(prefix);
+  gain_ = store.add_real(p + ".balance.heading_gain", 0.5, 0.0, 2.0, "1/step",
                          "turn velocity (rad/step) added per rad of heading error while no turn "
                          "is commanded (0: heading hold off)");
-  rate_gain_ = store.add_real("walk.balance.heading_rate_gain", 0.0, 0.0, 2.0, "s/step",
+  rate_gain_ = store.add_real(p + ".balance.heading_rate_gain", 0.0, 0.0, 2.0, "s/step",
                               "turn velocity (rad/step) added per rad/s of filtered yaw rate "
                               "while no turn is commanded (0: off)");
-  filter_time_ = store.add_real("walk.balance.heading_filter_time", 0.5, 0.0, 5.0, "s",
+  filter_time_ = store.add_real(p + ".balance.heading_filter_time", 0.5, 0.0, 5.0, "s",
                                 "low-pass time constant of the yaw rate the rate term uses");
-  max_correction_ = store.add_real("walk.balance.heading_max_correction", 0.3, 0.0, 0.5, "rad/step",
+  max_correction_ = store.add_real(p + ".balance.heading_max_correction", 0.3, 0.0, 0.5, "rad/step",
                                    "largest turn velocity the heading hold may add to a step");
 }
 

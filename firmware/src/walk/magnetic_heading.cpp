@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 namespace stride::fw::walk {
 namespace {
@@ -19,15 +20,16 @@ bool finite3(const std::array<double, 3>& v) {
 
 }  // namespace
 
-MagneticHeading::MagneticHeading(ParameterStore& store, double period_s)
+MagneticHeading::MagneticHeading(ParameterStore& store, double period_s, std::string_view prefix)
     : store_(store), period_s_(period_s) {
-  time_ = store.add_real("walk.balance.heading_mag_time", 10.0, 0.0, 60.0, "s",
+  const std::string p(prefix);
+  time_ = store.add_real(p + ".balance.heading_mag_time", 10.0, 0.0, 60.0, "s",
                          "time constant over which the heading hold's heading follows the "
                          "magnetometer rather than the gyro (0: magnetometer unused)");
-  bias_time_ = store.add_real("walk.balance.heading_mag_bias_time", 0.0, 0.0, 300.0, "s",
+  bias_time_ = store.add_real(p + ".balance.heading_mag_bias_time", 0.0, 0.0, 300.0, "s",
                               "time constant of the gyro yaw bias learnt from the magnetometer "
                               "(0: not learnt, the default)");
-  tilt_time_ = store.add_real("walk.balance.heading_mag_tilt_time", 1.0, 0.05, 10.0, "s",
+  tilt_time_ = store.add_real(p + ".balance.heading_mag_tilt_time", 1.0, 0.05, 10.0, "s",
                               "complementary filter time constant of the tilt that levels the "
                               "magnetometer");
 }

@@ -15,10 +15,12 @@ namespace {
 TEST(WalkMotionManager, StartsFromStandWalksAndStopsBackIntoStand) {
   std::unique_ptr<Firmware> firmware;
   ASSERT_TRUE(Firmware::create({}, firmware));
-  // The 46 genome parameters and the body height; the feedback gains live in their own groups.
+  // The 46 genome parameters and the body height; the feedback gains live in their own groups,
+  // the spline walk under walk.spline.*, and walk.engine chooses between the two walks.
   const auto& params = firmware->params();
   EXPECT_EQ(params.list("walk.").size() - params.list("walk.balance.").size() -
-                params.list("walk.compliance.").size() - params.list("walk.capture.").size(),
+                params.list("walk.compliance.").size() - params.list("walk.capture.").size() -
+                params.list("walk.spline.").size() - params.list("walk.engine").size(),
             47u);
   Controller& controller = firmware->controller();
   const auto sensors = hal::ScriptedRobot::standing_frame();

@@ -25,6 +25,8 @@
 // excursion of step n after the start is scaled by min(1, n / start_sway_steps).
 #pragma once
 
+#include <string_view>
+
 #include "stride/firmware/parameter_store.hpp"
 #include "stride/hal/sensor_frame.hpp"
 
@@ -36,8 +38,9 @@ struct BalanceShift {
 
 class BalanceFeedback {
  public:
-  /// Registers walk.balance.* (start-up only; throws on a name clash).
-  BalanceFeedback(ParameterStore& store, double period_s);
+  /// Registers PREFIX.balance.* (PREFIX: "walk", or "walk.spline" for the spline walk; start-up
+  /// only; throws on a name clash).
+  BalanceFeedback(ParameterStore& store, double period_s, std::string_view prefix = "walk");
 
   void reset() noexcept;
   /// Filters this tick's gyro and returns the joint shifts for the support leg. Real-time.

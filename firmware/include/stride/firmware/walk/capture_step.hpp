@@ -26,6 +26,8 @@
 // Real-time: no allocation, no I/O.
 #pragma once
 
+#include <string_view>
+
 #include <array>
 
 #include "stride/firmware/parameter_store.hpp"
@@ -38,8 +40,9 @@ class CaptureStep {
   /// Phase bins per step pair of the learned expected tilt.
   static constexpr std::size_t kBins = 40;
 
-  /// Registers walk.capture.* (start-up only; throws on a name clash).
-  CaptureStep(ParameterStore& store, double period_s);
+  /// Registers PREFIX.capture.* (PREFIX: "walk", or "walk.spline" for the spline walk; start-up
+  /// only; throws on a name clash).
+  CaptureStep(ParameterStore& store, double period_s, std::string_view prefix = "walk");
 
   void reset() noexcept;
   /// True if any gain is set.

@@ -25,6 +25,8 @@
 //   max_offset     [0, 0.3]  rad, largest offset added to a joint
 #pragma once
 
+#include <string_view>
+
 #include <array>
 
 #include "stride/firmware/parameter_store.hpp"
@@ -49,10 +51,11 @@ class ComplianceCompensation {
   /// Stud tips below the ankle crossing [m] (LegGeometry::kAnkleHeight).
   static constexpr double kSoleBelowAnkle = 0.0565;
 
-  /// Registers walk.compliance.* (start-up only; throws on a name clash or a servo table
-  /// without the leg servos).
+  /// Registers PREFIX.compliance.* (PREFIX: "walk", or "walk.spline" for the spline walk; start-up
+  /// only; throws on a name clash or a servo table without the leg servos).
   ComplianceCompensation(ParameterStore& store, const RobotDescription& robot,
-                         const ServoTable& servos, double period_s);
+                         const ServoTable& servos, double period_s,
+                         std::string_view prefix = "walk");
 
   void reset() noexcept;
   bool enabled() const noexcept;

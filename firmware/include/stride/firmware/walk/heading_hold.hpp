@@ -25,6 +25,8 @@
 // Real-time: update() and correction() allocate nothing and do no I/O.
 #pragma once
 
+#include <string_view>
+
 #include "stride/firmware/parameter_store.hpp"
 #include "stride/firmware/walk/magnetic_heading.hpp"
 #include "stride/hal/sensor_frame.hpp"
@@ -33,8 +35,9 @@ namespace stride::fw::walk {
 
 class HeadingHold {
  public:
-  /// Registers walk.balance.heading_* (start-up only; throws on a name clash).
-  HeadingHold(ParameterStore& store, double period_s);
+  /// Registers PREFIX.balance.heading_* (walk.balance.* for the seed's engine,
+  /// walk.spline.balance.* for the spline walk; start-up only; throws on a name clash).
+  HeadingHold(ParameterStore& store, double period_s, std::string_view prefix = "walk");
 
   /// At the walk's start: clears the bias estimate, the heading error and the filter.
   void reset() noexcept;

@@ -30,6 +30,8 @@
 // Real-time: update() allocates nothing and does no I/O.
 #pragma once
 
+#include <string_view>
+
 #include <array>
 
 #include "stride/firmware/parameter_store.hpp"
@@ -39,8 +41,9 @@ namespace stride::fw::walk {
 
 class MagneticHeading {
  public:
-  /// Registers walk.balance.heading_mag_* (start-up only; throws on a name clash).
-  MagneticHeading(ParameterStore& store, double period_s);
+  /// Registers PREFIX.balance.heading_mag_* (PREFIX: "walk", or "walk.spline" for the spline walk;
+  /// start-up only; throws on a name clash).
+  MagneticHeading(ParameterStore& store, double period_s, std::string_view prefix = "walk");
 
   /// At the walk's start: forgets the tilt, the heading and the bias.
   void reset() noexcept;
