@@ -33,7 +33,7 @@ ROOT = os.path.dirname(os.path.dirname(HERE))
 
 
 def sim(args, seed, extra, duration, record=None):
-    cmd = ["nice", args.stride, "sim", "walk", "--vx", "1"] + \
+    cmd = ["nice", args.stride, "sim", "walk", "--vx", str(args.vx)] + \
         (["--params", args.params] if args.params else []) + \
         ["--seed", str(seed), "--duration", "%.3f" % duration, "--json"] + extra + args.extra
     if record:
@@ -88,6 +88,8 @@ def largest(args, seed, t, direction):
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--seeds", default="1,2,3")
+    ap.add_argument("--vx", type=float, default=1.0,
+                    help="forward command of the walk being pushed (issue 53: 0.5, half speed)")
     ap.add_argument("--directions", default="forward,backward,left,right")
     ap.add_argument("--at", type=float, default=8.0, help="push in the first single support "
                     "after this time [s]")
