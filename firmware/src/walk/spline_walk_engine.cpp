@@ -33,6 +33,24 @@ const Eigen::Vector3d kHipsInTrunk(walk::LegGeometry::kHipX, 0.0, walk::LegGeome
 // Largest phase-rate change the timing feedback may make (either way).
 constexpr double kMaxRateChange = 0.6;
 
+// The swing leg's share of the balance feedback over a step (u the step's phase, d its double
+// support ratio): from 1 (it was the support leg) to `share` over the double support, to 0
+// over the first fifth of the swing, and back to 1 over the last fifth (it lands as the
+// support leg), so that neither leg's feedback jumps when a step ends by the clock.
+double swing_leg_feedback(double u, double d, double share) {
+  if (u < d) return 1.0 - (1.0 - share) * (u / d);
+  const double s = (u - d) / std::max(1e-6, 1.0 - d);  // phase of the swing
+  if (s < 0.2) return share * (1.0 - s / 0.2);
+  if (s > 0.8) return std::min(1.0, (s - 0.8) / 0.2);
+  return 0.0;
+}
+
+// The support leg's share: from what the leg had when it landed (`landed`, below 1 when a
+// touchdown ended the step early) to 1 over the double support (at least a tenth of the step).
+double support_leg_feedback(double u, double d, double landed) {
+  return landed + (1.0 - landed) * std::min(1.0, u / std::max(d, 0.1));
+}
+
 }  // namespace
 
 SplineWalkEngine::SplineWalkEngine(ParameterStore& store, const ServoTable& servos,
@@ -134,6 +152,11 @@ void SplineWalkEngine::request_stop() noexcept {
 }
 
 void SplineWalkEngine::begin_step() noexcept {
+  // The leg that lands keeps the feedback share it had (less than 1 after an early touchdown).
+  landed_feedback_ = step_count_ == 0
+                         ? 1.0
+                         : swing_leg_feedback(sample_.phase, params_.double_support_ratio,
+                                              balance_.double_support_weight());
   parameter_set_.read(params_);
   const auto& p = params_;
   const double duration = 0.5 / p.frequency;
@@ -290,13 +313,14 @@ void SplineWalkEngine::walk_tick(const hal::SensorFrame& sensors) noexcept {
 void SplineWalkEngine::compute_targets(const walk::StepSample& sample) noexcept {
   const bool left_swings = plan_.swing() == Foot::kLeft;
   contact_ = {sample.left_down, sample.right_down};
-  // The support leg takes the balance feedback; the swing leg a share while both feet are down.
-  const double share = balance_.double_support_weight();
-  const bool both_down = sample.left_down && sample.right_down;
-  const double swing_feedback = both_down ? share : 0.0;
+  // The support leg takes the balance feedback; the legs hand it over without a jump.
+  const double swing_feedback = swing_leg_feedback(sample.phase, params_.double_support_ratio,
+                                                   balance_.double_support_weight());
+  const double support_feedback =
+      support_leg_feedback(sample.phase, params_.double_support_ratio, landed_feedback_);
   const bool standing = state_ == State::kStopped || state_ == State::kStarting;
-  const double left_feedback = standing || !left_swings ? 1.0 : swing_feedback;
-  const double right_feedback = standing || left_swings ? 1.0 : swing_feedback;
+  const double left_feedback = standing ? 1.0 : (left_swings ? swing_feedback : support_feedback);
+  const double right_feedback = standing ? 1.0 : (left_swings ? support_feedback : swing_feedback);
   solve_leg(left_leg_, sample.left, sample.hips, left_feedback, left_leg_index_);
   solve_leg(right_leg_, sample.right, sample.hips, right_feedback, right_leg_index_);
 

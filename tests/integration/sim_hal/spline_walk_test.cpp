@@ -142,22 +142,22 @@ void expect_walks(const Row& row, sim::EngineKind engine) {
 }
 
 TEST(SplineWalk, WalksEveryDirectionOnSimbodyWithItsDefaults) {
-  // Measured over seeds 1-20 (median, IQR): forward 0.243, 0.003 m/s; backward 0.182, 0.004;
-  // left 0.096, 0.002; right 0.097, 0.005; turn left 0.638, 0.031 rad/s; right 0.620, 0.039.
+  // Measured over seeds 1-20 (median, IQR): forward 0.245, 0.004 m/s; backward 0.182, 0.005;
+  // left 0.097, 0.004; right 0.096, 0.006; turn left 0.611, 0.044 rad/s; right 0.602, 0.024.
   const Row rows[] = {
-      {{"forward", 1, 0, 0}, 0.21},   {{"backward", -1, 0, 0}, 0.16},
-      {{"left", 0, 1, 0}, 0.085},     {{"right", 0, -1, 0}, 0.085},
-      {{"turn left", 0, 0, 1}, 0.54}, {{"turn right", 0, 0, -1}, 0.50},
+      {{"forward", 1, 0, 0}, 0.22},   {{"backward", -1, 0, 0}, 0.16},
+      {{"left", 0, 1, 0}, 0.085},     {{"right", 0, -1, 0}, 0.078},
+      {{"turn left", 0, 0, 1}, 0.47}, {{"turn right", 0, 0, -1}, 0.53},
   };
   for (const Row& row : rows) expect_walks(row, sim::EngineKind::kSimbody);
 }
 
 TEST(SplineWalk, WalksForwardSidewaysAndTurnsOnMujoco) {
-  // Measured over seeds 1-20 (median, IQR): forward 0.335, 0.007 m/s; left 0.118, 0.005;
-  // turn right 0.747, 0.028 rad/s.
+  // Measured over seeds 1-20 (median, IQR): forward 0.335, 0.005 m/s; left 0.120, 0.007;
+  // turn right 0.777, 0.036 rad/s.
   const Row rows[] = {
       {{"forward", 1, 0, 0}, 0.30},
-      {{"left", 0, 1, 0}, 0.105},
+      {{"left", 0, 1, 0}, 0.099},
       {{"turn right", 0, 0, -1}, 0.66},
   };
   for (const Row& row : rows) expect_walks(row, sim::EngineKind::kMujoco);

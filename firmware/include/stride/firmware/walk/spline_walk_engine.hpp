@@ -128,9 +128,10 @@ class SplineWalkEngine final : public WalkControl {
   walk::PlanarVector command_;  // normalised
   walk::WalkVelocity velocity_;
   int step_count_ = 0;
-  double time_in_step_ = 0.0;  // [s], advanced at the phase rate
-  walk::StepPlan plan_;        // this step's segments
-  walk::StepSample sample_;    // this tick's sample of them
+  double time_in_step_ = 0.0;     // [s], advanced at the phase rate
+  double landed_feedback_ = 1.0;  // the support leg's balance-feedback share when it landed
+  walk::StepPlan plan_;           // this step's segments
+  walk::StepSample sample_;       // this tick's sample of them
   walk::FootContact contact_;
   Eigen::Vector3d field_{0.0, 0.0, -9.81};  // g - planned hip acceleration, trunk frame
 
