@@ -15,12 +15,6 @@ namespace {
 using walk::Foot;
 using walk::Pose2;
 
-std::size_t servo_index(const ServoTable& servos, const char* name) {
-  const auto index = servos.index_of(name);
-  if (!index) throw std::runtime_error(std::string("spline walk: servo table has no ") + name);
-  return *index;
-}
-
 Eigen::Matrix3d yaw_pitch(double yaw, double pitch) {
   return (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) *
           Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()))
@@ -56,27 +50,13 @@ double support_leg_feedback(double u, double d, double landed) {
 SplineWalkEngine::SplineWalkEngine(ParameterStore& store, const ServoTable& servos,
                                    std::int64_t period_ns, const RobotDescription& robot)
     : parameter_set_(store),
+      servos_(servos, "spline walk"),
       period_s_(static_cast<double>(period_ns) * 1e-9),
       balance_(store, period_s_, "walk.spline"),
       heading_(store, period_s_, "walk.spline"),
       compliance_(store, robot, servos, period_s_, "walk.spline"),
       capture_(store, period_s_, "walk.spline") {
   if (period_ns <= 0) throw std::invalid_argument("spline walk: control period must be > 0");
-  left_leg_index_ = {servo_index(servos, "l_hip_yaw"),     servo_index(servos, "l_hip_roll"),
-                     servo_index(servos, "l_hip_pitch"),   servo_index(servos, "l_knee"),
-                     servo_index(servos, "l_ankle_pitch"), servo_index(servos, "l_ankle_roll")};
-  right_leg_index_ = {servo_index(servos, "r_hip_yaw"),     servo_index(servos, "r_hip_roll"),
-                      servo_index(servos, "r_hip_pitch"),   servo_index(servos, "r_knee"),
-                      servo_index(servos, "r_ankle_pitch"), servo_index(servos, "r_ankle_roll")};
-  left_arm_index_ = {servo_index(servos, "l_shoulder_pitch"),
-                     servo_index(servos, "l_shoulder_roll"), servo_index(servos, "l_elbow")};
-  right_arm_index_ = {servo_index(servos, "r_shoulder_pitch"),
-                      servo_index(servos, "r_shoulder_roll"), servo_index(servos, "r_elbow")};
-  std::size_t k = 0;
-  for (auto i : left_arm_index_) driven_index_[k++] = i;
-  for (auto i : right_arm_index_) driven_index_[k++] = i;
-  for (auto i : left_leg_index_) driven_index_[k++] = i;
-  for (auto i : right_leg_index_) driven_index_[k++] = i;
   parameter_set_.read(params_);
 }
 
@@ -93,13 +73,7 @@ void SplineWalkEngine::start(const hal::SensorFrame& sensors, const hal::Command
   compliance_.reset();
   capture_.reset();
   std::array<double, hal::kServoCount> pose{};
-  for (std::size_t k = 0; k < kDriven; ++k) {
-    const std::size_t i = driven_index_[k];
-    const double from = last_sent.servos[i].torque_enable ? last_sent.servos[i].position_rad
-                                                          : sensors.servos[i].position_rad;
-    blend_from_[k] = std::isfinite(from) ? from : 0.0;
-    pose[i] = blend_from_[k];
-  }
+  servos_.start_pose(sensors, last_sent, blend_from_, pose);
   adopt_feet(pose);
 }
 
@@ -116,8 +90,8 @@ void SplineWalkEngine::adopt_feet(const std::array<double, hal::kServoCount>& po
     const Eigen::Matrix3d r = trunk * foot.rotation;
     return Pose2{p.x(), p.y(), std::atan2(r(1, 0), r(0, 0))};
   };
-  Pose2 left = foot_in_plane(left_leg_, left_leg_index_);
-  Pose2 right = foot_in_plane(right_leg_, right_leg_index_);
+  Pose2 left = foot_in_plane(left_leg_, servos_.left_leg);
+  Pose2 right = foot_in_plane(right_leg_, servos_.right_leg);
   const Pose2 rel = walk::relative(right, left);
   const bool plausible = std::isfinite(rel.x) && std::isfinite(rel.y) && std::isfinite(rel.theta) &&
                          std::abs(rel.x) < 0.15 && rel.y > 0.08 && rel.y < 0.4 &&
@@ -255,23 +229,9 @@ void SplineWalkEngine::step(const hal::SensorFrame& sensors, hal::Tick tick,
 
   const double arm_gain = gain_to_p_register(params_.gain_arms);
   const double leg_gain = gain_to_p_register(params_.gain_legs);
-  if (compliance_.enabled()) {
-    std::array<double, hal::kServoCount> p_gain{};
-    for (std::size_t k = 0; k < kDriven; ++k)
-      p_gain[driven_index_[k]] = k < 6 ? arm_gain : leg_gain;
-    compliance_.apply(targets_, field_, contact_, p_gain, sensors);
-  }
-  for (std::size_t k = 0; k < kDriven; ++k) {
-    const std::size_t i = driven_index_[k];
-    hal::ServoCommand& command = out.servos[i];
-    command.position_rad = blend_from_[k] + blend * (targets_[i] - blend_from_[k]);
-    command.moving_speed_rad_s = 0.0;
-    command.p_gain = k < 6 ? arm_gain : leg_gain;
-    command.i_gain = 0.0;
-    command.d_gain = 0.0;
-    command.torque_limit = 1.0;
-    command.torque_enable = true;
-  }
+  if (compliance_.enabled())
+    compliance_.apply(targets_, field_, contact_, servos_.p_gains(arm_gain, leg_gain), sensors);
+  servos_.write(targets_, blend_from_, blend, arm_gain, leg_gain, out);
   out.tick = tick;
 }
 
@@ -292,7 +252,7 @@ void SplineWalkEngine::walk_tick(const hal::SensorFrame& sensors) noexcept {
   bool ended = time_in_step_ >= plan_.duration();
   if (!ended && moving && state_ != State::kLastStep) {
     const auto& knee =
-        sensors.servos[plan_.swing() == Foot::kLeft ? left_leg_index_[3] : right_leg_index_[3]];
+        sensors.servos[plan_.swing() == Foot::kLeft ? servos_.left_leg[3] : servos_.right_leg[3]];
     if (capture_.touchdown(time_in_step_ / plan_.duration(), knee.load)) {
       ended = true;
       ++touchdown_steps_;
@@ -321,8 +281,8 @@ void SplineWalkEngine::compute_targets(const walk::StepSample& sample) noexcept 
   const bool standing = state_ == State::kStopped || state_ == State::kStarting;
   const double left_feedback = standing ? 1.0 : (left_swings ? swing_feedback : support_feedback);
   const double right_feedback = standing ? 1.0 : (left_swings ? support_feedback : swing_feedback);
-  solve_leg(left_leg_, sample.left, sample.hips, left_feedback, left_leg_index_);
-  solve_leg(right_leg_, sample.right, sample.hips, right_feedback, right_leg_index_);
+  solve_leg(left_leg_, sample.left, sample.hips, left_feedback, servos_.left_leg);
+  solve_leg(right_leg_, sample.right, sample.hips, right_feedback, servos_.right_leg);
 
   // Arms: the stand pose's, each shoulder swinging with the opposite foot's advance.
   const double c = std::cos(sample.hips.yaw.position), s = std::sin(sample.hips.yaw.position);
@@ -330,11 +290,13 @@ void SplineWalkEngine::compute_targets(const walk::StepSample& sample) noexcept 
     return c * (foot.pose.x - sample.hips.x.position) + s * (foot.pose.y - sample.hips.y.position);
   };
   const double swing = params_.arm_swing;
-  targets_[left_arm_index_[0]] = kStandPoseRad[left_arm_index_[0]] - swing * advance(sample.right);
-  targets_[right_arm_index_[0]] = kStandPoseRad[right_arm_index_[0]] - swing * advance(sample.left);
+  targets_[servos_.left_arm[0]] =
+      kStandPoseRad[servos_.left_arm[0]] - swing * advance(sample.right);
+  targets_[servos_.right_arm[0]] =
+      kStandPoseRad[servos_.right_arm[0]] - swing * advance(sample.left);
   for (std::size_t j = 1; j < 3; ++j) {
-    targets_[left_arm_index_[j]] = kStandPoseRad[left_arm_index_[j]];
-    targets_[right_arm_index_[j]] = kStandPoseRad[right_arm_index_[j]];
+    targets_[servos_.left_arm[j]] = kStandPoseRad[servos_.left_arm[j]];
+    targets_[servos_.right_arm[j]] = kStandPoseRad[servos_.right_arm[j]];
   }
   // Gravity less the hips' planned acceleration, in the trunk frame (compliance feed-forward).
   const Eigen::Matrix3d trunk = yaw_pitch(sample.hips.yaw.position, sample.hips.pitch.position);

@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "stride/firmware/stand_pose.hpp"
 #include "stride/firmware/walk/arm_swing.hpp"
 #include "stride/firmware/walk/swing_foot.hpp"
 
@@ -16,16 +17,6 @@ namespace {
 
 using walk::Foot;
 using walk::Pose2;
-
-std::size_t servo_index(const ServoTable& servos, const char* name) {
-  const auto index = servos.index_of(name);
-  if (!index) throw std::runtime_error(std::string("walk engine: servo table has no ") + name);
-  return *index;
-}
-
-double gain_register(double gain) {
-  return std::clamp(std::round(2.54 * gain), 0.0, 254.0);
-}
 
 Eigen::Matrix3d yaw_pitch(double yaw, double pitch) {
   return (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) *
@@ -38,27 +29,13 @@ Eigen::Matrix3d yaw_pitch(double yaw, double pitch) {
 WalkEngine::WalkEngine(ParameterStore& store, const ServoTable& servos, std::int64_t period_ns,
                        const RobotDescription& robot)
     : parameter_set_(store),
+      servos_(servos, "walk engine"),
       period_s_(static_cast<double>(period_ns) * 1e-9),
       balance_(store, period_s_),
       heading_(store, period_s_),
       compliance_(store, robot, servos, period_s_),
       capture_(store, period_s_) {
   if (period_ns <= 0) throw std::invalid_argument("walk engine: control period must be > 0");
-  left_leg_index_ = {servo_index(servos, "l_hip_yaw"),     servo_index(servos, "l_hip_roll"),
-                     servo_index(servos, "l_hip_pitch"),   servo_index(servos, "l_knee"),
-                     servo_index(servos, "l_ankle_pitch"), servo_index(servos, "l_ankle_roll")};
-  right_leg_index_ = {servo_index(servos, "r_hip_yaw"),     servo_index(servos, "r_hip_roll"),
-                      servo_index(servos, "r_hip_pitch"),   servo_index(servos, "r_knee"),
-                      servo_index(servos, "r_ankle_pitch"), servo_index(servos, "r_ankle_roll")};
-  left_arm_index_ = {servo_index(servos, "l_shoulder_pitch"),
-                     servo_index(servos, "l_shoulder_roll"), servo_index(servos, "l_elbow")};
-  right_arm_index_ = {servo_index(servos, "r_shoulder_pitch"),
-                      servo_index(servos, "r_shoulder_roll"), servo_index(servos, "r_elbow")};
-  std::size_t k = 0;
-  for (auto i : left_arm_index_) driven_index_[k++] = i;
-  for (auto i : right_arm_index_) driven_index_[k++] = i;
-  for (auto i : left_leg_index_) driven_index_[k++] = i;
-  for (auto i : right_leg_index_) driven_index_[k++] = i;
   parameter_set_.read(params_);
   reset_stance();
 }
@@ -91,13 +68,7 @@ void WalkEngine::start(const hal::SensorFrame& sensors, const hal::CommandFrame&
   capture_.reset();
   heading_correction_ = 0.0;
   std::array<double, hal::kServoCount> pose{};
-  for (std::size_t k = 0; k < kDriven; ++k) {
-    const std::size_t i = driven_index_[k];
-    const double from = last_sent.servos[i].torque_enable ? last_sent.servos[i].position_rad
-                                                          : sensors.servos[i].position_rad;
-    blend_from_[k] = std::isfinite(from) ? from : 0.0;
-    pose[i] = blend_from_[k];
-  }
+  servos_.start_pose(sensors, last_sent, blend_from_, pose);
   adopt_stance(pose);
 }
 
@@ -117,8 +88,8 @@ void WalkEngine::adopt_stance(const std::array<double, hal::kServoCount>& pose) 
     const Eigen::Matrix3d r = trunk * foot.rotation;
     return Pose2{p.x(), p.y(), std::atan2(r(1, 0), r(0, 0))};
   };
-  const Pose2 left = foot_in_plane(left_leg_, left_leg_index_);
-  const Pose2 right = foot_in_plane(right_leg_, right_leg_index_);
+  const Pose2 left = foot_in_plane(left_leg_, servos_.left_leg);
+  const Pose2 right = foot_in_plane(right_leg_, servos_.right_leg);
   const walk::Pose2 rel = walk::relative(right, left);
   const bool plausible = std::isfinite(rel.x) && std::isfinite(rel.y) && std::isfinite(rel.theta) &&
                          std::abs(rel.x) < 0.15 && rel.y > 0.08 && rel.y < 0.4 &&
@@ -246,7 +217,7 @@ void WalkEngine::step(const hal::SensorFrame& sensors, hal::Tick tick,
     if (step_count_ > kStepsWithoutLift && state_ != State::kLastStep &&
         time_in_step < params_.step_time) {
       const auto& knee =
-          sensors.servos[swing_ == walk::Foot::kLeft ? left_leg_index_[3] : right_leg_index_[3]];
+          sensors.servos[swing_ == walk::Foot::kLeft ? servos_.left_leg[3] : servos_.right_leg[3]];
       if (capture_.touchdown(time_in_step / params_.step_time, knee.load)) {
         step_begin_s_ -= params_.step_time - time_in_step;
         time_in_step = params_.step_time;
@@ -279,25 +250,11 @@ void WalkEngine::step(const hal::SensorFrame& sensors, hal::Tick tick,
   snapshot_.capture_x = capture_.deviation_x();
   snapshot_.capture_y = capture_.deviation_y();
 
-  const double arm_gain = gain_register(params_.gain_arms);
-  const double leg_gain = gain_register(params_.gain_legs);
-  if (compliance_.enabled()) {
-    std::array<double, hal::kServoCount> p_gain{};
-    for (std::size_t k = 0; k < kDriven; ++k)
-      p_gain[driven_index_[k]] = k < 6 ? arm_gain : leg_gain;
-    compliance_.apply(targets_, field_, contact_, p_gain, sensors);
-  }
-  for (std::size_t k = 0; k < kDriven; ++k) {
-    const std::size_t i = driven_index_[k];
-    hal::ServoCommand& command = out.servos[i];
-    command.position_rad = blend_from_[k] + blend * (targets_[i] - blend_from_[k]);
-    command.moving_speed_rad_s = 0.0;
-    command.p_gain = k < 6 ? arm_gain : leg_gain;
-    command.i_gain = 0.0;
-    command.d_gain = 0.0;
-    command.torque_limit = 1.0;
-    command.torque_enable = true;
-  }
+  const double arm_gain = gain_to_p_register(params_.gain_arms);
+  const double leg_gain = gain_to_p_register(params_.gain_legs);
+  if (compliance_.enabled())
+    compliance_.apply(targets_, field_, contact_, servos_.p_gains(arm_gain, leg_gain), sensors);
+  servos_.write(targets_, blend_from_, blend, arm_gain, leg_gain, out);
   out.tick = tick;
 }
 
@@ -349,8 +306,8 @@ void WalkEngine::compute_targets(double time_in_step, bool standing) noexcept {
   // while both feet are down, walk.balance.double_support_weight).
   const double left_feedback = standing || swing_ == Foot::kRight ? 1.0 : swing_feedback;
   const double right_feedback = standing || swing_ == Foot::kLeft ? 1.0 : swing_feedback;
-  solve_leg(left_leg_, left, left_lift, torso, left_roll, left_feedback, left_leg_index_);
-  solve_leg(right_leg_, right, right_lift, torso, right_roll, right_feedback, right_leg_index_);
+  solve_leg(left_leg_, left, left_lift, torso, left_roll, left_feedback, servos_.left_leg);
+  solve_leg(right_leg_, right, right_lift, torso, right_roll, right_feedback, servos_.right_leg);
   write_arms(phase, torso, left, right);
   const Eigen::Matrix3d trunk = yaw_pitch(torso.theta, p.body_tilt);
   field_ = trunk.transpose() * Eigen::Vector3d(-acceleration.x(), -acceleration.y(), -9.81);
@@ -396,12 +353,12 @@ void WalkEngine::write_arms(double phase, const Pose2& torso, const Pose2& left_
                                     walk::relative(torso, right_foot), params_);
   // Table E arm pitches are NUbots angles: URDF shoulder pitch = NUbots - pi/2 (igus.md 1.5).
   constexpr double kPitchOffset = std::numbers::pi / 2.0;
-  targets_[left_arm_index_[0]] = arms.left.pitch - kPitchOffset;
-  targets_[left_arm_index_[1]] = arms.left.roll;
-  targets_[left_arm_index_[2]] = arms.left.elbow;
-  targets_[right_arm_index_[0]] = arms.right.pitch - kPitchOffset;
-  targets_[right_arm_index_[1]] = arms.right.roll;
-  targets_[right_arm_index_[2]] = arms.right.elbow;
+  targets_[servos_.left_arm[0]] = arms.left.pitch - kPitchOffset;
+  targets_[servos_.left_arm[1]] = arms.left.roll;
+  targets_[servos_.left_arm[2]] = arms.left.elbow;
+  targets_[servos_.right_arm[0]] = arms.right.pitch - kPitchOffset;
+  targets_[servos_.right_arm[1]] = arms.right.roll;
+  targets_[servos_.right_arm[2]] = arms.right.elbow;
 }
 
 }  // namespace stride::fw

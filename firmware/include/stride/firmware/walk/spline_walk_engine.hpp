@@ -52,6 +52,7 @@
 #include "stride/firmware/walk/leg_kinematics.hpp"
 #include "stride/firmware/walk/spline_footsteps.hpp"
 #include "stride/firmware/walk/spline_trajectories.hpp"
+#include "stride/firmware/walk/walk_servos.hpp"
 
 namespace stride::fw {
 
@@ -99,7 +100,7 @@ class SplineWalkEngine final : public WalkControl {
   std::uint64_t ik_clamped_ticks() const noexcept { return ik_clamped_ticks_; }
 
  private:
-  static constexpr std::size_t kDriven = 18;  // arm and leg servos
+  static constexpr std::size_t kDriven = walk::WalkServos::kDriven;
 
   void adopt_feet(const std::array<double, hal::kServoCount>& pose) noexcept;
   void begin_step() noexcept;
@@ -110,6 +111,7 @@ class SplineWalkEngine final : public WalkControl {
                  const std::array<std::size_t, 6>& servo_index) noexcept;
 
   walk::SplineWalkParameterSet parameter_set_;
+  walk::WalkServos servos_;
   walk::SplineWalkParameters params_;
   double period_s_;
   walk::BalanceFeedback balance_;
@@ -119,9 +121,6 @@ class SplineWalkEngine final : public WalkControl {
   walk::CaptureStep capture_;
   walk::LegKinematics left_leg_{walk::LegSide::kLeft};
   walk::LegKinematics right_leg_{walk::LegSide::kRight};
-  std::array<std::size_t, 6> left_leg_index_{}, right_leg_index_{};
-  std::array<std::size_t, 3> left_arm_index_{}, right_arm_index_{};
-  std::array<std::size_t, kDriven> driven_index_{};
 
   State state_ = State::kStopped;
   hal::Tick start_tick_ = 0;

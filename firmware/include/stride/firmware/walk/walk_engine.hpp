@@ -43,6 +43,7 @@
 #include "stride/firmware/walk/lipm_trajectory.hpp"
 #include "stride/firmware/walk/pose2.hpp"
 #include "stride/firmware/walk/walk_parameters.hpp"
+#include "stride/firmware/walk/walk_servos.hpp"
 
 namespace stride::fw {
 
@@ -105,7 +106,7 @@ class WalkEngine final : public WalkControl {
   const walk::ComplianceCompensation& compliance() const noexcept { return compliance_; }
 
  private:
-  static constexpr std::size_t kDriven = 18;  // arm and leg servos
+  static constexpr std::size_t kDriven = walk::WalkServos::kDriven;
 
   void reset_stance() noexcept;
   void adopt_stance(const std::array<double, hal::kServoCount>& pose) noexcept;
@@ -118,6 +119,7 @@ class WalkEngine final : public WalkControl {
                   const walk::Pose2& right_foot) noexcept;
 
   walk::WalkParameterSet parameter_set_;
+  walk::WalkServos servos_;
   walk::WalkParameters params_;
   double period_s_;
   walk::BalanceFeedback balance_;
@@ -130,9 +132,6 @@ class WalkEngine final : public WalkControl {
   double heading_correction_ = 0.0;         // added to the current step's turn [rad/step]
   walk::LegKinematics left_leg_{walk::LegSide::kLeft};
   walk::LegKinematics right_leg_{walk::LegSide::kRight};
-  std::array<std::size_t, 6> left_leg_index_{}, right_leg_index_{};
-  std::array<std::size_t, 3> left_arm_index_{}, right_arm_index_{};
-  std::array<std::size_t, kDriven> driven_index_{};
 
   State state_ = State::kStopped;
   bool stop_requested_ = false;

@@ -1,0 +1,45 @@
+// WalkServos: the 18 arm and leg servos a walk engine drives, found by name in the servo table
+// once at start-up, and what every walk engine does with them: the pose a walk's start blends
+// from, the P gain per servo the compliance compensation needs, and the commands written each
+// tick (position blended from the start pose, full speed, P only, full torque). The head is left
+// to whoever drives it. Real-time: start_pose(), p_gains() and write() allocate nothing.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <string_view>
+
+#include "stride/firmware/servo_table.hpp"
+#include "stride/hal/command_frame.hpp"
+#include "stride/hal/sensor_frame.hpp"
+
+namespace stride::fw::walk {
+
+struct WalkServos {
+  static constexpr std::size_t kDriven = 18;  ///< arm and leg servos
+  static constexpr std::size_t kArms = 6;     ///< the first kArms of `driven` are the arms'
+  /// Hip yaw, hip roll, hip pitch, knee, ankle pitch, ankle roll.
+  std::array<std::size_t, 6> left_leg{}, right_leg{};
+  /// Shoulder pitch, shoulder roll, elbow.
+  std::array<std::size_t, 3> left_arm{}, right_arm{};
+  /// Left arm, right arm, left leg, right leg.
+  std::array<std::size_t, kDriven> driven{};
+
+  /// Throws std::runtime_error "`who`: servo table has no NAME" (start-up only).
+  WalkServos(const ServoTable& servos, std::string_view who);
+
+  /// The pose a walk's start blends from: per driven servo the last command if its torque was
+  /// on, else the measured position (0 if not finite), in `from`; the same per servo in `pose`.
+  void start_pose(const hal::SensorFrame& sensors, const hal::CommandFrame& last_sent,
+                  std::array<double, kDriven>& from,
+                  std::array<double, hal::kServoCount>& pose) const noexcept;
+  /// The P register of each servo (the arms' `arm_p`, the legs' `leg_p`, 0 elsewhere).
+  std::array<double, hal::kServoCount> p_gains(double arm_p, double leg_p) const noexcept;
+  /// Writes the driven servos' commands: from + blend (target - from), full speed, P gain, no I
+  /// or D, full torque, torque on.
+  void write(const std::array<double, hal::kServoCount>& targets,
+             const std::array<double, kDriven>& from, double blend, double arm_p, double leg_p,
+             hal::CommandFrame& out) const noexcept;
+};
+
+}  // namespace stride::fw::walk
