@@ -1,9 +1,11 @@
 // expect_same_world(a, b): every figure of two simulated worlds that the world options, the
-// presets, the trial and the validation worlds set (engine, step, robot, servo law, IMU chain
-// and noise, contact figure by figure, randomisation, pushes), one EXPECT each, so that a test
-// names the figure that differs.
+// presets, the trial and the validation worlds set (engine, step, gravity, robot and how it
+// differs from the model, the servo law and its options, IMU chain and noise, contact figure by
+// figure, randomisation, each push), one EXPECT each, so that a test names the figure that
+// differs.
 #pragma once
 
+#include <cstddef>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -22,12 +24,35 @@ inline void expect_same_world(const WorldOptions& a, const WorldOptions& b,
   EXPECT_EQ(a.urdf, b.urdf);
   EXPECT_EQ(a.model, b.model);
   EXPECT_EQ(a.ball.present, b.ball.present);
-  EXPECT_EQ(a.servo.law, b.servo.law);
+  EXPECT_EQ(a.gravity_mps2, b.gravity_mps2);
   EXPECT_EQ(a.battery_voltage_v, b.battery_voltage_v);
+  EXPECT_EQ(a.servo_models, b.servo_models);
+  EXPECT_EQ(a.servo_models_from_table, b.servo_models_from_table);
+  // The servo law and its options.
+  const ServoOptions &s = a.servo, &t = b.servo;
+  EXPECT_EQ(s.law, t.law);
+  EXPECT_EQ(s.friction_model, t.friction_model);
+  EXPECT_EQ(s.backlash_rad, t.backlash_rad);
+  EXPECT_EQ(s.driver_drop_v, t.driver_drop_v);
+  EXPECT_EQ(s.kp_per_register, t.kp_per_register);
+  EXPECT_EQ(s.viscous_friction, t.viscous_friction);
+  EXPECT_EQ(s.coulomb_friction, t.coulomb_friction);
+  EXPECT_EQ(s.rotor_inertia_kg_m2, t.rotor_inertia_kg_m2);
+  // How the robot differs from the model.
   EXPECT_EQ(a.robot.latency_ticks, b.robot.latency_ticks);
   EXPECT_EQ(a.robot.torque_scale_mx64, b.robot.torque_scale_mx64);
   EXPECT_EQ(a.robot.torque_scale_mx106, b.robot.torque_scale_mx106);
-  EXPECT_EQ(a.pushes.size(), b.pushes.size());
+  EXPECT_EQ(a.robot.friction_scale, b.robot.friction_scale);
+  EXPECT_EQ(a.robot.trunk_mass_scale, b.robot.trunk_mass_scale);
+  EXPECT_EQ(a.robot.trunk_com_offset_m, b.robot.trunk_com_offset_m);
+  // The pushes, each by its contents.
+  ASSERT_EQ(a.pushes.size(), b.pushes.size());
+  for (std::size_t i = 0; i < a.pushes.size(); ++i) {
+    SCOPED_TRACE("push " + std::to_string(i));
+    EXPECT_EQ(a.pushes[i].time_s, b.pushes[i].time_s);
+    EXPECT_EQ(a.pushes[i].direction_rad, b.pushes[i].direction_rad);
+    EXPECT_EQ(a.pushes[i].impulse_n_s, b.pushes[i].impulse_n_s);
+  }
   // Randomisation.
   EXPECT_EQ(a.randomise.friction_range, b.randomise.friction_range);
   EXPECT_EQ(a.randomise.mass_range, b.randomise.mass_range);
