@@ -160,7 +160,7 @@ TEST(TaskConfig, EveryShippedConfigKeepsEveryValueThroughRunJson) {
     // What the reader rebuilds writes the same record again (nothing lost on a second trip).
     EXPECT_EQ(to_json(reread), written);
   }
-  EXPECT_EQ(configs, 8);
+  EXPECT_EQ(configs, 9);  // every shipped config was read
 }
 
 TEST(TaskConfig, EveryTaskSettingAwayFromItsDefaultSurvivesRunJson) {
