@@ -15,6 +15,7 @@
 #include "child_process.hpp"
 #include "pseudo_terminal.hpp"
 #include "run_command.hpp"
+#include "stride/firmware/recorder/flight_log_format.hpp"
 #include "stride/firmware/recorder/flight_log_header.hpp"
 #include "stride/firmware/recorder/flight_log_reader.hpp"
 #include "stride/firmware/servo_table.hpp"
@@ -172,7 +173,11 @@ TEST(FlightRecorderCli, AKilledStrideFwLeavesALogThatReadsToItsLastCompleteBlock
                   " >/dev/null 2>&1",
               code);
   ASSERT_EQ(code, 0);
-  const auto wait_for_bytes = std::filesystem::file_size(one_tick) + 150 * 1419;
+  // A tick without parameter changes is one block: its head, the tick's fixed payload, its tail.
+  constexpr std::size_t kTickBlockBytes = fw::flight_log::kBlockHeadBytes +
+                                          fw::flight_log::kTickFixedBytes +
+                                          fw::flight_log::kBlockTailBytes;
+  const auto wait_for_bytes = std::filesystem::file_size(one_tick) + 150 * kTickBlockBytes;
   const auto log_path = dir.path() / "run.flog";
   const pid_t pid =
       spawn({kBin + "/stride-fw", "--hal", "test", "--no-rt", "--record", log_path.string()},
