@@ -215,7 +215,13 @@ int main(int argc, char** argv) {
   fw::FirmwareOptions options;
   options.servo_table = args.get("servo-table");
   options.robot_description = args.get("robot-description");
-  if (args.has("params")) options.params_file = args.get("params");
+  if (args.has("params")) {
+    options.params_file = args.get("params");
+  } else if (backend->default_params != nullptr) {
+    // A backend's world with a walk of its own (the simulator's --world seed).
+    if (const std::string file = backend->default_params(args); !file.empty())
+      options.params_file = file;
+  }
   std::unique_ptr<fw::Firmware> firmware;
   if (Status s = fw::Firmware::create(options, firmware); !s) return fail(2, s.message());
   if (backend->check_options != nullptr)

@@ -2,6 +2,7 @@
 // (as fast as it computes), or paced by the real clock with --realtime (RealtimeRobot).
 #include <nlohmann/json.hpp>
 
+#include "stride/firmware/firmware.hpp"
 #include "stride/firmware/hal_registry.hpp"
 #include "stride/sim_hal/episode.hpp"
 #include "stride/sim_hal/sim_cli.hpp"
@@ -51,7 +52,17 @@ stride::Status make(const stride::core::CliArgs& args, std::int64_t period_ns,
   return {};
 }
 
+/// --world seed is the thesis's world and its walk, as for `stride sim`: the walk defaults of
+/// then (config/seed-walk.json) unless --params names a file.
+std::string default_params(const stride::core::CliArgs& args) {
+  stride::sim::WorldSpec spec;
+  if (!stride::sim::read_world_spec(args, spec)) return "";  // check() reports the error
+  if (spec.base != stride::sim::WorldPreset::kSeed || spec.file) return "";
+  return (stride::fw::data_dir() / "config" / "seed-walk.json").string();
+}
+
 }  // namespace
 
-STRIDE_HAL_BACKEND(sim, "Simbody simulation in lockstep (--realtime: paced by the clock)", declare,
-                   check, make);
+STRIDE_HAL_BACKEND_WITH_PARAMS(sim,
+                               "Simbody simulation in lockstep (--realtime: paced by the clock)",
+                               declare, check, make, default_params);

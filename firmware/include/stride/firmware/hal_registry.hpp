@@ -8,11 +8,15 @@
 // option as bad input (exit 2) before it opens anything; make_fn builds the robot (its errors
 // are the device's or the world's, exit 1). `paced_by_clock` tells stride-fw to wrap the robot in
 // RealtimeRobot (true for hardware; a simulation sets it only with --realtime).
+// `default_params` (may be null; set it with STRIDE_HAL_BACKEND_WITH_PARAMS) names the parameter
+// file stride-fw loads when --params is not given, for a backend whose options choose a world
+// with a walk of its own (the simulator's --world seed: config/seed-walk.json); "" for none.
 #pragma once
 
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -37,6 +41,7 @@ struct HalBackend {
   void (*declare_options)(core::CliArgs& args);
   Status (*check_options)(const core::CliArgs& args, std::int64_t period_ns);
   Status (*make)(const core::CliArgs& args, std::int64_t period_ns, HalInstance& out);
+  std::string (*default_params)(const core::CliArgs& args) = nullptr;
 };
 
 /// All registered backends, sorted by name.
@@ -49,3 +54,8 @@ bool register_hal_backend(HalBackend backend);
   [[maybe_unused]] static const bool stride_hal_backend_registered_##name = \
       ::stride::fw::register_hal_backend(                                   \
           ::stride::fw::HalBackend{#name, help, declare_fn, check_fn, make_fn})
+
+#define STRIDE_HAL_BACKEND_WITH_PARAMS(name, help, declare_fn, check_fn, make_fn, params_fn) \
+  [[maybe_unused]] static const bool stride_hal_backend_registered_##name =                  \
+      ::stride::fw::register_hal_backend(                                                    \
+          ::stride::fw::HalBackend{#name, help, declare_fn, check_fn, make_fn, params_fn})
