@@ -1,7 +1,8 @@
 // Trials that do not overfit (issue 41 point 2) end to end: a robot run whose trial worlds are
 // drawn again each generation (config `resample`), seeded with several starts (`starts`),
 // whose final front is scored again on fresh worlds (front-rescored.json) and whose picks
-// come from those scores; the same files for any thread count and after an extension.
+// come from those scores; the same files for any thread count, on MPI ranks and after an
+// extension.
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -53,6 +54,20 @@ nlohmann::json resampling_walk(int generations) {
   return c;
 }
 
+/// The same on three MPI ranks (`mpirun -n 3 stride ... --mpi`).
+int stride_on_mpi_ranks(std::vector<std::string> args, const fs::path& dir) {
+  ::setenv("OMPI_ALLOW_RUN_AS_ROOT", "1", 1);
+  ::setenv("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1", 1);
+  std::string command = "mpirun --oversubscribe -n 3";
+  if (::geteuid() == 0) command += " --allow-run-as-root";
+  command += " " + kBin + "/stride";
+  args.push_back("--mpi");
+  for (const std::string& a : args) command += " '" + a + "'";
+  command += " >" + (dir / "stdout").string() + " 2>" + (dir / "stderr").string();
+  const int status = std::system(command.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
 fs::path write(const fs::path& path, const nlohmann::json& doc) {
   std::ofstream(path) << doc.dump(1);
   return path;
@@ -84,7 +99,7 @@ TEST(ResampleRun, EachDrawHasItsOwnTrialWorldsAndDrawZeroIsTheFixedTrials) {
   EXPECT_EQ(differ, 1u);
 }
 
-TEST(ResampleRun, ThreadsAndAnExtensionGiveTheSameFilesAndThePicksComeFromTheFreshScores) {
+TEST(ResampleRun, ThreadsMpiAndAnExtensionGiveTheSameFilesAndThePicksComeFromTheFreshScores) {
   test::TempDir tmp;
   const fs::path config = write(tmp.path() / "walk.json", resampling_walk(3));
   const fs::path two = write(tmp.path() / "walk-2.json", resampling_walk(2));
@@ -101,6 +116,12 @@ TEST(ResampleRun, ThreadsAndAnExtensionGiveTheSameFilesAndThePicksComeFromTheFre
                    tmp.path()),
             0)
       << test::read_file(tmp.path() / "stderr");
+  // Per-generation draws on MPI ranks: the ranks evaluate, the root draws (issue 55 point 3).
+  ASSERT_EQ(stride_on_mpi_ranks(
+                {"optimise", "--config", config.string(), "--out", out("mpi"), "--no-validate"},
+                tmp.path()),
+            0)
+      << test::read_file(tmp.path() / "stderr");
   ASSERT_EQ(stride({"optimise", "--config", two.string(), "--out", out("extended"), "--jobs", "2",
                     "--no-validate"},
                    tmp.path()),
@@ -111,7 +132,7 @@ TEST(ResampleRun, ThreadsAndAnExtensionGiveTheSameFilesAndThePicksComeFromTheFre
                    tmp.path()),
             0)
       << test::read_file(tmp.path() / "stderr");
-  for (const char* other : {"threads", "extended"})
+  for (const char* other : {"threads", "mpi", "extended"})
     for (const char* f : {"evaluations.jsonl", "pareto.csv", "front-rescored.json"})
       EXPECT_EQ(test::read_file(tmp.path() / "serial" / f), test::read_file(tmp.path() / other / f))
           << other << " " << f;
