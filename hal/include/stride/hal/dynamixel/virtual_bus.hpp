@@ -15,26 +15,22 @@
 // by exactly one control period at each BULK_READ (the firmware's per-tick read), so a run is
 // deterministic; otherwise it advances by the wall-clock time elapsed since the last packet.
 // Faults (dropped or corrupted replies, silent or overheating servos) are injectable, seeded.
+// What the two buses share (dispatch skeleton, read chains, faults, clock, replies) is in
+// VirtualBusCore; this class holds protocol 1.0's packets, instructions and registers.
 #pragma once
 
 #include <array>
 #include <cstdint>
 #include <memory>
-#include <random>
 #include <span>
 #include <vector>
 
-#include "stride/hal/dynamixel/bus_responder.hpp"
 #include "stride/hal/dynamixel/control_table.hpp"
-#include "stride/hal/dynamixel/packet_parser.hpp"
-#include "stride/hal/dynamixel/units.hpp"
-#include "stride/hal/dynamixel/virtual_bus_faults.hpp"
-#include "stride/hal/dynamixel/virtual_bus_physics.hpp"
-#include "stride/hal/types.hpp"
+#include "stride/hal/dynamixel/virtual_bus_core.hpp"
 
 namespace stride::hal::dxl {
 
-class VirtualBus final : public BusResponder {
+class VirtualBus final : public VirtualBusCore {
  public:
   struct Options {
     std::array<ServoCalibration, kServoCount> calibration{};  ///< per servo, index = id - 1
@@ -46,34 +42,29 @@ class VirtualBus final : public BusResponder {
 
   VirtualBus(const Options& options, std::unique_ptr<VirtualBusPhysics> physics);
 
-  /// Consumes bytes from the host and appends any replies to `out`. `reply_delay_us` receives
-  /// the summed return delay time of the replies produced (0 after start-up configuration).
-  void receive(std::span<const std::uint8_t> bytes, std::vector<std::uint8_t>& out,
-               std::int64_t& reply_delay_us) override;
-
-  const VirtualBusCounters& counters() const { return counters_; }
-  VirtualBusPhysics& physics() { return *physics_; }
   /// Register byte of device `id` (for tests and `stride vbus` status), 0 if absent.
   std::uint8_t peek(std::uint8_t id, std::uint8_t address) const;
 
  private:
-  struct Device {
-    std::uint8_t id = 0;
-    const ControlTable* table = nullptr;
-    int servo_index = -1;  ///< -1 for the CM730
-    std::array<std::uint8_t, 256> mem{};
-    std::uint8_t command_error = 0;  ///< instruction/range/angle/checksum bits of this reply
-    bool registered = false;
-    std::uint8_t reg_address = 0;
-    std::vector<std::uint8_t> reg_data;
-  };
+  void dispatch(const Packet& packet, std::vector<std::uint8_t>& out,
+                std::int64_t& delay_us) override;
+  bool is_read_cycle(const Packet& packet) const override;
+  void on_bad_packet(Device& device, std::vector<std::uint8_t>& out,
+                     std::int64_t& delay_us) override;
+  std::uint8_t status_id(const Device& device) const override { return device.id; }
+  std::uint8_t status_error(Device& device, std::uint8_t error) override;
+  std::size_t encode_status(std::span<std::uint8_t> out, std::uint8_t id, std::uint8_t error,
+                            std::span<const std::uint8_t> params) override;
+  void refresh(Device& device) override;
+  std::uint8_t write(Device& device, std::uint16_t address,
+                     std::span<const std::uint8_t> data) override;
+  bool read_refused(Device& device, std::uint16_t address, std::uint16_t length,
+                    std::uint8_t& error) override;
 
-  /// One instruction packet: counts it, advances the clock, and hands it to the one below.
-  void handle(const Packet& packet, std::vector<std::uint8_t>& out, std::int64_t& delay_us);
   /// Broadcast SYNC_WRITE: every listed device writes its record; nobody answers.
   void handle_sync_write(std::span<const std::uint8_t> params);
-  /// Broadcast BULK_READ: the listed devices answer in order (and a lockstep bus advances the
-  /// physics by one period first); the chain stops at a device that is silent.
+  /// Broadcast BULK_READ: the listed devices answer in order; the chain stops at a device that
+  /// is silent, absent or at status return level 0.
   void handle_bulk_read(std::span<const std::uint8_t> params, std::vector<std::uint8_t>& out,
                         std::int64_t& delay_us);
   /// Other broadcasts (WRITE, REG_WRITE, ACTION, RESET): every device executes, nobody answers.
@@ -81,26 +72,13 @@ class VirtualBus final : public BusResponder {
   /// An instruction to one device, answered as its status return level says.
   void handle_addressed(const Packet& packet, std::span<const std::uint8_t> params,
                         std::vector<std::uint8_t>& out, std::int64_t& delay_us);
-  Device* find(std::uint8_t id);
   void reset_device(Device& device);
-  void refresh(Device& device);
+  void refresh_cm730(Device& device);
   void push_command(Device& device);
-  std::uint8_t status_error(Device& device);
-  bool apply_write(Device& device, std::uint8_t address, std::span<const std::uint8_t> data);
-  /// Sends a status packet (subject to faults). Returns false if nothing went on the wire.
-  bool reply(Device& device, std::span<const std::uint8_t> params, std::vector<std::uint8_t>& out,
-             std::int64_t& delay_us);
-  void advance_time();
-  bool faults_active() const;
+  /// The hardware error bits (input voltage, overheating, overload) and the held command bits.
+  std::uint8_t device_error(const Device& device) const;
 
-  Options options_;
-  std::unique_ptr<VirtualBusPhysics> physics_;
-  PacketParser parser_{Protocol::kV1, PacketParser::Role::kDevice};
-  std::vector<Device> devices_;
-  VirtualBusCounters counters_{};
-  std::mt19937_64 rng_;
-  std::int64_t last_advance_ns_ = 0;
-  std::uint64_t seen_bad_checksum_ = 0;
+  Cm730Profile cm730_profile_;
 };
 
 }  // namespace stride::hal::dxl

@@ -15,84 +15,59 @@
 // SYNC_READ or BULK_READ, and a silent servo silences the rest of its list. Motion from a
 // VirtualBusPhysics: goal position (116), profile velocity (112, 0.229 rpm), position P gain
 // (84, mapped to the 1.0 P register as P/16, since K_PP = P/128 and Kp = P1/8), torque enable.
-// Time: lockstep (one period per SYNC_READ/BULK_READ) or wall clock, as VirtualBus.
+// Time: lockstep (one period per SYNC_READ/BULK_READ) or wall clock, as VirtualBus. What the
+// two buses share is in VirtualBusCore; this class holds protocol 2.0's packets, instructions
+// and registers.
 #pragma once
 
 #include <array>
 #include <cstdint>
 #include <memory>
-#include <random>
 #include <span>
 #include <vector>
 
-#include "stride/hal/dynamixel/bus_responder.hpp"
-#include "stride/hal/dynamixel/control_table.hpp"
-#include "stride/hal/dynamixel/packet_parser.hpp"
-#include "stride/hal/dynamixel/units.hpp"
-#include "stride/hal/dynamixel/virtual_bus_faults.hpp"
-#include "stride/hal/dynamixel/virtual_bus_physics.hpp"
-#include "stride/hal/types.hpp"
+#include "stride/hal/dynamixel/virtual_bus_core.hpp"
 
 namespace stride::hal::dxl {
 
-class VirtualBusV2 final : public BusResponder {
+class VirtualBusV2 final : public VirtualBusCore {
  public:
-  struct Options {
-    std::array<ServoCalibration, kServoCount> calibration{};
-    bool lockstep = false;
-    std::int64_t period_ns = 10'000'000;
-    VirtualBusFaults faults{};
-  };
+  using Options = VirtualBusCore::Options;  ///< calibration, lockstep, period, faults
 
   VirtualBusV2(const Options& options, std::unique_ptr<VirtualBusPhysics> physics);
 
-  /// Consumes host bytes and appends replies to `out` (see VirtualBus::receive).
-  void receive(std::span<const std::uint8_t> bytes, std::vector<std::uint8_t>& out,
-               std::int64_t& reply_delay_us) override;
-  const VirtualBusCounters& counters() const { return counters_; }
   /// Register value (little-endian, `size` bytes) of servo `id`, 0 if absent.
   std::uint32_t peek(std::uint8_t id, std::uint16_t address, std::uint8_t size) const;
 
  private:
-  struct Servo {
-    std::size_t index = 0;
-    const ControlTable* table = nullptr;
-    std::array<std::uint8_t, 256> mem{};
-    bool registered = false;
-    std::uint16_t reg_address = 0;
-    std::vector<std::uint8_t> reg_data;
-  };
+  void dispatch(const Packet& packet, std::vector<std::uint8_t>& out,
+                std::int64_t& delay_us) override;
+  bool is_read_cycle(const Packet& packet) const override;
+  void on_bad_packet(Device& device, std::vector<std::uint8_t>& out,
+                     std::int64_t& delay_us) override;
+  std::uint8_t status_id(const Device& device) const override;
+  std::uint8_t status_error(Device& device, std::uint8_t error) override;
+  std::size_t encode_status(std::span<std::uint8_t> out, std::uint8_t id, std::uint8_t error,
+                            std::span<const std::uint8_t> params) override;
+  void refresh(Device& device) override;
+  std::uint8_t write(Device& device, std::uint16_t address,
+                     std::span<const std::uint8_t> data) override;
+  bool read_refused(Device& device, std::uint16_t address, std::uint16_t length,
+                    std::uint8_t& error) override;
 
-  void handle(const Packet& packet, std::vector<std::uint8_t>& out, std::int64_t& delay_us);
   /// Broadcast SYNC_READ (`code`; replies in list order) or SYNC_WRITE (no replies).
   void handle_sync(std::uint8_t code, std::span<const std::uint8_t> params,
                    std::vector<std::uint8_t>& out, std::int64_t& delay_us);
   /// Broadcast BULK_READ: each listed servo answers after its predecessor's status packet.
   void handle_bulk_read(std::span<const std::uint8_t> params, std::vector<std::uint8_t>& out,
                         std::int64_t& delay_us);
-  Servo* find(std::uint8_t id);
-  void reset(Servo& servo, bool ram_only);
+  /// READ, WRITE, REG_WRITE, ACTION, REBOOT, FACTORY_RESET to one servo or all of them.
+  void handle_each(const Packet& packet, std::span<const std::uint8_t> params,
+                   std::vector<std::uint8_t>& out, std::int64_t& delay_us);
+  void reset(Device& servo, bool ram_only);
   /// FACTORY_RESET with a valid option (0xFF, 0x01 or 0x02).
-  void factory_reset(Servo& servo, std::uint8_t option);
-  void refresh(Servo& servo);
-  void push_command(Servo& servo);
-  std::uint8_t write(Servo& servo, std::uint16_t address, std::span<const std::uint8_t> data);
-  /// Sends a status packet (subject to faults). Returns false if the servo stayed silent.
-  bool reply(Servo& servo, std::uint8_t error, std::span<const std::uint8_t> params,
-             std::vector<std::uint8_t>& out, std::int64_t& delay_us);
-  bool read_reply(Servo& servo, std::uint16_t address, std::uint16_t length,
-                  std::vector<std::uint8_t>& out, std::int64_t& delay_us);
-  void advance_time(bool cycle);
-  bool faults_active() const;
-
-  Options options_;
-  std::unique_ptr<VirtualBusPhysics> physics_;
-  PacketParser parser_{Protocol::kV2, PacketParser::Role::kDevice};
-  std::vector<Servo> servos_;
-  std::int64_t last_advance_ns_ = 0;
-  std::uint64_t seen_bad_ = 0;
-  VirtualBusCounters counters_{};
-  std::mt19937_64 rng_;
+  void factory_reset(Device& servo, std::uint8_t option);
+  void push_command(Device& servo);
 };
 
 }  // namespace stride::hal::dxl
