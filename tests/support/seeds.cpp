@@ -32,13 +32,17 @@ int Figures::count_at_most(double limit) const {
 }
 
 std::string Figures::summary() const {
-  char text[256];
+  char seeds[64] = "";
+  if (!seeds_.empty()) {
+    std::snprintf(seeds, sizeof seeds, " (%llu-%llu)",
+                  static_cast<unsigned long long>(seeds_.front()),
+                  static_cast<unsigned long long>(seeds_.back()));
+  }
+  char text[320];
   std::snprintf(text, sizeof text,
-                "%s: median %.6g, IQR %.3g (%.6g..%.6g), min %.6g, max %.6g over %zu seeds "
-                "(%llu-%llu)",
+                "%s: median %.6g, IQR %.3g (%.6g..%.6g), min %.6g, max %.6g over %zu %s%s",
                 what_.c_str(), median(), iqr(), quantile(0.25), quantile(0.75), min(), max(),
-                values_.size(), seeds_.empty() ? 0ULL : static_cast<unsigned long long>(seeds_[0]),
-                seeds_.empty() ? 0ULL : static_cast<unsigned long long>(seeds_.back()));
+                values_.size(), seeds_.empty() ? "runs" : "seeds", seeds);
   return text;
 }
 
@@ -48,6 +52,10 @@ int seed_count(int n) {
   char* end = nullptr;
   const long value = std::strtol(text, &end, 10);
   return end != text && *end == '\0' && value >= 1 ? static_cast<int>(value) : n;
+}
+
+int count_limit(double measured_share, int n) {
+  return static_cast<int>(std::floor(measured_share * n + 1e-9)) - 1;
 }
 
 Seeds::Seeds(int n, std::uint64_t first) : n_(seed_count(n)), first_(first) {}

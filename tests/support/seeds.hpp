@@ -81,4 +81,8 @@ class Seeds {
 /// The N of a test's runs: `n`, unless STRIDE_TEST_SEEDS holds a number >= 1.
 int seed_count(int n);
 
+/// The limit of a count over `n` runs whose share measured over 20 seeds was `measured_share`
+/// (19 of 20: 0.95): the count expected of n runs, rounded down, less the one to spare.
+int count_limit(double measured_share, int n);
+
 }  // namespace stride::test
