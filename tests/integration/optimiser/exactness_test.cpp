@@ -124,6 +124,9 @@ TEST(Exactness, SimEpisodesMatchTheRecordedStateHashes) {
       {{"kick", "--duration", "3"}, "4d1f0ce42fd1ae4d"},
       {{"stand", "--duration", "1", "--physics-step-us", "500", "--noise", "off"},
        "89400f4cad5c8290"},
+      // The get-up path (stride sim getup; its behaviour is judged over seeds in
+      // sim_getup_cli_test.cpp, which held a same-episode-again check of its own before).
+      {{"getup", "--lying", "back", "--duration", "3"}, "21c4e562052d16d7"},
   };
   for (const Case& c : cases) {
     std::vector<std::string> argv = {kStride, "sim"};
