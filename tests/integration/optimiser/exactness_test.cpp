@@ -7,11 +7,15 @@
 // A run's evaluations.jsonl and pareto.csv are hashed whole (FNV-1a 64): they hold no wall
 // times, and every double is written to 17 significant digits, so one changed bit anywhere in an
 // episode changes the hash. A change that is meant to alter the simulation (a new model, a
-// fixed bug) updates these figures in the same commit and says why.
+// fixed bug) updates these figures in the same commit and says why: with the environment
+// variable STRIDE_PRINT_HASHES set, every check prints the hash it computed as the line to
+// paste here (tests/README.md, rule 6). These are the only tests that pin bits: the others
+// judge behaviour over seeds.
 #include <gtest/gtest.h>
 
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -38,6 +42,14 @@ std::string fnv1a_hex(const std::string& bytes) {
   char text[17];
   std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(h));
   return text;
+}
+
+/// Checks one recorded hash; with STRIDE_PRINT_HASHES set, also prints the computed one.
+void expect_hash(const std::string& computed, const char* recorded, const std::string& what) {
+  if (std::getenv("STRIDE_PRINT_HASHES") != nullptr)
+    std::printf("  %s: \"%s\"%s\n", what.c_str(), computed.c_str(),
+                computed == recorded ? "" : " (changed)");
+  EXPECT_EQ(computed, recorded) << what;
 }
 
 json shipped_config(const std::string& name) {
@@ -73,8 +85,8 @@ TEST(Exactness, ShortWalkRunMatchesTheRecordedFiles) {
   c["trials"] = 2;  // robust trials: the randomised worlds and the IMU noise too
   std::string evaluations, pareto;
   run_and_hash(tmp, "walk", c, evaluations, pareto);
-  EXPECT_EQ(evaluations, "9f9431a111715a6c");
-  EXPECT_EQ(pareto, "7766b6355a75fe7a");
+  expect_hash(evaluations, "9f9431a111715a6c", "walk evaluations.jsonl");
+  expect_hash(pareto, "7766b6355a75fe7a", "walk pareto.csv");
 }
 
 TEST(Exactness, ShortWalkOmniRunMatchesTheRecordedFiles) {
@@ -83,8 +95,8 @@ TEST(Exactness, ShortWalkOmniRunMatchesTheRecordedFiles) {
   c["omni"] = {{"start_s", 1.0}, {"ramp_s", 0.5}, {"hold_s", 1.0}, {"stop_s", 0.5}};
   std::string evaluations, pareto;
   run_and_hash(tmp, "omni", c, evaluations, pareto);
-  EXPECT_EQ(evaluations, "97d1706142348065");
-  EXPECT_EQ(pareto, "8214aa6e611495ba");
+  expect_hash(evaluations, "97d1706142348065", "walk-omni evaluations.jsonl");
+  expect_hash(pareto, "8214aa6e611495ba", "walk-omni pareto.csv");
 }
 
 TEST(Exactness, ShortKickRunMatchesTheRecordedFiles) {
@@ -93,8 +105,8 @@ TEST(Exactness, ShortKickRunMatchesTheRecordedFiles) {
   c["duration_s"] = 3.0;
   std::string evaluations, pareto;
   run_and_hash(tmp, "kick", c, evaluations, pareto);
-  EXPECT_EQ(evaluations, "78c044406e465055");
-  EXPECT_EQ(pareto, "9f98c0f0d38ea56b");
+  expect_hash(evaluations, "78c044406e465055", "kick evaluations.jsonl");
+  expect_hash(pareto, "9f98c0f0d38ea56b", "kick pareto.csv");
 }
 
 TEST(Exactness, SimEpisodesMatchTheRecordedStateHashes) {
@@ -112,6 +124,9 @@ TEST(Exactness, SimEpisodesMatchTheRecordedStateHashes) {
       {{"kick", "--duration", "3"}, "4d1f0ce42fd1ae4d"},
       {{"stand", "--duration", "1", "--physics-step-us", "500", "--noise", "off"},
        "89400f4cad5c8290"},
+      // The get-up path (stride sim getup; its behaviour is judged over seeds in
+      // sim_getup_cli_test.cpp, which held a same-episode-again check of its own before).
+      {{"getup", "--lying", "back", "--duration", "3"}, "21c4e562052d16d7"},
   };
   for (const Case& c : cases) {
     std::vector<std::string> argv = {kStride, "sim"};
@@ -121,7 +136,8 @@ TEST(Exactness, SimEpisodesMatchTheRecordedStateHashes) {
     std::string line;
     for (const auto& a : c.args) line += a + " ";
     ASSERT_EQ(r.code, 0) << line << r.err;
-    EXPECT_EQ(json::parse(r.out).at("state_hash").get<std::string>(), c.state_hash) << line;
+    expect_hash(json::parse(r.out).at("state_hash").get<std::string>(), c.state_hash,
+                "sim " + line);
   }
 }
 

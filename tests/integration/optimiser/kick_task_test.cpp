@@ -5,9 +5,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <memory>
 #include <string>
 
+#include "seeds.hpp"
 #include "stride/optimiser/tasks/kick_figures.hpp"
 #include "stride/optimiser/tasks/kick_settings.hpp"
 #include "stride/optimiser/tasks/robot_task.hpp"
@@ -48,17 +50,26 @@ TEST(KickTask, TheBallStartsBeforeTheKickingFoot) {
   }
 }
 
+// A short kick_left episode moves the ball, in 5 of the config's drawn worlds (counted with one
+// to spare); the objective is the episode's own ball distance.
 TEST(KickTask, AShortLeftKickMovesTheBall) {
   TaskConfig c = kick_config("kick_left");
   c.duration_s = 5.0;
+  c.trials = test::seed_count(5);
   const RobotTask task(c);
   ASSERT_TRUE(task.check());
-  EpisodeScore s;
-  ASSERT_TRUE(task.run_trial(task.start_genome(), 0, s));  // an error: the script was refused
-  ASSERT_FALSE(s.fell);
-  const double ball_distance_m = figures_of<KickFigures>(s).ball_distance_m;
-  EXPECT_GT(ball_distance_m, 0.05);
-  EXPECT_NEAR(s.objectives[1], 1.0 / std::clamp(ball_distance_m, 0.001, 10.0), 1e-12);
+  int moved = 0;
+  for (int trial = 0; trial < c.trials; ++trial) {
+    EpisodeScore s;
+    ASSERT_TRUE(task.run_trial(task.start_genome(), trial, s));  // an error: the script was refused
+    const double ball_distance_m = figures_of<KickFigures>(s).ball_distance_m;
+    std::printf("  trial %d: fell %d, ball %.3f m\n", trial, s.fell ? 1 : 0, ball_distance_m);
+    moved += !s.fell && ball_distance_m > 0.05 ? 1 : 0;
+    if (!s.fell) {
+      EXPECT_NEAR(s.objectives[1], 1.0 / std::clamp(ball_distance_m, 0.001, 10.0), 1e-12);
+    }
+  }
+  EXPECT_GE(moved, c.trials - 1);
 }
 
 }  // namespace

@@ -10,16 +10,19 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
 #include <thread>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "read_file.hpp"
+#include "seeds.hpp"
 #include "stride/optimiser/tasks/direction_figures.hpp"
 #include "stride/optimiser/tasks/kick_figures.hpp"
 #include "stride/optimiser/tasks/robot_task.hpp"
@@ -149,21 +152,45 @@ TEST(RobotTask, TheSeedsWorldAndWalkByNameAndBaseParameters) {
 }
 
 // The README demo (toolchain/demo.sh, walk-demo.json) must be able to say "reaches": its
-// Ind_O reaches the 2.5 m goal within the time limit in the run's world, without a fall and
-// within the straightness constraints, with a margin for the validation's noisier worlds.
+// Ind_O reaches the 2.5 m goal within the time limit in the run's worlds, without a fall and
+// within the straightness constraints, with a margin for the validation's noisier worlds. 5 of
+// the config's drawn worlds, counted with one to spare below the shares measured, and the
+// median time. A change of 1e-5
+// in the firmware's compliance offsets broke the straightness of the one world this test judged
+// before (tests/bench/RESULTS.md). Measured 2026-11-28, worlds 0-19: 20 of 20 reach the goal
+// without a fall, median 19.42 s (IQR 0.23, 18.87-19.74), 15 of 20 within the straightness
+// constraints (worlds 7, 9, 15, 16, 19 drift or turn beyond them: tests/bench/RESULTS.md).
 TEST(RobotTask, TheDemoConfigsIndOReachesTheGoalInItsWorld) {
-  const TaskConfig c = load("walk-demo.json");
+  TaskConfig c = load("walk-demo.json");
   EXPECT_EQ(c.own_settings<WalkSettings>().goal_distance_m, 2.5);
+  c.trials = test::seed_count(5);
   const RobotTask task(c);
-  EpisodeScore s;
-  ASSERT_TRUE(task.run_trial(task.start_genome(), 0, s));
-  EXPECT_FALSE(s.fell);
-  const WalkFigures walked = figures_of<WalkFigures>(s);
-  ASSERT_GT(walked.time_to_goal_s, 0.0)
-      << "Ind_O walked " << walked.distance_m << " m in " << c.duration_s << " s";
-  EXPECT_LT(walked.time_to_goal_s, 0.8 * c.duration_s);  // 20 % to spare
-  EXPECT_EQ(s.objectives[0], walked.time_to_goal_s);
-  for (double g : s.constraints) EXPECT_GE(g, 0.0);
+  int straight = 0;
+  std::vector<double> times;
+  for (int trial = 0; trial < c.trials; ++trial) {
+    EpisodeScore s;
+    ASSERT_TRUE(task.run_trial(task.start_genome(), trial, s));
+    const WalkFigures walked = figures_of<WalkFigures>(s);
+    std::printf("  trial %d: fell %d, %.3f m, time to goal %.2f s, constraints", trial,
+                s.fell ? 1 : 0, walked.distance_m, walked.time_to_goal_s);
+    bool feasible = true;
+    for (double g : s.constraints) {
+      std::printf(" %.4f", g);
+      feasible = feasible && g >= 0.0;
+    }
+    std::printf("\n");
+    if (walked.time_to_goal_s > 0.0) {
+      EXPECT_EQ(s.objectives[0], walked.time_to_goal_s);
+    }
+    const bool reached = !s.fell && walked.time_to_goal_s > 0.0;
+    straight += reached && feasible ? 1 : 0;
+    times.push_back(reached ? walked.time_to_goal_s : 1e9);
+  }
+  const test::Figures time("time to 2.5 m [s]", {}, times);
+  std::printf("  %s\n", time.summary().c_str());
+  EXPECT_GE(time.count_at_most(c.duration_s), c.trials - 1) << "reached the goal, no fall";
+  EXPECT_GE(straight, test::count_limit(15.0 / 20.0, c.trials)) << "within the constraints";
+  EXPECT_LT(time.median(), 0.8 * c.duration_s);  // 20 % to spare: 19.42 s, IQR 0.23
 }
 
 TEST(RobotTask, KickEpisodeMovesTheBallAndScoresTheSeedsObjectives) {
@@ -359,56 +386,66 @@ fs::path short_omni_config(const fs::path& dir) {
   return path;
 }
 
-// Ind_O in the shipped walk-omni episode (nominal world, one trial): the per-segment speeds
-// and constraints are computed and deterministic.
+// Ind_O in walk-omni's drawn worlds at the task's trial step (5 trials; the segments shortened
+// to a 1 s ramp, a 4 s hold and a 1 s stop): the score is the episode's own figures (Obj1 the
+// Bit-Bots' combination of the segments' speeds, the constraints from the straightness limits),
+// and Ind_O walks every segment without a fall (counted with one to spare), forward, backward
+// the right way, and turning both ways (medians). Seed 1 of the nominal world at a 2 ms step
+// and the full timing measured forward 0.168 m/s, backward 0.031, sideways about 0.01 and
+// turning 0.19 rad/s; forward it turns 11 deg (over the 10 deg limit), sideways it drifts about
+// 10 % and each turn translates 0.24-0.25 m (limit 0.1 m): Ind_O's known limits, in
+// tests/bench/RESULTS.md, not asserted (tests/README.md, rule 4). Measured 2026-11-28, worlds
+// 0-19: forward median 0.172 m/s (IQR 0.005), backward 0.0135 (IQR 0.0037), left 0.0095 and right
+// 0.0090, turning left 0.191 rad/s (IQR 0.017) and right 0.195 (IQR 0.026); every segment measured
+// and no fall in 20 of 20.
 TEST(RobotTask, WalkOmniScoresEverySegmentOfIndO) {
   TaskConfig c = load("walk-omni.json");
-  c.trials = 1;
-  c.world.physics_step_us = 2000;  // the step the figures below were measured at
+  c.trials = test::seed_count(5);
+  c.own_settings<OmniSettings>().timing = {4.0, 1.0, 4.0, 1.0};
   const RobotTask task(c);
-  EpisodeScore a, b;
-  ASSERT_TRUE(task.run_trial(task.start_genome(), 0, a));
-  ASSERT_TRUE(task.run_trial(task.start_genome(), 0, b));
-  ASSERT_EQ(a.objectives.size(), 2u);
-  ASSERT_EQ(a.constraints.size(), 4u);
-  EXPECT_EQ(a.objectives, b.objectives);
-  EXPECT_EQ(a.constraints, b.constraints);
-  const OmniSegments a_segments = figures_of<DirectionFigures>(a).segments;
-  const OmniSegments b_segments = figures_of<DirectionFigures>(b).segments;
-  for (int k = 0; k < kOmniSegments; ++k) {
-    const OmniSegment& s = a_segments[k];
-    std::printf("  %-10s measured %d speed %+.4f drift %.3f heading %.2f deg translation %.3f m\n",
-                to_string(static_cast<OmniDirection>(k)), s.measured ? 1 : 0, s.speed,
-                s.drift_ratio, s.heading_change_rad * 180.0 / 3.141592653589793, s.translation_m);
-    EXPECT_EQ(s.speed, b_segments[k].speed);
+  std::array<std::vector<double>, kOmniSegments> speeds;
+  int walked = 0;
+  for (int trial = 0; trial < c.trials; ++trial) {
+    EpisodeScore a;
+    ASSERT_TRUE(task.run_trial(task.start_genome(), trial, a));
+    ASSERT_EQ(a.objectives.size(), 2u);
+    ASSERT_EQ(a.constraints.size(), 4u);
+    const OmniSegments segments = figures_of<DirectionFigures>(a).segments;
+    bool all_measured = true;
+    for (int k = 0; k < kOmniSegments; ++k) {
+      const OmniSegment& s = segments[static_cast<std::size_t>(k)];
+      std::printf(
+          "  trial %d %-10s measured %d speed %+.4f drift %.3f heading %.2f deg "
+          "translation %.3f m\n",
+          trial, to_string(static_cast<OmniDirection>(k)), s.measured ? 1 : 0, s.speed,
+          s.drift_ratio, s.heading_change_rad * 180.0 / 3.141592653589793, s.translation_m);
+      speeds[static_cast<std::size_t>(k)].push_back(s.speed);
+      all_measured = all_measured && s.measured;
+    }
+    std::printf("  objectives %.4f %.3f constraints %.4f %.4f %.4f %.4f fell %d\n", a.objectives[0],
+                a.objectives[1], a.constraints[0], a.constraints[1], a.constraints[2],
+                a.constraints[3], a.fell ? 1 : 0);
+    EXPECT_DOUBLE_EQ(a.objectives[0], omni_speed_objective(segments));
+    const auto c13 = omni_constraints(segments, c.own_settings<OmniSettings>().straightness);
+    EXPECT_EQ(a.constraints[1], c13[0]);
+    EXPECT_EQ(a.constraints[2], c13[1]);
+    EXPECT_EQ(a.constraints[3], c13[2]);
+    EXPECT_EQ(a.objectives[1], a.max_accel);
+    EXPECT_EQ(a.constraints[0] == 0.0, !a.fell);
+    walked += all_measured && !a.fell ? 1 : 0;
   }
-  std::printf("  objectives %.4f %.3f constraints %.4f %.4f %.4f %.4f fell %d\n", a.objectives[0],
-              a.objectives[1], a.constraints[0], a.constraints[1], a.constraints[2],
-              a.constraints[3], a.fell ? 1 : 0);
-  EXPECT_DOUBLE_EQ(a.objectives[0], omni_speed_objective(a_segments));
-  const auto c13 = omni_constraints(a_segments, c.own_settings<OmniSettings>().straightness);
-  EXPECT_EQ(a.constraints[1], c13[0]);
-  EXPECT_EQ(a.constraints[2], c13[1]);
-  EXPECT_EQ(a.constraints[3], c13[2]);
-  EXPECT_EQ(a.objectives[1], a.max_accel);
-  // Measured (the faithful default world, seed 1, walk-omni.json timing, the firmware's
-  // closed-loop defaults of issue 29): Ind_O walks every segment without a fall, forward at
-  // 0.168 m/s, backward at 0.031, sideways at about 0.01, and turns at 0.19 rad/s; forward it
-  // turns 11 deg (over the 10 deg limit), sideways it drifts about 10 %, and each turn
-  // translates 0.24-0.25 m (limit 0.1 m). (The seed's world: 0.107 forward, the wrong way
-  // backward, a fall in the turn left.)
-  EXPECT_NEAR(a_segments[0].speed, 0.1681, 5e-4);
-  EXPECT_NEAR(a_segments[1].speed, 0.0314, 5e-4);
-  EXPECT_LT(std::abs(a_segments[2].speed), 0.02);
-  EXPECT_LT(std::abs(a_segments[3].speed), 0.02);
-  EXPECT_GT(a_segments[4].speed, 0.15);
-  EXPECT_GT(a_segments[5].speed, 0.15);
-  for (int k = 0; k < kOmniSegments; ++k) EXPECT_TRUE(a_segments[k].measured) << k;
-  EXPECT_FALSE(a.fell);
-  EXPECT_EQ(a.constraints[0], 0.0);   // no fall
-  EXPECT_LT(a.constraints[1], 0.0);   // sideways drift above 10 %
-  EXPECT_LT(a.constraints[2], 0.0);   // forward turns more than 10 deg
-  EXPECT_EQ(a.constraints[3], -2.0);  // both turns translate more than 0.1 m
+  EXPECT_GE(walked, c.trials - 1) << "every segment measured, no fall";
+  const auto median = [&](int k, const char* what) {
+    const test::Figures f(what, {}, speeds[static_cast<std::size_t>(k)]);
+    std::printf("  %s\n", f.summary().c_str());
+    return f.median();
+  };
+  EXPECT_GT(median(0, "forward [m/s]"), 0.15);  // 0.172, IQR 0.005
+  EXPECT_GT(median(1, "backward [m/s]"), 0.0);  // the right way: 0.0135, IQR 0.0037
+  median(2, "left [m/s]");
+  median(3, "right [m/s]");
+  EXPECT_GT(median(4, "turn left [rad/s]"), 0.11);   // 0.191, IQR 0.017
+  EXPECT_GT(median(5, "turn right [rad/s]"), 0.11);  // 0.195, IQR 0.026
 }
 
 // A tiny walk-omni run; `stride report` prints the per-direction table of Ind_O, the picks,

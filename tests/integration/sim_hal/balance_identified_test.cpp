@@ -1,11 +1,11 @@
 // The balance re-tuned on the identified MX servo and the CM730 IMU chain (issue 20 point 5):
 // firmware/config/balance-identified.json (walk.balance.* only; the 46 genome parameters stay
 // at Ind_O) drives the firmware in the world of `--servo-law identified --imu cm730 --noise on`.
-// The stock balance falls there in every seed within 7 s. With this file: forward, backward,
-// sideways and turning both ways hold (do not fall) at every step from 5 ms to 0.25 ms (only
-// forward and the turns go the commanded way), and the forward walk holds on robots that
-// differ from the model (figures: firmware/src/walk/README.md and tests/bench/RESULTS.md; the
-// benchmark covers the steps this test does not).
+// With this file: forward, backward, sideways and turning both ways hold (do not fall; only
+// forward and the turns go the commanded way), and the forward walk holds on robots that differ
+// from the model, judged over seeds (tests/README.md). The stock balance falls there in every
+// seed within 7 s, and the file holds at every step from 5 ms to 0.25 ms: figures of the
+// benchmark (firmware/src/walk/README.md and tests/bench/RESULTS.md), not asserted here.
 // It pins the world and walk of issue 20: the seed's 2 cm grass, and the firmware's walk
 // defaults of then (firmware/config/seed-walk.json: no compliance feed-forward, no support
 // exchange at touchdown, no heading hold) under the file. The faithful default world of
@@ -15,8 +15,10 @@
 #include <cstdio>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "robot_variants.hpp"
+#include "seeds.hpp"
 #include "stride/firmware/firmware.hpp"
 #include "stride/sim_hal/episode.hpp"
 #include "stride/sim_hal/robot_model.hpp"
@@ -45,9 +47,11 @@ sim::WorldOptions identified_world(std::uint64_t seed, std::int64_t step_us) {
   return options;
 }
 
-/// One walk episode; `state` (if given) gets the motion state at its end.
+/// One walk episode; `state` (if given) gets the motion state at its end. `stop_at_goal` ends
+/// it once the torso has covered 2.5 m.
 sim::EpisodeResult walk(sim::WorldOptions options, Walk command, double duration_s,
-                        bool tuned = true, fw::MotionState* state = nullptr) {
+                        bool tuned = true, fw::MotionState* state = nullptr,
+                        bool stop_at_goal = false) {
   std::unique_ptr<fw::Firmware> firmware;
   EXPECT_TRUE(fw::Firmware::create({}, firmware));
   const Status seed_walk = firmware->params().load_file_now(kSeedWalk);
@@ -68,37 +72,38 @@ sim::EpisodeResult walk(sim::WorldOptions options, Walk command, double duration
   };
   sim::EpisodeOptions episode;
   episode.duration_s = duration_s;
+  episode.stop_at_goal = stop_at_goal;
   const sim::EpisodeResult result = sim::run_episode(robot, step, episode);
   if (state != nullptr) *state = controller.motion().state();
   return result;
 }
 
-// Forward to 2.5 m in 10 of 10 noisy seeds at the default 2 ms step and at 0.5 ms (the
-// benchmark adds 5, 2.5, 1 and 0.25 ms), where the stock balance reaches it in none.
-TEST(BalanceIdentified, ForwardReachesTheGoalInTenOfTenSeedsAtTwoAndHalfAMillisecondSteps) {
-  for (const std::int64_t step_us : {2000, 500}) {
-    int reached = 0;
-    for (std::uint64_t seed = 1; seed <= 10; ++seed) {
-      const sim::EpisodeResult r = walk(identified_world(seed, step_us), {1, 0, 0}, 40.0);
-      EXPECT_EQ(r.status, sim::WorldStatus::kRunning) << r.failure_reason;
-      EXPECT_FALSE(r.fell) << step_us << " us, seed " << seed << " at " << r.fall_time_s << " s";
-      if (!r.fell && r.time_to_goal_s) ++reached;
-    }
-    std::printf("  %lld us: forward 2.5 m in %d/10 seeds\n", static_cast<long long>(step_us),
-                reached);
-    EXPECT_EQ(reached, 10) << step_us << " us";
-  }
-  // The stock balance on the same world: the chatter-tuned gains fall (seed 1, 2 ms).
-  const sim::EpisodeResult stock = walk(identified_world(1, 2000), {1, 0, 0}, 40.0, false);
-  EXPECT_TRUE(stock.fell);
-  EXPECT_LT(stock.fall_time_s, 10.0);
+/// Reached 2.5 m forward before any fall, within 40 s.
+bool reaches_the_goal(const sim::EpisodeResult& r) {
+  return r.status == sim::WorldStatus::kRunning && r.time_to_goal_s &&
+         (!r.fell || *r.time_to_goal_s < r.fall_time_s);
+}
+
+// Forward to 2.5 m on noisy seeds at the default 2 ms step, where the stock balance reaches it
+// in none. Measured 2026-11-28, seeds 1-20: 20 of 20 reach it (the benchmark,
+// bench_sim_hal_step_independence, covers the steps from 5 to 0.25 ms; this test ran 0.5 ms too
+// before tests/README.md's rule 5). A count with one to spare.
+TEST(BalanceIdentified, ForwardReachesTheGoalOnNoisySeeds) {
+  const test::Seeds seeds(10);
+  const test::Count reached = seeds.count("forward 2.5 m before a fall", [](std::uint64_t seed) {
+    return reaches_the_goal(
+        walk(identified_world(seed, 2000), {1, 0, 0}, 40.0, true, nullptr, true));
+  });
+  EXPECT_GE(reached.k, reached.n - 1);
 }
 
 // Backward, sideways both ways and turning both ways: 20 s without a fall, still walking at the
-// end (seed 1, 2 ms). Only the turns move the commanded way: measured turning left 0.49 rad and
-// right 0.18 rad in 20 s. Backward and sideways step but do not go where they are commanded
-// (measured: backward ends 0.072 m *forward*, left 0.004 m left, right 0.007 m right; the walk
-// README's "sideways does not move sideways"), so for them the test checks no more than that.
+// end, on seeds 1-5. Only the turns move the commanded way (backward and sideways step but do
+// not go where they are commanded: the walk README's "sideways does not move sideways", figures
+// in tests/bench/RESULTS.md), so for the others the test checks no more than that.
+// Measured 2026-11-28, seeds 1-20 (20 s): every direction 20 of 20 without a fall and walking;
+// turned left median 0.475 rad (IQR 0.030), right -0.177 rad (IQR 0.025); backward, left and right
+// turned 0.004, 0.003 and -0.001 rad.
 TEST(BalanceIdentified, BackwardAndSidewaysTwentySecondsWithoutAFallAndTheTurnsTurn) {
   struct Direction {
     const char* name;
@@ -107,49 +112,59 @@ TEST(BalanceIdentified, BackwardAndSidewaysTwentySecondsWithoutAFallAndTheTurnsT
   for (const Direction d : {Direction{"backward", {-1, 0, 0}}, Direction{"left", {0, 1, 0}},
                             Direction{"right", {0, -1, 0}}, Direction{"turn left", {0, 0, 1}},
                             Direction{"turn right", {0, 0, -1}}}) {
-    fw::MotionState state = fw::MotionState::kStand;
-    const sim::EpisodeResult r = walk(identified_world(1, 2000), d.command, 20.0, true, &state);
-    std::printf("  %s: fell %d x %.4f m y %.4f m turned %.4f rad\n", d.name, r.fell ? 1 : 0,
-                r.distance_m, r.lateral_m, r.turned_rad);
-    EXPECT_EQ(r.status, sim::WorldStatus::kRunning) << r.failure_reason;
-    EXPECT_FALSE(r.fell) << d.name << " at " << r.fall_time_s << " s";
-    EXPECT_EQ(state, fw::MotionState::kWalk) << d.name;  // stepping, not standing
+    SCOPED_TRACE(d.name);
+    int walking = 0;
+    const std::vector<test::Figures> f =
+        test::Seeds(5).run({"fell", "turned [rad]"}, [&](std::uint64_t seed) {
+          fw::MotionState state = fw::MotionState::kStand;
+          const sim::EpisodeResult r =
+              walk(identified_world(seed, 2000), d.command, 20.0, true, &state);
+          EXPECT_EQ(r.status, sim::WorldStatus::kRunning) << r.failure_reason;
+          walking += !r.fell && state == fw::MotionState::kWalk ? 1 : 0;  // stepping, standing
+          return std::vector<double>{r.fell ? 1.0 : 0.0, r.turned_rad};
+        });
+    const int n = static_cast<int>(f[0].size());
+    EXPECT_GE(walking, n - 1) << "without a fall and still walking";
     if (d.command.vth > 0) {
-      EXPECT_GT(r.turned_rad, 0.35) << d.name;  // measured 0.49
+      EXPECT_GT(f[1].median(), 0.30);  // 0.475 rad, IQR 0.030 (seeds 1-20; seed 1: 0.49)
     }
     if (d.command.vth < 0) {
-      EXPECT_LT(r.turned_rad, -0.12) << d.name;  // measured -0.18
+      EXPECT_LT(f[1].median(), -0.10);  // -0.177 rad, IQR 0.025 (seeds 1-20; seed 1: -0.18)
     }
   }
 }
 
 // Robots that differ from the model as real ones do (sim_hal/models/make_variants.py: trunk
-// +-10 %, its centre of mass 1 cm off each way, one leg 5 % heavier): forward to 2.5 m in 10 of
-// 10 seeds on each, with no fall before the goal (2 ms step).
+// +-10 %, its centre of mass 1 cm off each way, one leg 5 % heavier): forward to 2.5 m, with no
+// fall before the goal (2 ms step), on 5 seeds each, 40 runs in all. It asserted 10 of 10 seeds
+// on each robot; with gravity 1e-5 stronger, seed 9 on the CoM 1 cm left fell (issue 55), so
+// "every seed" was a draw. Measured 2026-11-28, seeds 1-20 of each: 158 of 160, the CoM 1 cm
+// right 18 of 20 (seeds 16 and 19 too slow or fell), every other robot 20 of 20. Counts with one
+// to spare below those shares (test::count_limit): per robot from the worst robot's 90 %, over
+// all from 158 of 160.
 TEST(BalanceIdentified, ForwardReachesTheGoalOnRobotsThatDifferFromTheModel) {
   test::TempDir tmp;
   int code = -1;
   const std::string out = test::write_robot_variants(tmp.path(), code);
   ASSERT_EQ(code, 0) << out;
+  int reached = 0, runs = 0;
   for (const char* name : test::kRobotVariants) {
     const std::filesystem::path urdf = tmp.path() / (std::string(name) + ".urdf");
     auto model = std::make_shared<sim::RobotModel>();
     const Status loaded = sim::RobotModel::load_file(urdf, *model);
     ASSERT_TRUE(loaded) << loaded.message();
-    int reached = 0, fell_after = 0;
-    for (std::uint64_t seed = 1; seed <= 10; ++seed) {
+    const test::Count c = test::Seeds(5).count(name, [&](std::uint64_t seed) {
       sim::WorldOptions options = identified_world(seed, 2000);
       options.urdf = urdf;
       options.model = model;
-      const sim::EpisodeResult r = walk(options, {1, 0, 0}, 40.0);
-      ASSERT_EQ(r.status, sim::WorldStatus::kRunning) << name << ": " << r.failure_reason;
-      const bool goal = r.time_to_goal_s && (!r.fell || *r.time_to_goal_s < r.fall_time_s);
-      EXPECT_TRUE(goal) << name << ", seed " << seed << (r.fell ? " fell" : " too slow");
-      reached += goal ? 1 : 0;
-      fell_after += goal && r.fell ? 1 : 0;
-    }
-    std::printf("  %s: 2.5 m in %d/10 seeds (%d fell after the goal)\n", name, reached, fell_after);
+      return reaches_the_goal(walk(options, {1, 0, 0}, 40.0, true, nullptr, true));
+    });
+    EXPECT_GE(c.k, test::count_limit(0.9, c.n)) << name;
+    reached += c.k;
+    runs += c.n;
   }
+  std::printf("  2.5 m in %d of %d runs\n", reached, runs);
+  EXPECT_GE(reached, test::count_limit(158.0 / 160.0, runs));
 }
 
 }  // namespace

