@@ -91,13 +91,15 @@ for g in genes:
         g["min"], g["max"] = omni_wide[g["parameter"]]
     omni_genes.append(g)
 balance_src = open('firmware/src/walk/balance_feedback.cpp').read() + open('firmware/src/walk/heading_hold.cpp').read()
-gain_pat = re.compile(r'add_real\(\s*"(walk\.balance\.[a-z_]*gain)",\s*([-\d.e]+),\s*([-\d.e]+),\s*([-\d.e]+)', re.S)
+# The balance parts register their parameters under the engine's prefix (p: "walk" for the seed's
+# walk, "walk.spline" for the spline walk's; issue 53).
+gain_pat = re.compile(r'add_real\(\s*p \+ "\.(balance\.[a-z_]*gain)",\s*([-\d.e]+),\s*([-\d.e]+),\s*([-\d.e]+)', re.S)
 # The run starts from the firmware's defaults (the faithful world's gains since issue 29); each
 # gain's range spans +-50 % of both that default and the seed world's (firmware/config/
 # seed-walk.json, the gains the issue-22 run started from), so that it holds both tunings.
 seed_walk = json.load(open('firmware/config/seed-walk.json'))
 for n, d, lo, hi in gain_pat.findall(balance_src):
-    d, lo, hi = float(d), float(lo), float(hi)
+    n, d, lo, hi = 'walk.' + n, float(d), float(lo), float(hi)
     old = seed_walk.get(n, d)
     if n.startswith('walk.balance.heading'):
         # The heading hold: from off to strong.
@@ -180,8 +182,8 @@ for g in genes:
         g["min"], g["max"] = wide[g["parameter"]]
     ramp_genes.append(g)
 ramp_genes += [dict(g) for g in omni_genes[46:]]
-registered = {n: (float(d), float(lo), float(hi)) for n, d, lo, hi in re.findall(
-    r'add_real\(\s*"(walk\.(?:balance|capture)\.[a-z_]+)",\s*([-\d.e]+),\s*([-\d.e]+),\s*([-\d.e]+)',
+registered = {'walk.' + n: (float(d), float(lo), float(hi)) for n, d, lo, hi in re.findall(
+    r'add_real\(\s*p \+ "\.((?:balance|capture)\.[a-z_]+)",\s*([-\d.e]+),\s*([-\d.e]+),\s*([-\d.e]+)',
     balance_src + open('firmware/src/walk/capture_step.cpp').read())}
 for n in ('filter_time', 'deadband', 'max_shift', 'double_support_weight', 'start_sway_steps',
           'tilt_filter_time'):
