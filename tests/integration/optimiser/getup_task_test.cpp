@@ -30,7 +30,8 @@ TaskConfig getup_config() {
 
 EpisodeScore nominal_episodes(TaskConfig config, const std::string& contact) {
   config.world.contact = contact;
-  config.trials = 1;  // the nominal world
+  config.trials = 1;  // the nominal world (a resampling run's single trial is randomised)
+  config.settings.resample = false;
   const RobotTask task(config);
   EpisodeScore score;
   const Status s = task.run_trial(task.start_genome(), 0, score);
@@ -122,7 +123,8 @@ TEST(GetUpTask, TheDefaultScriptsAreTheStartGenomeAndStandUpOnBothEngines) {
     EXPECT_EQ(defaults.reals[i], start.reals[i]) << config.genes[i].parameter;
   for (const sim::EngineKind engine : {sim::EngineKind::kSimbody, sim::EngineKind::kMujoco}) {
     config.engines = {engine};
-    config.trials = 1;  // the nominal world
+    config.trials = 1;  // the nominal world (a resampling run's single trial is randomised)
+    config.settings.resample = false;
     const RobotTask task(config);
     EpisodeScore by_default;
     ASSERT_TRUE(task.run_trial(defaults, 0, by_default));
