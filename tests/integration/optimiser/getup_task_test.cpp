@@ -153,7 +153,8 @@ TEST(GetUpTask, IsOneEntryOfTheRegistryAndAnUnknownTaskNamesTheChoices) {
   TaskConfig bad;
   const Status s = parse_task_config(doc, bad);
   ASSERT_FALSE(s);
-  EXPECT_EQ(s.message(), "task: 'getdown' is not walk, walk-omni, walk-ramp, kick or getup");
+  EXPECT_EQ(s.message(),
+            "task: 'getdown' is not walk, walk-omni, walk-ramp, walk-command, kick or getup");
 }
 
 }  // namespace
