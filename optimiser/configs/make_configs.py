@@ -91,15 +91,15 @@ for g in genes:
         g["min"], g["max"] = omni_wide[g["parameter"]]
     omni_genes.append(g)
 balance_src = open('firmware/src/walk/balance_feedback.cpp').read() + open('firmware/src/walk/heading_hold.cpp').read()
-# The closed-loop parts register PREFIX + ".balance.NAME" (PREFIX "walk" for the seed's walk).
+# The balance parts register their parameters under the engine's prefix (p: "walk" for the seed's
+# walk, "walk.spline" for the spline walk's; issue 53).
 gain_pat = re.compile(r'add_real\(\s*p \+ "\.(balance\.[a-z_]*gain)",\s*([-\d.e]+),\s*([-\d.e]+),\s*([-\d.e]+)', re.S)
 # The run starts from the firmware's defaults (the faithful world's gains since issue 29); each
 # gain's range spans +-50 % of both that default and the seed world's (firmware/config/
 # seed-walk.json, the gains the issue-22 run started from), so that it holds both tunings.
 seed_walk = json.load(open('firmware/config/seed-walk.json'))
 for n, d, lo, hi in gain_pat.findall(balance_src):
-    n = 'walk.' + n
-    d, lo, hi = float(d), float(lo), float(hi)
+    n, d, lo, hi = 'walk.' + n, float(d), float(lo), float(hi)
     old = seed_walk.get(n, d)
     if n.startswith('walk.balance.heading'):
         # The heading hold: from off to strong.
@@ -253,3 +253,71 @@ spline_walk["_comment"] = [
 spline_walk["params"] = {"walk.engine": 1}
 spline_walk["genes"] = spline_genes
 json.dump(spline_walk, open('optimiser/configs/walk-spline.json', 'w'), indent=1)
+
+# Commanded walk (issue 53 point 2) on the spline walk (walk.engine 1): every row of the spline
+# walk's parameter table (firmware/src/walk/spline_walk_parameters.cpp) over its whole store
+# range, and the gains of its closed-loop parts (registered under walk.spline. by
+# balance_feedback.cpp, heading_hold.cpp, capture_step.cpp and compliance_compensation.cpp):
+# the capture step's footstep and timing gains and its touchdown load, the four UPenn joint
+# gains, the heading hold and the compliance compensation. Every start is the firmware's
+# default. Robust: one trial on each engine, drawn again each generation (a resampling run's
+# single trial is randomised), the ground from hard to soft and the trunk's centre of mass moved.
+spline_src = open('firmware/src/walk/spline_walk_parameters.cpp').read()
+spline_rows = re.findall(r'\{"(walk\.spline\.[^"]+)",\s*STRIDE_SPLINE_FIELD\([^)]*\),\s*'
+                         r'([-\d.e]+),\s*([-\d.e]+),\s*([-\d.e]+)', spline_src, re.S)
+assert len(spline_rows) == 29, len(spline_rows)
+command_genes = [{"parameter": n, "min": float(lo), "max": float(hi), "start": float(d)}
+                 for n, d, lo, hi in spline_rows]
+loop_src = ''.join(open('firmware/src/walk/%s.cpp' % f).read() for f in
+                   ('balance_feedback', 'heading_hold', 'capture_step', 'compliance_compensation'))
+loop = {'walk.spline.' + n: (float(d), float(lo), float(hi)) for n, d, lo, hi in re.findall(
+    r'add_real\(\s*p \+ "\.((?:balance|capture|compliance)\.[a-z_]+)",\s*([-\d.e]+),\s*'
+    r'([-\d.e]+),\s*([-\d.e]+)', loop_src)}
+loop_genes = {"capture.step_gain_x": (0.0, 1.5), "capture.step_gain_y": (0.0, 1.5),
+              "capture.timing_gain": (0.0, 20.0), "capture.max_timing": (0.0, 0.6),
+              "capture.touchdown_load": (0.0, 0.3),
+              "balance.ankle_pitch_gain": (0.0, 1.0), "balance.ankle_roll_gain": (0.0, 1.0),
+              "balance.hip_pitch_gain": (0.0, 1.0), "balance.hip_roll_gain": (0.0, 1.0),
+              "balance.heading_gain": (0.0, 1.0), "compliance.gain": (0.0, 1.5)}
+for n, (lo, hi) in loop_genes.items():
+    n = 'walk.spline.' + n
+    d, store_lo, store_hi = loop[n]
+    assert store_lo <= lo <= d <= hi <= store_hi, (n, d, store_lo, store_hi)
+    command_genes.append({"parameter": n, "min": lo, "max": hi, "start": d})
+assert len(command_genes) == 40, len(command_genes)
+command = {"_comment": [
+    "Commanded-walk optimisation (issue 53 point 2) on the spline walk (params walk.engine 1): one",
+    "episode per world from standing, 2 s stepping in place, then segments of 4 s, each a",
+    "normalised command (speed measured over its last 2.5 s from ground truth): forward, backward",
+    "(a reversal), left, right, turn left, turn right, a curve (1, 0, 0.5), a diagonal (0.7, 0.7,",
+    "0), a stop (a stand request, 1.5 s), a restart forward and a reversal: 43.5 s.",
+    "Obj1 = -mean over the six directions of speed / NUgus's (0.38, 0.42, 0.26, 0.26 m/s, 1.97,",
+    "1.97 rad/s), each ratio at most 1.5; Obj2 = max |a|. Constraints: no fall anywhere; each",
+    "translation drifts at most 10 % and turns at most 10 deg, each turn translates at most 0.1 m",
+    "(measured, they never end a segment); the stop ends standing.",
+    "Genes: every walk.spline.* parameter over its whole range, the capture step's gains, the",
+    "balance joint gains, the heading hold and the compliance gain, each starting at the",
+    "firmware's default. Robust: one trial on each engine drawn again each generation (ground",
+    "hard to soft, the trunk's centre of mass moved 1 cm, friction, masses, strength, IMU noise).",
+    "NSGA-II settings as walk.json (seed 53). Generated by make_configs.py."],
+    "task": "walk-command", "seed": 53, "pop": 40, "generations": 50, "pc": 0.8, "pm": 0.025,
+    "etac": 13, "etam": 20, "seed_fraction": 0.2,
+    "params": {"walk.engine": 1},
+    "command": {"start_s": 2.0, "hold_s": 4.0, "measure_s": 2.5, "stop_s": 1.5, "segments": [
+        {"name": "forward", "command": [1.0, 0.0, 0.0]},
+        {"name": "backward", "command": [-1.0, 0.0, 0.0]},
+        {"name": "left", "command": [0.0, 1.0, 0.0]},
+        {"name": "right", "command": [0.0, -1.0, 0.0]},
+        {"name": "turn_left", "command": [0.0, 0.0, 1.0]},
+        {"name": "turn_right", "command": [0.0, 0.0, -1.0]},
+        {"name": "curve", "command": [1.0, 0.0, 0.5]},
+        {"name": "diagonal", "command": [0.7, 0.7, 0.0]},
+        {"name": "stop", "stand": True},
+        {"name": "restart", "command": [1.0, 0.0, 0.0]},
+        {"name": "reverse", "command": [-1.0, 0.0, 0.0]}]},
+    "max_drift_ratio": 0.1, "max_heading_change_deg": 10.0, "max_turn_translation_m": 0.1,
+    "trials": 1, "aggregate": "mean", "trial_seed": 1, "resample": True,
+    "engines": ["simbody", "mujoco"],
+    "randomisation": dict(ramp["randomisation"], contact_range=1.0, com_range=0.01),
+    "hypervolume_ideal": [-1.5, 9.81], "hypervolume_nadir": [0.5, 100.0], "genes": command_genes}
+json.dump(command, open('optimiser/configs/walk-command.json', 'w'), indent=1)

@@ -16,15 +16,15 @@ using nlohmann::json;
 DirectionSpeeds reference_direction_speeds() {
   DirectionSpeeds r;
   r.label = "Bit-Bots NUgus (sim)";
-  r.speed = {0.38, 0.42, 0.26, 0.26, 1.97, 1.97};
+  r.speed = kReferenceSpeeds;
   return r;
 }
 
 Status measure_direction_speeds(const RobotTask& task, const Genome& genome,
                                 const std::string& label, DirectionSpeeds& out) {
   if (task.type() == nullptr || !task.type()->measures_directions())
-    return Status::error("per-direction speeds need a walk-omni task, not '" + task.config().task +
-                         "'");
+    return Status::error("per-direction speeds need a task that walks every direction, not '" +
+                         task.config().task + "'");
   DirectionSpeeds row;
   row.label = label;
   const int trials = task.config().world_count();
@@ -32,8 +32,8 @@ Status measure_direction_speeds(const RobotTask& task, const Genome& genome,
     EpisodeScore score;
     if (Status s = task.run_trial(genome, k, score); !s)
       return Status::error(label + ", trial " + std::to_string(k) + ": " + s.message());
-    const DirectionFigures figures = score.figures.read<DirectionFigures>();
-    for (int d = 0; d < kOmniSegments; ++d) row.speed[d] += figures.segments[d].speed / trials;
+    const OmniSegments segments = task.type()->direction_segments(score);
+    for (int d = 0; d < kOmniSegments; ++d) row.speed[d] += segments[d].speed / trials;
     if (score.fell) ++row.falls;
   }
   row.trials = trials;

@@ -31,6 +31,10 @@ ValidationFigures direction_validation_figures(const std::vector<const EpisodeSc
   return out;
 }
 
+OmniSegments TaskType::direction_segments(const EpisodeScore& score) const {
+  return score.figures.read<DirectionFigures>().segments;
+}
+
 bool every_direction_measured(const EpisodeScore& score) {
   return every_segment_measured(score.figures.read<DirectionFigures>().segments);
 }

@@ -1,9 +1,13 @@
-// The walk's planned speed along one direction and the command for a speed (ramp_command.hpp).
+// The walk's planned speed along one direction, the command for a speed and the direction a
+// command plans (ramp_command.hpp).
 #include "stride/optimiser/tasks/ramp_command.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "stride/firmware/walk/footstep_planner.hpp"
+#include "stride/firmware/walk/spline_footsteps.hpp"
+#include "stride/firmware/walk/spline_walk_parameters.hpp"
 
 namespace stride::opt {
 namespace {
@@ -67,6 +71,34 @@ std::optional<double> command_for_speed(const walk::WalkParameters& p,
     (planned_speed(p, axis, middle) >= target ? high : low) = middle;
   }
   return high;
+}
+
+Status planned_direction(const fw::ParameterStore& store, const std::array<double, 3>& command,
+                         std::array<double, 2>& out) {
+  const double norm = std::hypot(command[0], command[1]);
+  if (!(norm > 0.0)) return Status::error("planned_direction: the command does not translate");
+  out = {command[0] / norm, command[1] / norm};
+  if (command[0] == 0.0 || command[1] == 0.0) return {};  // along one axis
+  double engine = 0.0;
+  if (Status s = store.get("walk.engine", engine); !s) return s;
+  double vx = 0.0, vy = 0.0;
+  if (engine == 1.0) {
+    walk::SplineWalkParameters p;
+    for (const auto& row : walk::spline_walk_parameter_table())
+      if (Status s = store.get(row.name, row.field(p)); !s) return s;
+    const walk::WalkVelocity v = walk::command_velocity({command[0], command[1], command[2]}, p);
+    vx = v.x;
+    vy = v.y;
+  } else {
+    walk::WalkParameters p;
+    if (Status s = read_walk_parameters(store, p); !s) return s;
+    const walk::PlanarVector v = walk::scale_command({command[0], command[1], command[2]}, p);
+    vx = v.x;
+    vy = v.y;
+  }
+  const double speed = std::hypot(vx, vy);
+  if (speed > 0.0) out = {vx / speed, vy / speed};
+  return {};
 }
 
 }  // namespace stride::opt

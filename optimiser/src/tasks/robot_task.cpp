@@ -25,9 +25,11 @@ sim::WorldSpec trial_world_spec(const TaskConfig& config, int world, std::uint64
   spec.engine =
       config.engines[static_cast<std::size_t>(world / config.trials) % config.engines.size()];
   spec.seed = trial_world_seed(config, trial, draw);
-  spec.noise = config.trials > 1 && config.randomisation.imu_noise;
-  spec.randomise =
-      config.trials > 1 ? sim::Randomisation(config.randomisation) : sim::Randomisation{};
+  // One trial is the nominal world, unless the run draws its worlds again each generation
+  // (resample): a nominal world cannot be drawn again, so then it is one randomised world.
+  const bool randomised = config.trials > 1 || config.settings.resample;
+  spec.noise = randomised && config.randomisation.imu_noise;
+  spec.randomise = randomised ? sim::Randomisation(config.randomisation) : sim::Randomisation{};
   return spec;
 }
 

@@ -13,12 +13,14 @@ const TaskType& walk_omni_task_type();
 const TaskType& kick_task_type();
 const TaskType& getup_task_type();
 const TaskType& walk_ramp_task_type();
+const TaskType& walk_command_task_type();
 
 namespace {
 
 using TaskTypeGetter = const TaskType& (*)();
-constexpr std::array<TaskTypeGetter, 5> kTasks = {
-    &walk_task_type, &walk_omni_task_type, &walk_ramp_task_type, &kick_task_type, &getup_task_type};
+constexpr std::array<TaskTypeGetter, 6> kTasks = {&walk_task_type,      &walk_omni_task_type,
+                                                  &walk_ramp_task_type, &walk_command_task_type,
+                                                  &kick_task_type,      &getup_task_type};
 
 }  // namespace
 

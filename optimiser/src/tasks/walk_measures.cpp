@@ -164,26 +164,43 @@ double omni_speed_objective(const OmniSegments& s) {
            0.2 * turning);
 }
 
+namespace {
+
+/// Each segment adds at most 1 to a constraint's violation, and a segment not reached adds 1:
+/// falling earlier never lowers the violation.
+double term(bool measured, double violation) {
+  return measured ? std::max(-1.0, violation) : -1.0;
+}
+
+}  // namespace
+
+double drift_term(bool measured, double drift_ratio, const StraightnessLimits& limits) {
+  return term(measured, limit_violation(drift_ratio, limits.max_drift_ratio) /
+                            std::max(limits.max_drift_ratio, 0.01));
+}
+
+double heading_term(bool measured, double heading_change_rad, const StraightnessLimits& limits) {
+  const double heading_limit = limits.max_heading_change_deg * std::numbers::pi / 180.0;
+  return term(measured, limit_violation(heading_change_rad / heading_limit, 1.0));
+}
+
+double turn_translation_term(bool measured, double translation_m,
+                             const StraightnessLimits& limits) {
+  return term(measured, limit_violation(translation_m / limits.max_turn_translation_m, 1.0));
+}
+
 std::array<double, 3> omni_constraints(const OmniSegments& segments,
                                        const StraightnessLimits& limits) {
   std::array<double, 3> c{0.0, 0.0, 0.0};
-  const double heading_limit = limits.max_heading_change_deg * std::numbers::pi / 180.0;
-  // Each segment adds at most 1 to a constraint's violation, and a segment not reached adds 1:
-  // falling earlier never lowers the violation.
-  auto term = [](bool measured, double violation) {
-    return measured ? std::max(-1.0, violation) : -1.0;
-  };
   for (int k = 0; k < kOmniSegments; ++k) {
     const OmniSegment& s = segments[k];
     if (is_turn(k)) {
-      const double limit = limits.max_turn_translation_m;
-      if (limit > 0.0) c[2] += term(s.measured, limit_violation(s.translation_m / limit, 1.0));
+      if (limits.max_turn_translation_m > 0.0)
+        c[2] += turn_translation_term(s.measured, s.translation_m, limits);
     } else {
-      if (limits.max_drift_ratio >= 0.0)
-        c[0] += term(s.measured, limit_violation(s.drift_ratio, limits.max_drift_ratio) /
-                                     std::max(limits.max_drift_ratio, 0.01));
+      if (limits.max_drift_ratio >= 0.0) c[0] += drift_term(s.measured, s.drift_ratio, limits);
       if (limits.max_heading_change_deg > 0.0)
-        c[1] += term(s.measured, limit_violation(s.heading_change_rad / heading_limit, 1.0));
+        c[1] += heading_term(s.measured, s.heading_change_rad, limits);
     }
   }
   return c;

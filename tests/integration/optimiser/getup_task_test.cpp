@@ -32,7 +32,8 @@ TaskConfig getup_config() {
 
 EpisodeScore nominal_episodes(TaskConfig config, const std::string& contact) {
   config.world.contact = contact;
-  config.trials = 1;  // the nominal world
+  config.trials = 1;  // the nominal world (a resampling run's single trial is randomised)
+  config.settings.resample = false;
   const RobotTask task(config);
   EpisodeScore score;
   const Status s = task.run_trial(task.start_genome(), 0, score);
@@ -133,7 +134,8 @@ TEST(GetUpTask, TheDefaultScriptsAreTheStartGenomeAndStopOnceStood) {
   int stood = 0;
   for (const sim::EngineKind engine : {sim::EngineKind::kSimbody, sim::EngineKind::kMujoco}) {
     config.engines = {engine};
-    config.trials = 1;  // the nominal world
+    config.trials = 1;  // the nominal world (a resampling run's single trial is randomised)
+    config.settings.resample = false;
     const RobotTask task(config);
     EpisodeScore by_default;
     ASSERT_TRUE(task.run_trial(defaults, 0, by_default));
@@ -162,7 +164,8 @@ TEST(GetUpTask, IsOneEntryOfTheRegistryAndAnUnknownTaskNamesTheChoices) {
   TaskConfig bad;
   const Status s = parse_task_config(doc, bad);
   ASSERT_FALSE(s);
-  EXPECT_EQ(s.message(), "task: 'getdown' is not walk, walk-omni, walk-ramp, kick or getup");
+  EXPECT_EQ(s.message(),
+            "task: 'getdown' is not walk, walk-omni, walk-ramp, walk-command, kick or getup");
 }
 
 }  // namespace

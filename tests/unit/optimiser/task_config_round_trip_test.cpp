@@ -17,6 +17,7 @@
 #include "stride/optimiser/tasks/robot_task.hpp"
 #include "stride/optimiser/tasks/speed_ramp.hpp"
 #include "stride/optimiser/tasks/task_config.hpp"
+#include "stride/optimiser/tasks/walk_command_settings.hpp"
 #include "stride/optimiser/tasks/walk_omni_settings.hpp"
 #include "stride/optimiser/tasks/walk_settings.hpp"
 #include "stride/sim_hal/world_spec.hpp"
@@ -160,7 +161,7 @@ TEST(TaskConfig, EveryShippedConfigKeepsEveryValueThroughRunJson) {
     // What the reader rebuilds writes the same record again (nothing lost on a second trip).
     EXPECT_EQ(to_json(reread), written);
   }
-  EXPECT_EQ(configs, 9);  // every shipped config was read
+  EXPECT_EQ(configs, 10);  // every shipped config was read
 }
 
 TEST(TaskConfig, EveryTaskSettingAwayFromItsDefaultSurvivesRunJson) {
@@ -194,6 +195,13 @@ TEST(TaskConfig, EveryTaskSettingAwayFromItsDefaultSurvivesRunJson) {
   through("walk-ramp.json", [](TaskConfig& c) {
     c.own_settings<RampSettings>().timing = {1.5, 0.03, 0.15, 0.125, 5.0, 2.5, 12, 5};
     c.own_settings<RampSettings>().straightness = {0.15, 7.5, -1.0};
+  });
+  through("walk-command.json", [](TaskConfig& c) {
+    CommandSchedule& s = c.own_settings<CommandSettings>().schedule;
+    s = {1.5, 3.0, 2.0, 0.75, s.segments};
+    s.segments.push_back({"sidestep", {0.25, -0.5, 0.0}});
+    s.segments.push_back({"halt", {}, true});
+    c.own_settings<CommandSettings>().straightness = {0.2, -1.0, 0.05};
   });
 }
 

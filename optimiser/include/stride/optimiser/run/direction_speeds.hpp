@@ -10,7 +10,8 @@
 //
 // Reference: the Hamburg Bit-Bots' walk tuned for maximum speed per direction on NUgus (an
 // igus-derived robot) in simulation: 0.38 m/s forward, 0.42 m/s backward, 0.26 m/s sideways,
-// 1.97 rad/s turning (1,000 trials, 8-24 h on a 12-core machine; issue 22).
+// 1.97 rad/s turning (1,000 trials, 8-24 h on a 12-core machine; issue 22), kept once in
+// walk_measures.hpp (kReferenceSpeeds).
 #pragma once
 
 #include <array>

@@ -49,6 +49,15 @@ Status read_walk_parameters(const fw::ParameterStore& store, fw::walk::WalkParam
 double planned_speed(const fw::walk::WalkParameters& walk, const std::array<double, 3>& axis,
                      double command);
 
+/// The unit direction (x, y in the heading frame) of the translation the walk plans for the
+/// normalised command (vx, vy, vtheta) with vx or vy nonzero, from the parameters the store
+/// holds now: the engine walk.engine names maps the command to a velocity (the seed's walk:
+/// scale_command, per step; the spline walk: command_velocity, walk.spline.*), so that a diagonal
+/// command is judged against where the walk's own limits send it. A command along one axis plans
+/// that axis (also when the walk's limit there is 0).
+Status planned_direction(const fw::ParameterStore& store, const std::array<double, 3>& command,
+                         std::array<double, 2>& out);
+
 /// The smallest command in [0, 1] whose planned speed along `axis` is `speed` (>= 0), to 1e-12;
 /// none when even the full command (1) plans less (the walk's limits cannot command it).
 std::optional<double> command_for_speed(const fw::walk::WalkParameters& walk,

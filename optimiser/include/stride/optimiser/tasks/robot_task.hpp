@@ -77,7 +77,8 @@ class RobotTask final : public Problem {
   Status extra_start_genomes(std::vector<Genome>& out) const;
   /// World `world` (0-based, < config().world_count()) of draw `draw` as options by name: the
   /// config's world with the trial's engine, seed, noise and randomisation (trial 1 of 1 is the
-  /// nominal world: no noise, no randomisation; K > 1 trials are randomised worlds).
+  /// nominal world: no noise, no randomisation, unless the run resamples; K > 1 trials, and the
+  /// one trial of a resampling run, are randomised worlds).
   sim::WorldSpec world_spec(int world, std::uint64_t draw = 0) const;
   /// The world `spec` names as the task's episodes run it: spec.to_options() and what the task
   /// type adds (no ball unless the task uses one). Validation worlds are made with it too.

@@ -29,6 +29,7 @@
 #include "stride/hal/sensor_frame.hpp"
 #include "stride/optimiser/tasks/episode_score.hpp"
 #include "stride/optimiser/tasks/task_config.hpp"
+#include "stride/optimiser/tasks/walk_measures.hpp"
 #include "stride/sim_hal/episode.hpp"
 #include "stride/sim_hal/sim_world.hpp"
 
@@ -123,6 +124,10 @@ class TaskType {
   virtual bool uses_ball() const { return false; }
   /// The run's report and validation show per-direction speeds (direction_speeds.hpp).
   virtual bool measures_directions() const { return false; }
+  /// The six directions of an episode's figures, for a task that measures_directions(): what
+  /// the report's per-direction table reads. By default the figures' DirectionFigures
+  /// (direction_figures.hpp).
+  virtual OmniSegments direction_segments(const EpisodeScore& score) const;
   /// Episodes per world (the get-up: from the front and from the back); their objectives and
   /// constraints are averaged, and a world's score is that average.
   virtual int episodes_per_world() const { return 1; }

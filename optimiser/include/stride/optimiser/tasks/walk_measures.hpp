@@ -85,6 +85,13 @@ inline constexpr int kOmniSegments = 6;
 const char* to_string(OmniDirection direction);
 /// The normalised walk command of a direction (vx, vy, vtheta).
 std::array<double, 3> omni_command(OmniDirection direction);
+/// The reference speed of each direction, in OmniDirection order [m/s; rad/s turning]: the
+/// Hamburg Bit-Bots' walk tuned for maximum speed per direction on NUgus (an igus-derived
+/// robot) in simulation, 0.38 forward, 0.42 backward, 0.26 sideways, 1.97 rad/s turning (1,000
+/// trials, 8-24 h on a 12-core machine; issue 22). The report's and the validation's reference
+/// row and walk-command's speed objective read them here.
+inline constexpr std::array<double, kOmniSegments> kReferenceSpeeds = {0.38, 0.42, 0.26,
+                                                                       0.26, 1.97, 1.97};
 
 struct OmniSegment {
   bool measured = false;            ///< the hold was completed
@@ -123,5 +130,12 @@ double omni_speed_objective(const OmniSegments& segments);
 /// Constraints c1..c3 of the walk-omni task (c0, the fall, is the caller's).
 std::array<double, 3> omni_constraints(const OmniSegments& segments,
                                        const StraightnessLimits& limits);
+
+/// One segment's term of a straightness constraint, relative to its limit and at most 1:
+/// max(-1, min(0, 1 - figure / limit)), or -1 for a segment not reached (`measured` false).
+/// The caller adds it only when the limit is on (drift: >= 0; heading, turn translation: > 0).
+double drift_term(bool measured, double drift_ratio, const StraightnessLimits& limits);
+double heading_term(bool measured, double heading_change_rad, const StraightnessLimits& limits);
+double turn_translation_term(bool measured, double translation_m, const StraightnessLimits& limits);
 
 }  // namespace stride::opt
