@@ -248,10 +248,16 @@ void MotionManager::step(const hal::SensorFrame& sensors, hal::Tick tick, const 
       return;
 
     case MotionState::kWalk:
-      if (!want_walk_ && walk_->done()) {
-        enter(MotionState::kStand, stand_, sensors, last, tick);
-        stand_.step(sensors, tick, out);
-        return;
+      if (walk_->done()) {
+        if (!want_walk_) {
+          enter(MotionState::kStand, stand_, sensors, last, tick);
+          stand_.step(sensors, tick, out);
+          return;
+        }
+        // A walk asked for again while the last one was stopping: it starts again from where
+        // it stopped (without this the stopped walk would be stepped for ever).
+        enter(MotionState::kWalk, *walk_, sensors, last, tick);
+        walk_->set_velocity(walk_vx_, walk_vy_, walk_vtheta_);
       }
       walk_->step(sensors, tick, out);
       return;

@@ -139,6 +139,22 @@ TEST(MotionManager, WalkToStandFinishesTheStepFirst) {
   EXPECT_EQ(r.manager->state(), MotionState::kStand);
 }
 
+TEST(MotionManager, AWalkAskedForWhileTheWalkStopsStartsAgainOnceItHasStopped) {
+  Rig r;
+  r.settle_stand();
+  r.manager->request(MotionRequest::walk(1, 0, 0));
+  r.run(30);
+  ASSERT_EQ(r.walk.starts, 1);
+  r.manager->request(MotionRequest::stand());
+  r.run(5);
+  r.manager->request(MotionRequest::walk(0, 0.5, 0));  // before the stop has finished
+  r.run(StepWalk::kStopTicks + 5);
+  EXPECT_EQ(r.manager->state(), MotionState::kWalk);
+  EXPECT_EQ(r.walk.starts, 2) << "the stopped walk starts again";
+  EXPECT_FALSE(r.walk.done());
+  EXPECT_EQ(r.walk.vy, 0.5);
+}
+
 TEST(MotionManager, KickFromStandPlaysTheScriptThenStands) {
   Rig r;
   r.settle_stand();

@@ -4,6 +4,7 @@
 // States and transitions:
 //   kStand   -> kWalk     on a walk request once the stand pose is reached
 //   kWalk    -> kStand    on a stand request: the walk finishes its step, stops, then stand
+//   kWalk    -> kWalk     a walk request while the walk is stopping: once stopped it starts again
 //   kStand   -> kScript   on a script request once the stand pose is reached; a script request
 //                         while walking first stops the walk (kWalk -> kStand -> kScript)
 //   kScript  -> kStand    when the script has finished, or at once on a stand request (the
