@@ -15,12 +15,6 @@ namespace {
 using walk::Foot;
 using walk::Pose2;
 
-Eigen::Matrix3d yaw_pitch(double yaw, double pitch) {
-  return (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) *
-          Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()))
-      .toRotationMatrix();
-}
-
 // The hips' midpoint in the trunk frame (the hip roll/pitch crossings at zero yaw).
 const Eigen::Vector3d kHipsInTrunk(walk::LegGeometry::kHipX, 0.0, walk::LegGeometry::kHipZ);
 
@@ -80,7 +74,7 @@ void SplineWalkEngine::start(const hal::SensorFrame& sensors, const hal::Command
 void SplineWalkEngine::adopt_feet(const std::array<double, hal::kServoCount>& pose) noexcept {
   // The walk starts on the feet where they stand (forward kinematics of the pose held, the
   // hips at the origin of the walk plane), so nothing slides while the stance blends in.
-  const Eigen::Matrix3d trunk = yaw_pitch(0.0, params_.trunk_pitch);
+  const Eigen::Matrix3d trunk = walk::trunk_rotation(0.0, params_.trunk_pitch);
   auto foot_in_plane = [&](const walk::LegKinematics& leg,
                            const std::array<std::size_t, 6>& index) {
     const walk::LegJoints q{pose[index[0]], pose[index[1]], pose[index[2]],
@@ -299,7 +293,8 @@ void SplineWalkEngine::compute_targets(const walk::StepSample& sample) noexcept 
     targets_[servos_.right_arm[j]] = kStandPoseRad[servos_.right_arm[j]];
   }
   // Gravity less the hips' planned acceleration, in the trunk frame (compliance feed-forward).
-  const Eigen::Matrix3d trunk = yaw_pitch(sample.hips.yaw.position, sample.hips.pitch.position);
+  const Eigen::Matrix3d trunk =
+      walk::trunk_rotation(sample.hips.yaw.position, sample.hips.pitch.position);
   field_ = trunk.transpose() *
            Eigen::Vector3d(-sample.hips.x.acceleration, -sample.hips.y.acceleration, -9.81);
 }
@@ -307,7 +302,7 @@ void SplineWalkEngine::compute_targets(const walk::StepSample& sample) noexcept 
 void SplineWalkEngine::solve_leg(const walk::LegKinematics& leg, const walk::FootSample& foot,
                                  const walk::HipsSample& hips, double feedback,
                                  const std::array<std::size_t, 6>& servo_index) noexcept {
-  const Eigen::Matrix3d trunk = yaw_pitch(hips.yaw.position, hips.pitch.position);
+  const Eigen::Matrix3d trunk = walk::trunk_rotation(hips.yaw.position, hips.pitch.position);
   const Eigen::Vector3d hips_position(hips.x.position, hips.y.position, params_.trunk_height);
   const Eigen::Vector3d ankle(foot.pose.x, foot.pose.y,
                               foot.lift + walk::LegGeometry::kAnkleHeight);
@@ -318,16 +313,8 @@ void SplineWalkEngine::solve_leg(const walk::LegKinematics& leg, const walk::Foo
   const walk::LegIkResult ik = leg.inverse(target);
   tick_clamped_ = tick_clamped_ || ik.clamped;
   walk::LegJoints q = ik.joints;
-  q.hip_roll += feedback * balance_shift_.hip_roll;
-  q.hip_pitch += feedback * balance_shift_.hip_pitch;
-  q.ankle_pitch += feedback * balance_shift_.ankle_pitch;
-  q.ankle_roll += feedback * balance_shift_.ankle_roll;
-  targets_[servo_index[0]] = q.hip_yaw;
-  targets_[servo_index[1]] = q.hip_roll;
-  targets_[servo_index[2]] = q.hip_pitch;
-  targets_[servo_index[3]] = q.knee;
-  targets_[servo_index[4]] = q.ankle_pitch;
-  targets_[servo_index[5]] = q.ankle_roll;
+  walk::add_balance_shift(q, balance_shift_, feedback);
+  walk::WalkServos::set_leg(targets_, servo_index, q);
 }
 
 }  // namespace stride::fw

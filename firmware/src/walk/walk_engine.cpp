@@ -18,12 +18,6 @@ namespace {
 using walk::Foot;
 using walk::Pose2;
 
-Eigen::Matrix3d yaw_pitch(double yaw, double pitch) {
-  return (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) *
-          Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()))
-      .toRotationMatrix();
-}
-
 }  // namespace
 
 WalkEngine::WalkEngine(ParameterStore& store, const ServoTable& servos, std::int64_t period_ns,
@@ -76,7 +70,7 @@ void WalkEngine::adopt_stance(const std::array<double, hal::kServoCount>& pose) 
   // Where the feet are now (forward kinematics of the pose being held), projected into the
   // walk plane with the torso reference point at the origin: the walk starts from these feet
   // (the start blend moves only the torso), so nothing has to slide while both feet are down.
-  const Eigen::Matrix3d trunk = yaw_pitch(0.0, params_.body_tilt);
+  const Eigen::Matrix3d trunk = walk::trunk_rotation(0.0, params_.body_tilt);
   const Eigen::Vector3d reference(walk::LegGeometry::kHipX, 0.0,
                                   walk::LegGeometry::kHipZ + kTorsoAboveHip);
   auto foot_in_plane = [&](const walk::LegKinematics& leg,
@@ -309,7 +303,7 @@ void WalkEngine::compute_targets(double time_in_step, bool standing) noexcept {
   solve_leg(left_leg_, left, left_lift, torso, left_roll, left_feedback, servos_.left_leg);
   solve_leg(right_leg_, right, right_lift, torso, right_roll, right_feedback, servos_.right_leg);
   write_arms(phase, torso, left, right);
-  const Eigen::Matrix3d trunk = yaw_pitch(torso.theta, p.body_tilt);
+  const Eigen::Matrix3d trunk = walk::trunk_rotation(torso.theta, p.body_tilt);
   field_ = trunk.transpose() * Eigen::Vector3d(-acceleration.x(), -acceleration.y(), -9.81);
   snapshot_.phase = phase;
   snapshot_.torso = torso;
@@ -322,7 +316,7 @@ void WalkEngine::compute_targets(double time_in_step, bool standing) noexcept {
 void WalkEngine::solve_leg(const walk::LegKinematics& leg, const Pose2& foot, double lift,
                            const Pose2& torso, double hip_roll_offset, double feedback,
                            const std::array<std::size_t, 6>& servo_index) noexcept {
-  const Eigen::Matrix3d trunk_rotation = yaw_pitch(torso.theta, params_.body_tilt);
+  const Eigen::Matrix3d trunk_rotation = walk::trunk_rotation(torso.theta, params_.body_tilt);
   const Eigen::Vector3d torso_position(torso.x, torso.y, params_.body_height);
   const Eigen::Vector3d ankle(foot.x, foot.y, lift + walk::LegGeometry::kAnkleHeight);
   const Eigen::Vector3d reference(walk::LegGeometry::kHipX, 0.0,
@@ -335,16 +329,8 @@ void WalkEngine::solve_leg(const walk::LegKinematics& leg, const Pose2& foot, do
   tick_clamped_ = tick_clamped_ || ik.clamped;
   walk::LegJoints q = ik.joints;
   q.hip_roll += hip_roll_offset;
-  q.hip_roll += feedback * balance_shift_.hip_roll;
-  q.hip_pitch += feedback * balance_shift_.hip_pitch;
-  q.ankle_pitch += feedback * balance_shift_.ankle_pitch;
-  q.ankle_roll += feedback * balance_shift_.ankle_roll;
-  targets_[servo_index[0]] = q.hip_yaw;
-  targets_[servo_index[1]] = q.hip_roll;
-  targets_[servo_index[2]] = q.hip_pitch;
-  targets_[servo_index[3]] = q.knee;
-  targets_[servo_index[4]] = q.ankle_pitch;
-  targets_[servo_index[5]] = q.ankle_roll;
+  walk::add_balance_shift(q, balance_shift_, feedback);
+  walk::WalkServos::set_leg(targets_, servo_index, q);
 }
 
 void WalkEngine::write_arms(double phase, const Pose2& torso, const Pose2& left_foot,

@@ -28,6 +28,7 @@
 #include <string_view>
 
 #include "stride/firmware/parameter_store.hpp"
+#include "stride/firmware/walk/leg_kinematics.hpp"
 #include "stride/hal/sensor_frame.hpp"
 
 namespace stride::fw::walk {
@@ -35,6 +36,14 @@ namespace stride::fw::walk {
 struct BalanceShift {
   double ankle_pitch = 0.0, ankle_roll = 0.0, hip_pitch = 0.0, hip_roll = 0.0;  ///< [rad]
 };
+
+/// Adds `weight` of `shift` to a leg's hip and ankle joints [rad].
+inline void add_balance_shift(LegJoints& q, const BalanceShift& shift, double weight) noexcept {
+  q.hip_roll += weight * shift.hip_roll;
+  q.hip_pitch += weight * shift.hip_pitch;
+  q.ankle_pitch += weight * shift.ankle_pitch;
+  q.ankle_roll += weight * shift.ankle_roll;
+}
 
 class BalanceFeedback {
  public:

@@ -72,6 +72,14 @@ struct LegIkResult {
   bool clamped = false;  ///< target out of reach: the hip-ankle distance was clamped
 };
 
+/// The trunk's rotation in the walk plane's frame: yawed by `yaw`, then pitched forward by
+/// `pitch` [rad] (both walk engines put the feet into the trunk frame with it).
+inline Eigen::Matrix3d trunk_rotation(double yaw, double pitch) noexcept {
+  return (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) *
+          Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()))
+      .toRotationMatrix();
+}
+
 class LegKinematics {
  public:
   explicit LegKinematics(LegSide side) noexcept;

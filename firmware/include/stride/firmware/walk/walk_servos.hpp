@@ -10,6 +10,7 @@
 #include <string_view>
 
 #include "stride/firmware/servo_table.hpp"
+#include "stride/firmware/walk/leg_kinematics.hpp"
 #include "stride/hal/command_frame.hpp"
 #include "stride/hal/sensor_frame.hpp"
 
@@ -33,6 +34,16 @@ struct WalkServos {
   void start_pose(const hal::SensorFrame& sensors, const hal::CommandFrame& last_sent,
                   std::array<double, kDriven>& from,
                   std::array<double, hal::kServoCount>& pose) const noexcept;
+  /// Writes a leg's joint angles into `targets` (servo order) at the leg's servos `leg`.
+  static void set_leg(std::array<double, hal::kServoCount>& targets,
+                      const std::array<std::size_t, 6>& leg, const LegJoints& q) noexcept {
+    targets[leg[0]] = q.hip_yaw;
+    targets[leg[1]] = q.hip_roll;
+    targets[leg[2]] = q.hip_pitch;
+    targets[leg[3]] = q.knee;
+    targets[leg[4]] = q.ankle_pitch;
+    targets[leg[5]] = q.ankle_roll;
+  }
   /// The P register of each servo (the arms' `arm_p`, the legs' `leg_p`, 0 elsewhere).
   std::array<double, hal::kServoCount> p_gains(double arm_p, double leg_p) const noexcept;
   /// Writes the driven servos' commands: from + blend (target - from), full speed, P gain, no I
