@@ -75,21 +75,11 @@ void SplineWalkEngine::adopt_feet(const std::array<double, hal::kServoCount>& po
   // The walk starts on the feet where they stand (forward kinematics of the pose held, the
   // hips at the origin of the walk plane), so nothing slides while the stance blends in.
   const Eigen::Matrix3d trunk = walk::trunk_rotation(0.0, params_.trunk_pitch);
-  auto foot_in_plane = [&](const walk::LegKinematics& leg,
-                           const std::array<std::size_t, 6>& index) {
-    const walk::LegJoints q{pose[index[0]], pose[index[1]], pose[index[2]],
-                            pose[index[3]], pose[index[4]], pose[index[5]]};
-    const walk::Pose3 foot = leg.forward(q);
-    const Eigen::Vector3d p = trunk * (foot.position - kHipsInTrunk);
-    const Eigen::Matrix3d r = trunk * foot.rotation;
-    return Pose2{p.x(), p.y(), std::atan2(r(1, 0), r(0, 0))};
-  };
-  Pose2 left = foot_in_plane(left_leg_, servos_.left_leg);
-  Pose2 right = foot_in_plane(right_leg_, servos_.right_leg);
-  const Pose2 rel = walk::relative(right, left);
-  const bool plausible = std::isfinite(rel.x) && std::isfinite(rel.y) && std::isfinite(rel.theta) &&
-                         std::abs(rel.x) < 0.15 && rel.y > 0.08 && rel.y < 0.4 &&
-                         std::abs(rel.theta) < 0.5;
+  Pose2 left =
+      walk::WalkServos::foot_in_plane(left_leg_, pose, servos_.left_leg, trunk, kHipsInTrunk);
+  Pose2 right =
+      walk::WalkServos::foot_in_plane(right_leg_, pose, servos_.right_leg, trunk, kHipsInTrunk);
+  const bool plausible = walk::WalkServos::plausible_stance(left, right);
   if (!plausible) {
     left = {0.0, 0.5 * params_.foot_distance, 0.0};
     right = {0.0, -0.5 * params_.foot_distance, 0.0};

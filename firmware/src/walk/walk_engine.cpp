@@ -73,21 +73,11 @@ void WalkEngine::adopt_stance(const std::array<double, hal::kServoCount>& pose) 
   const Eigen::Matrix3d trunk = walk::trunk_rotation(0.0, params_.body_tilt);
   const Eigen::Vector3d reference(walk::LegGeometry::kHipX, 0.0,
                                   walk::LegGeometry::kHipZ + kTorsoAboveHip);
-  auto foot_in_plane = [&](const walk::LegKinematics& leg,
-                           const std::array<std::size_t, 6>& index) {
-    const walk::LegJoints q{pose[index[0]], pose[index[1]], pose[index[2]],
-                            pose[index[3]], pose[index[4]], pose[index[5]]};
-    const walk::Pose3 foot = leg.forward(q);
-    const Eigen::Vector3d p = trunk * (foot.position - reference);
-    const Eigen::Matrix3d r = trunk * foot.rotation;
-    return Pose2{p.x(), p.y(), std::atan2(r(1, 0), r(0, 0))};
-  };
-  const Pose2 left = foot_in_plane(left_leg_, servos_.left_leg);
-  const Pose2 right = foot_in_plane(right_leg_, servos_.right_leg);
-  const walk::Pose2 rel = walk::relative(right, left);
-  const bool plausible = std::isfinite(rel.x) && std::isfinite(rel.y) && std::isfinite(rel.theta) &&
-                         std::abs(rel.x) < 0.15 && rel.y > 0.08 && rel.y < 0.4 &&
-                         std::abs(rel.theta) < 0.5;
+  const Pose2 left =
+      walk::WalkServos::foot_in_plane(left_leg_, pose, servos_.left_leg, trunk, reference);
+  const Pose2 right =
+      walk::WalkServos::foot_in_plane(right_leg_, pose, servos_.right_leg, trunk, reference);
+  const bool plausible = walk::WalkServos::plausible_stance(left, right);
   if (!plausible) return;  // keep the nominal stance of reset_stance()
   left_destination_ = left_source_ = left;
   right_destination_ = right_source_ = right;

@@ -44,6 +44,25 @@ void WalkServos::start_pose(const hal::SensorFrame& sensors, const hal::CommandF
   }
 }
 
+Pose2 WalkServos::foot_in_plane(const LegKinematics& leg,
+                                const std::array<double, hal::kServoCount>& pose,
+                                const std::array<std::size_t, 6>& index,
+                                const Eigen::Matrix3d& trunk,
+                                const Eigen::Vector3d& reference) noexcept {
+  const LegJoints q{pose[index[0]], pose[index[1]], pose[index[2]],
+                    pose[index[3]], pose[index[4]], pose[index[5]]};
+  const Pose3 foot = leg.forward(q);
+  const Eigen::Vector3d p = trunk * (foot.position - reference);
+  const Eigen::Matrix3d r = trunk * foot.rotation;
+  return Pose2{p.x(), p.y(), std::atan2(r(1, 0), r(0, 0))};
+}
+
+bool WalkServos::plausible_stance(const Pose2& left, const Pose2& right) noexcept {
+  const Pose2 rel = relative(right, left);
+  return std::isfinite(rel.x) && std::isfinite(rel.y) && std::isfinite(rel.theta) &&
+         std::abs(rel.x) < 0.15 && rel.y > 0.08 && rel.y < 0.4 && std::abs(rel.theta) < 0.5;
+}
+
 std::array<double, hal::kServoCount> WalkServos::p_gains(double arm_p,
                                                          double leg_p) const noexcept {
   std::array<double, hal::kServoCount> p{};

@@ -11,6 +11,7 @@
 
 #include "stride/firmware/servo_table.hpp"
 #include "stride/firmware/walk/leg_kinematics.hpp"
+#include "stride/firmware/walk/pose2.hpp"
 #include "stride/hal/command_frame.hpp"
 #include "stride/hal/sensor_frame.hpp"
 
@@ -44,6 +45,16 @@ struct WalkServos {
     targets[leg[4]] = q.ankle_pitch;
     targets[leg[5]] = q.ankle_roll;
   }
+  /// Where a held pose puts a leg's foot in the walk plane: its forward kinematics relative to
+  /// `reference` (a point of the trunk frame), turned by `trunk` (the walk's trunk rotation at
+  /// zero yaw). Both engines start a walk on the feet where they stand.
+  static Pose2 foot_in_plane(const LegKinematics& leg,
+                             const std::array<double, hal::kServoCount>& pose,
+                             const std::array<std::size_t, 6>& index, const Eigen::Matrix3d& trunk,
+                             const Eigen::Vector3d& reference) noexcept;
+  /// True if the feet make a stance a walk may start from (finite, side by side within 0.15 m,
+  /// 0.08-0.4 m apart, turned less than 0.5 rad against each other).
+  static bool plausible_stance(const Pose2& left, const Pose2& right) noexcept;
   /// The P register of each servo (the arms' `arm_p`, the legs' `leg_p`, 0 elsewhere).
   std::array<double, hal::kServoCount> p_gains(double arm_p, double leg_p) const noexcept;
   /// Writes the driven servos' commands: from + blend (target - from), full speed, P gain, no I
