@@ -18,7 +18,9 @@ Default: the default (faithful) world with the firmware's defaults (the closed-l
 issue 29); --params FILE overlays a parameter file (the "before" figures of tests/bench/RESULTS.md
 are firmware/config/seed-walk.json then balance-identified.json: merge them into one file).
 Two simulations at a time, under `nice`.
-Prints, per direction, the largest impulse survived in every seed and per seed.
+Prints, per direction, the largest impulse survived in every seed and per seed, and in how
+many seeds --max itself was survived (issue 53: --vx 0.5 --max 4 --seeds 1,...,10 counts the
+seeds surviving 4 N s at half speed; a seed without a single support counts as not surviving).
 """
 import argparse
 import concurrent.futures
@@ -117,12 +119,14 @@ def main():
         results = {k: v.result() for k, v in jobs.items()}
     print("push in single support (time, stance foot) per seed: " + ", ".join(
         "%d: %.2f s %s" % (s, times[s][0], times[s][1]) for s in seeds if times[s][0]))
-    print("| direction | largest survived in every seed [N s] | per seed |")
-    print("|---|---|---|")
+    print("| direction | largest survived in every seed [N s] | seeds surviving %.2f N s | "
+          "per seed |" % args.max)
+    print("|---|---|---|---|")
     for d in directions:
         per = [results[(d, s)] for s in seeds if (d, s) in results]
-        print("| %s | %.2f | %s |" % (d, min(per) if per else float("nan"),
-                                     ", ".join("%.2f" % p for p in per)))
+        print("| %s | %.2f | %d of %d | %s |" % (
+            d, min(per) if per else float("nan"), sum(p >= args.max for p in per), len(seeds),
+            ", ".join("%.2f" % p for p in per)))
     if args.json:
         with open(args.json, "w") as f:
             json.dump({"times": {str(s): times[s] for s in seeds},
