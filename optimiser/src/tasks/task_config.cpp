@@ -404,10 +404,10 @@ std::int64_t task_trial_step_us(const TaskConfig& config) {
   if (type == nullptr) return kTrialPhysicsStepUs;
   std::int64_t step = 0;
   for (const sim::EngineKind engine : config.engines) {
-    const std::int64_t allowed = type->trial_physics_step_us(engine);
+    const std::int64_t allowed = type->descriptor().trial_physics_step_us(engine);
     step = step == 0 ? allowed : std::min(step, allowed);
   }
-  return step > 0 ? step : type->trial_physics_step_us(sim::EngineKind::kSimbody);
+  return step > 0 ? step : type->descriptor().trial_physics_step_us(sim::EngineKind::kSimbody);
 }
 
 void apply_task_trial_step(TaskConfig& config) {
@@ -416,12 +416,14 @@ void apply_task_trial_step(TaskConfig& config) {
 
 Status parse_task_config(const nlohmann::json& doc, TaskConfig& out) {
   if (!doc.is_object()) return Status::error("config: must be a JSON object");
-  for (const auto& [key, value] : doc.items()) {
-    bool known = false;
-    for (const char* k : kKnownFields) known = known || key == k;
-    known = known || is_task_settings_field(key);  // any task's: an old run.json holds all
-    if (!known) return Status::error(key + ": unknown field");
-  }
+  const auto shared = [](const std::string& key) {
+    for (const char* k : kKnownFields)
+      if (key == k) return true;
+    return false;
+  };
+  for (const auto& [key, value] : doc.items())
+    if (!shared(key) && tasks_owning_field(key).empty())  // any task's: an old run.json holds all
+      return Status::error(key + ": unknown field");
   TaskConfig c;
   if (!doc.contains("task") || !doc.at("task").is_string())
     return Status::error("task: missing or not a string");

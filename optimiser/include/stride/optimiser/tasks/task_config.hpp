@@ -74,13 +74,14 @@ struct TaskConfig {
   /// and written by the type (TaskType::parse_settings, write_settings); none for a task that
   /// has none. own_settings<T>() reads them.
   OwnSettings own;
-  /// The task's own settings as a T (the type's defaults if the config holds none of that type).
+  /// The task's own settings, which must be a T: T's defaults if the config holds none (one
+  /// built in code), a TaskValueTypeError naming both types if it holds another task's.
   template <class T>
   const T& own_settings() const {
     static const T defaults{};
-    const T* s = own.get<T>();
-    return s != nullptr ? *s : defaults;
+    return own.empty() ? defaults : own.get<T>();
   }
+  /// The same, to write (T's defaults first if the config holds none).
   template <class T>
   T& own_settings() {
     return own.as<T>();
