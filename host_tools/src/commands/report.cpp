@@ -72,7 +72,7 @@ Status read_run(const std::filesystem::path& dir, stride::opt::RunConfig& config
   if (type == nullptr)
     return Status::error(dir.string() + " is a '" + config.problem + "' run, not a " +
                          stride::opt::task_type_list() + " task");
-  if (auto st = stride::opt::parse_task_config(config.task, task); !st)
+  if (auto st = stride::opt::parse_task_record(config.task, task); !st)
     return Status::error("run.json task: " + st.message());
   return {};
 }

@@ -77,7 +77,7 @@ Status load_validation_subject(const fs::path& dir, ValidationSubject& out,
                          task_type_list() + ")");
   ValidationSubject subject;
   subject.dir = dir;
-  if (Status s = parse_task_config(run.task, subject.config); !s)
+  if (Status s = parse_task_record(run.task, subject.config); !s)
     return Status::error("run.json task: " + s.message());
   report::RunData data;
   if (Status s = report::load_run_data(dir, data); !s) return s;

@@ -1,6 +1,7 @@
 // The task registry and the task's descriptor (task_type.hpp, task_descriptor.hpp): every task
 // registered once and found by its descriptor's name, its constants in the descriptor; a task's
-// own settings asked for as another task's are an error naming both types (task_value.hpp).
+// own settings asked for as another task's are an error naming both types (task_value.hpp); a
+// config that gives another task's own setting is an error naming the field and its task.
 #include <gtest/gtest.h>
 
 #include <set>
@@ -14,6 +15,7 @@
 #include "stride/optimiser/tasks/task_config.hpp"
 #include "stride/optimiser/tasks/task_type.hpp"
 #include "stride/optimiser/tasks/walk_settings.hpp"
+#include "temp_dir.hpp"
 
 namespace stride::opt {
 namespace {
@@ -96,6 +98,36 @@ TEST(TaskSettings, AnotherTasksSettingsAreAnErrorNamingBothTypes) {
   EXPECT_FALSE(d.own == c.own);
   EXPECT_FALSE(OwnSettings{} == c.own);
   EXPECT_TRUE(OwnSettings{} == OwnSettings{});
+}
+
+TEST(TaskConfig, AnotherTasksFieldIsAnErrorNamingTheFieldAndItsTask) {
+  nlohmann::json doc = minimal_task_config();
+  doc["kick_at_s"] = 1.0;
+  EXPECT_EQ(parse_error_of(doc), "field 'kick_at_s' belongs to task kick, not walk");
+  doc = minimal_task_config();
+  doc["task"] = "kick";
+  doc["max_drift_ratio"] = 0.1;
+  EXPECT_EQ(parse_error_of(doc),
+            "field 'max_drift_ratio' belongs to tasks walk, walk-omni, walk-ramp and "
+            "walk-command, not kick");
+  doc.erase("max_drift_ratio");
+  doc["kick_at_s"] = 1.0;  // its own
+  EXPECT_EQ(parse_error_of(doc), "ok");
+  doc["colour"] = "red";  // nobody's
+  EXPECT_EQ(parse_error_of(doc), "colour: unknown field");
+  // From a file: the error names the file too.
+  const test::TempDir dir;
+  nlohmann::json walk = minimal_task_config();
+  walk["kick_at_s"] = 1.0;
+  const std::filesystem::path file = dir.write("walk.json", walk.dump());
+  TaskConfig c;
+  const Status s = load_task_config(file, c);
+  ASSERT_FALSE(s);
+  EXPECT_EQ(s.message(), file.string() + ": field 'kick_at_s' belongs to task kick, not walk");
+  // A run's record (an old run.json held every task's fields) leaves them out.
+  ASSERT_TRUE(parse_task_record(walk, c));
+  EXPECT_EQ(c.task, "walk");
+  EXPECT_EQ(to_json(c).count("kick_at_s"), 0u);  // and is written back without them
 }
 
 }  // namespace

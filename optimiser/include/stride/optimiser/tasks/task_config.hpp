@@ -133,8 +133,15 @@ struct TaskConfig {
   std::vector<double> hv_nadir;
 };
 
-/// Parses a task config; the error names the field.
+/// Parses a task config; the error names the field. A field that is another task's own setting
+/// (TaskDescriptor::settings_fields) is an error naming the field and the task it belongs to:
+/// "field 'kick_at_s' belongs to task kick, not walk".
 Status parse_task_config(const nlohmann::json& doc, TaskConfig& out);
+/// Parses the task record of a run's run.json (--resume, stride report, stride validate): as
+/// parse_task_config, but other tasks' own settings are left out first. The run.json of a run
+/// from before the tasks owned their settings recorded every task's (their defaults, which its
+/// task never read); to_json writes the task's own only.
+Status parse_task_record(const nlohmann::json& doc, TaskConfig& out);
 /// Reads and parses a file; the error names the file and the field.
 Status load_task_config(const std::filesystem::path& path, TaskConfig& out);
 /// The trials' physics step the config's task type allows on every one of its engines [us]:

@@ -61,8 +61,8 @@ struct TaskDescriptor {
   std::int64_t trial_step_us_simbody = kTrialPhysicsStepUs;
   std::int64_t trial_step_us_mujoco = kTrialPhysicsStepUsMujoco;
   /// The config fields that are the task's own settings (TaskConfig::own): read by
-  /// TaskType::parse_settings, written by write_settings, listed by the report; another task's
-  /// in a config is accepted and not read (an old run.json holds every task's).
+  /// TaskType::parse_settings, written by write_settings, listed by the report; a config that
+  /// gives another task's is an error naming the field (parse_task_config).
   std::vector<std::string_view> settings_fields;
 
   /// The trials' default physics step on `engine` [us].
