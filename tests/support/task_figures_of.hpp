@@ -10,7 +10,7 @@ namespace stride::opt {
 
 template <class T>
 T figures_of(const EpisodeScore& score) {
-  EXPECT_NE(score.figures.get<T>(), nullptr) << "the score holds no figures of this task";
+  EXPECT_NE(score.figures.find<T>(), nullptr) << "the score holds no figures of this task";
   return score.figures.read<T>();
 }
 

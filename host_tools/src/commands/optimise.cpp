@@ -218,7 +218,7 @@ Status resumed_problem(const stride::core::CliArgs& args, const std::filesystem:
   opt::TaskConfig task;
   const bool robot = opt::find_task_type(s.config.problem) != nullptr;
   if (robot) {
-    if (auto st = opt::parse_task_config(s.config.task, task); !st)
+    if (auto st = opt::parse_task_record(s.config.task, task); !st)
       return Status::error("run.json task: " + st.message());
   } else if (auto st = make_problem(s.config.problem, problem); !st) {
     return st;

@@ -72,7 +72,7 @@ Status read_run(const std::filesystem::path& dir, stride::opt::RunConfig& config
   if (type == nullptr)
     return Status::error(dir.string() + " is a '" + config.problem + "' run, not a " +
                          stride::opt::task_type_list() + " task");
-  if (auto st = stride::opt::parse_task_config(config.task, task); !st)
+  if (auto st = stride::opt::parse_task_record(config.task, task); !st)
     return Status::error("run.json task: " + st.message());
   return {};
 }
@@ -101,8 +101,8 @@ void print_summary(const std::filesystem::path& dir, const stride::opt::RunConfi
       summary["generations"].get<std::size_t>(), summary["generations_planned"].get<std::size_t>());
   std::printf("%s run, %s, %zu evaluations, %zu front members (objectives: %s)\n",
               config.problem.c_str(), progress.c_str(), summary["evaluations"].get<std::size_t>(),
-              summary["front_size"].get<std::size_t>(), type.objective_legend().c_str());
-  const bool kick = type.uses_ball();
+              summary["front_size"].get<std::size_t>(), type.descriptor().legend.c_str());
+  const bool kick = type.descriptor().uses_ball;
   const nlohmann::json& o = summary["ind_o"];
   if (o.is_object()) print_member("Ind_O", o, nullptr, kick);
   const stride::opt::RunPickNames names = stride::opt::run_pick_names(config.problem);
@@ -168,7 +168,7 @@ int run_report(int argc, char** argv) {
     errors.warning(line + " (see " + page.file.string() + ")");
   }
   std::vector<stride::opt::DirectionSpeeds> directions;
-  if (type->measures_directions()) {
+  if (type->descriptor().measures_directions) {
     if (auto st = stride::opt::run_direction_table(dir, robot_task, summary, directions); !st)
       return errors.failure(st.message());
     summary["directions"] = stride::opt::direction_table_json(directions);

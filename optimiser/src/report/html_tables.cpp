@@ -74,7 +74,7 @@ std::string settings_table_html(const RunData& data) {
   // every task's).
   std::vector<std::string> keys = {"duration_s"};
   if (const TaskType* type = find_task_type(data.task))
-    for (std::string_view k : type->settings_fields()) keys.emplace_back(k);
+    for (std::string_view k : type->descriptor().settings_fields) keys.emplace_back(k);
   for (const char* k : {"trials", "aggregate", "trial_seed"}) keys.emplace_back(k);
   for (const std::string& k : keys)
     if (task.contains(k)) rows.emplace_back(k, scalar_text(task[k]));
@@ -97,7 +97,7 @@ std::string picks_table_html(const RunData& data, const std::vector<PickRow>& ro
                      html_escape(names.f1) + "</th><th>change</th><th>" + html_escape(names.f2) +
                      "</th><th>change</th>";
   const TaskType* type = find_task_type(data.task);
-  const bool ball = type != nullptr && type->uses_ball();
+  const bool ball = type != nullptr && type->descriptor().uses_ball;
   if (ball) html += "<th>ball distance [m]</th>";
   html += "<th class=\"name\">re-run for the replay</th><th class=\"name\">front file</th></tr>\n";
   const std::vector<double>* o = nullptr;

@@ -77,7 +77,7 @@ Status read_pareto_csv(const fs::path& path, int objectives, std::vector<FrontMe
 
 RunPickNames run_pick_names(const std::string& task) {
   if (const TaskType* type = find_task_type(task))
-    return {type->best_f1_pick(), type->best_f2_pick()};
+    return {type->descriptor().best_f1_pick, type->descriptor().best_f2_pick};
   return {"best_obj1", "best_obj2"};
 }
 

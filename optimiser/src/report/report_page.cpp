@@ -94,7 +94,7 @@ Status write_report_html(const fs::path& dir, const RobotTask& task, ReportOutco
   const sim::RobotModel& model = task.robot_model() != nullptr ? *task.robot_model() : loaded;
   ReplayScene scene = replay_scene(world);
   const TaskType* type = find_task_type(config.task);
-  const bool ball = type != nullptr && type->uses_ball();
+  const bool ball = type != nullptr && type->descriptor().uses_ball;
   if (type != nullptr) scene.goal_m = type->replay_goal_m(config);
   double end = 0.0;
   for (const auto& r : replays) end = std::max(end, end_of(r));

@@ -22,7 +22,7 @@ DirectionSpeeds reference_direction_speeds() {
 
 Status measure_direction_speeds(const RobotTask& task, const Genome& genome,
                                 const std::string& label, DirectionSpeeds& out) {
-  if (task.type() == nullptr || !task.type()->measures_directions())
+  if (task.type() == nullptr || !task.type()->descriptor().measures_directions)
     return Status::error("per-direction speeds need a task that walks every direction, not '" +
                          task.config().task + "'");
   DirectionSpeeds row;

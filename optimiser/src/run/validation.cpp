@@ -77,7 +77,7 @@ Status load_validation_subject(const fs::path& dir, ValidationSubject& out,
                          task_type_list() + ")");
   ValidationSubject subject;
   subject.dir = dir;
-  if (Status s = parse_task_config(run.task, subject.config); !s)
+  if (Status s = parse_task_record(run.task, subject.config); !s)
     return Status::error("run.json task: " + s.message());
   report::RunData data;
   if (Status s = report::load_run_data(dir, data); !s) return s;
@@ -160,7 +160,8 @@ Status validation_worlds(const RobotTask& task, const ValidationOptions& options
     // At most the step the task allows on that engine (a Simbody run's 2.5 ms is 2 ms on MuJoCo,
     // TaskType::trial_physics_step_us): the other engine checks the walk, not its own step.
     if (type != nullptr)
-      w.world.physics_step_us = std::min(w.world.physics_step_us, type->trial_physics_step_us(e));
+      w.world.physics_step_us =
+          std::min(w.world.physics_step_us, type->descriptor().trial_physics_step_us(e));
     out.push_back(std::move(w));
   }
   out.push_back({"fresh seeds", base, seeds});

@@ -99,8 +99,8 @@ std::string fixed(const json& v, int decimals) {
 
 /// How the plain-language summary names a task's goal and its gate measure.
 ValidationWords task_words(const std::string& task) {
-  if (const TaskType* type = find_task_type(task)) return type->validation_words();
-  return find_task_type("walk")->validation_words();
+  if (const TaskType* type = find_task_type(task)) return type->descriptor().words;
+  return find_task_type("walk")->descriptor().words;
 }
 
 /// "on MuJoCo", "on fresh seeds", "with wider randomisation", "at half the physics step".
@@ -162,7 +162,7 @@ bool validation_reached(const TaskConfig& config, const EpisodeScore& score) {
 
 int gate_objective(const TaskConfig& config) {
   const TaskType* type = find_task_type(config.task);
-  return type != nullptr ? type->gate_objective() : 0;
+  return type != nullptr ? type->descriptor().gate_objective : 0;
 }
 
 double median(std::vector<double> values) {
@@ -307,7 +307,7 @@ std::string validation_text(const json& result) {
   const std::string task = result.value("task", "");
   const TaskType* type = find_task_type(task);
   out << "validation of a " << task << " run (objectives: "
-      << (type != nullptr ? type->objective_legend() : std::string("f1, f2"))
+      << (type != nullptr ? type->descriptor().legend : std::string("f1, f2"))
       << ")\nworlds (IMU noise on in all):\n";
   for (const json& world : result.value("worlds", json::array())) {
     const json w = validation_world_columns(world);
@@ -341,7 +341,7 @@ std::string validation_text(const json& result) {
                   gain_kept_text(r, 0).c_str(), gain_kept_text(r, 1).c_str());
     out << line;
   }
-  if (type != nullptr && type->measures_directions()) {
+  if (type != nullptr && type->descriptor().measures_directions) {
     for (const json& w : result.value("worlds", json::array())) {
       std::vector<DirectionSpeeds> rows;
       for (const json& ind : result.value("individuals", json::array()))

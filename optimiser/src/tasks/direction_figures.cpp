@@ -6,7 +6,7 @@
 namespace stride::opt {
 
 void merge_direction_figures(const TaskFigures& next, TaskFigures& total) {
-  const DirectionFigures* n = next.get<DirectionFigures>();
+  const DirectionFigures* n = next.find<DirectionFigures>();
   if (n == nullptr) return;
   DirectionFigures& t = total.as<DirectionFigures>();
   for (std::size_t d = 0; d < t.segments.size(); ++d)

@@ -75,38 +75,35 @@ class GetUpEpisode final : public TaskEpisode {
 
 class GetUpTask final : public TaskType {
  public:
-  std::string_view name() const override { return "getup"; }
-  int constraint_count() const override { return 1; }
-  ObjectiveLabels objective_labels(const nlohmann::json&) const override {
-    return {"time until standing [s]", "peak servo load [N m]"};
-  }
-  std::string objective_legend() const override {
-    return "f1 time until standing [s], f2 peak servo load [N m]";
-  }
-  const char* best_f1_pick() const override { return "quickest"; }
-  const char* best_f2_pick() const override { return "gentlest"; }
-  ValidationWords validation_words() const override {
-    return {"stand up from the front and from the back",
-            "stands up from the front and from the back",
-            "does not stand up in time",
-            "time until standing",
-            "get-up",
-            "{} % slower than in the run",
-            "stays down",
-            " within the time limit"};
-  }
+  GetUpTask()
+      : TaskType({.name = "getup",
+                  .constraint_count = 1,
+                  .labels = {"time until standing [s]", "peak servo load [N m]"},
+                  .legend = "f1 time until standing [s], f2 peak servo load [N m]",
+                  .best_f1_pick = "quickest",
+                  .best_f2_pick = "gentlest",
+                  .words = {"stand up from the front and from the back",
+                            "stands up from the front and from the back",
+                            "does not stand up in time", "time until standing", "get-up",
+                            "{} % slower than in the run", "stays down", " within the time limit"},
+                  .episodes_per_world = 2,
+                  // 2 ms: at 2.5 ms the front side stood up 3.5 % sooner on Simbody
+                  // (tests/bench/RESULTS.md).
+                  .trial_step_us_simbody = 2000,
+                  .trial_step_us_mujoco = 2000,
+                  .settings_fields = {}}) {}  // none of its own
   bool succeeded(const TaskConfig&, const EpisodeScore& score) const override {
-    return score.figures.read<GetUpFigures>().stood == episodes_per_world();
+    return score.figures.read<GetUpFigures>().stood == descriptor().episodes_per_world;
   }
   std::string outcome_note(const TaskConfig&, const EpisodeScore& s, double) const override {
     const GetUpFigures figures = s.figures.read<GetUpFigures>();
     char text[96];
-    if (figures.stood == episodes_per_world())
+    if (figures.stood == descriptor().episodes_per_world)
       std::snprintf(text, sizeof text, "stood up in %.2f s (mean of front and back)",
                     figures.stand_time_s);
     else
       std::snprintf(text, sizeof text, "stood up in %d of %d episodes", figures.stood,
-                    episodes_per_world());
+                    descriptor().episodes_per_world);
     return text;
   }
   /// Over the world's episodes: the running mean of the stand time (-1 once one did not stand),
@@ -122,9 +119,6 @@ class GetUpTask final : public TaskType {
     total.stood += next.stood;
     total.get_up_attempts += next.get_up_attempts;
   }
-  int episodes_per_world() const override { return 2; }
-  /// 2 ms: at 2.5 ms the front side stood up 3.5 % sooner on Simbody (tests/bench/RESULTS.md).
-  std::int64_t trial_physics_step_us(sim::EngineKind) const override { return 2000; }
   sim::ResetSpec reset_spec(const TaskConfig&, int episode) const override {
     return sim::lying_reset_spec(episode == 0);
   }

@@ -74,25 +74,19 @@ class KickEpisode final : public TaskEpisode {
 
 class KickTask final : public TaskType {
  public:
-  std::string_view name() const override { return "kick"; }
-  int constraint_count() const override { return 2; }
-  ObjectiveLabels objective_labels(const nlohmann::json&) const override {
-    return {"max field-plane sway [m/s^2]", "1 / ball distance [1/m]"};
-  }
-  std::string objective_legend() const override {
-    return "f1 max sway [m/s^2], f2 1/ball distance [1/m]";
-  }
-  const char* best_f1_pick() const override { return "least_sway"; }
-  const char* best_f2_pick() const override { return "longest_kick"; }
-  ValidationWords validation_words() const override {
-    return {"kick the ball at least 0.5 m",
-            "kicks the ball at least 0.5 m",
-            "kicks the ball less than 0.5 m",
-            "1 / ball distance",
-            "kick",
-            "its median 1 / ball distance is {} % worse than in the run"};
-  }
-  int gate_objective() const override { return 1; }
+  KickTask()
+      : TaskType({.name = "kick",
+                  .constraint_count = 2,
+                  .labels = {"max field-plane sway [m/s^2]", "1 / ball distance [1/m]"},
+                  .legend = "f1 max sway [m/s^2], f2 1/ball distance [1/m]",
+                  .best_f1_pick = "least_sway",
+                  .best_f2_pick = "longest_kick",
+                  .words = {"kick the ball at least 0.5 m", "kicks the ball at least 0.5 m",
+                            "kicks the ball less than 0.5 m", "1 / ball distance", "kick",
+                            "its median 1 / ball distance is {} % worse than in the run"},
+                  .gate_objective = 1,
+                  .uses_ball = true,
+                  .settings_fields = {"script", "kick_at_s", "yaw_drift_limit_rad"}}) {}
   bool succeeded(const TaskConfig&, const EpisodeScore& score) const override {
     return score.figures.read<KickFigures>().ball_distance_m >= kKickSuccessDistanceM;
   }
@@ -106,17 +100,13 @@ class KickTask final : public TaskType {
   }
   /// The first episode's ball distance, the largest sway (one episode per world as it is).
   void merge_figures(const TaskFigures& next, int, TaskFigures& total) const override {
-    if (const KickFigures* n = next.get<KickFigures>())
+    if (const KickFigures* n = next.find<KickFigures>())
       total.as<KickFigures>().max_fps = std::max(total.as<KickFigures>().max_fps, n->max_fps);
   }
-  bool uses_ball() const override { return true; }
   sim::ResetSpec reset_spec(const TaskConfig& config, int) const override {
     // Before the kicking foot: the right, or the left for kick_left (as `stride sim kick`).
     return sim::kick_reset_spec(
         sim::kick_ball_position(config.own_settings<KickSettings>().script));
-  }
-  std::vector<std::string_view> settings_fields() const override {
-    return {"script", "kick_at_s", "yaw_drift_limit_rad"};
   }
   Status parse_settings(const nlohmann::json& doc, const TaskConfig& config,
                         OwnSettings& out) const override {
@@ -130,7 +120,7 @@ class KickTask final : public TaskType {
       return Status::error("kick_at_s: must be in [0, duration_s)");
     if (Status s = read_config_number(doc, "yaw_drift_limit_rad", k.yaw_drift_limit_rad); !s)
       return s;
-    out.as<KickSettings>() = k;
+    out.set(k);
     return {};
   }
   void write_settings(const TaskConfig& config, nlohmann::json& doc) const override {

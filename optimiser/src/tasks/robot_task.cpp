@@ -37,7 +37,7 @@ sim::WorldSpec trial_world_spec(const TaskConfig& config, int world, std::uint64
 sim::WorldOptions task_world_options(const TaskConfig& config, const sim::WorldSpec& spec) {
   sim::WorldOptions w = spec.to_options();
   const TaskType* type = find_task_type(config.task);
-  if (type == nullptr || !type->uses_ball()) w.ball.present = false;
+  if (type == nullptr || !type->descriptor().uses_ball) w.ball.present = false;
   return w;
 }
 
@@ -76,7 +76,7 @@ RobotTask::RobotTask(TaskConfig config)
     : config_(std::move(config)), type_(find_task_type(config_.task)) {
   for (const auto& g : config_.genes) shape_.reals.push_back({g.min, g.max});
   shape_.objectives = 2;
-  shape_.constraints = type_ != nullptr ? type_->constraint_count() : 0;
+  shape_.constraints = type_ != nullptr ? type_->descriptor().constraint_count : 0;
   auto files = std::make_shared<fw::FirmwareFiles>();
   if (fw::FirmwareFiles::load({}, *files)) {
     firmware_files_ = std::move(files);
@@ -180,7 +180,7 @@ Status RobotTask::run_trial(const Genome& genome, int world, EpisodeScore& out,
 
 Status RobotTask::run_world(const Genome& genome, sim::WorldOptions options, EpisodeScore& out,
                             sim::EpisodeCapturer* capture) const {
-  const int episodes = type_ != nullptr ? type_->episodes_per_world() : 1;
+  const int episodes = type_ != nullptr ? type_->descriptor().episodes_per_world : 1;
   for (int e = 0; e < episodes; ++e) {
     EpisodeScore score;
     if (Status s = run_world_episode(genome, options, e, score, e == 0 ? capture : nullptr); !s)
@@ -317,14 +317,14 @@ struct EpisodePart final : PartResult {
 }  // namespace
 
 std::size_t RobotTask::part_count(const Genome&) const {
-  const int episodes = type_ != nullptr ? type_->episodes_per_world() : 1;
+  const int episodes = type_ != nullptr ? type_->descriptor().episodes_per_world : 1;
   return static_cast<std::size_t>(config_.world_count()) * static_cast<std::size_t>(episodes);
 }
 
 std::unique_ptr<PartResult> RobotTask::evaluate_part(const Genome& genome, std::size_t part,
                                                      std::uint64_t draw) const {
   auto out = std::make_unique<EpisodePart>();
-  const int episodes = type_ != nullptr ? type_->episodes_per_world() : 1;
+  const int episodes = type_ != nullptr ? type_->descriptor().episodes_per_world : 1;
   const int world = static_cast<int>(part / static_cast<std::size_t>(episodes));
   const int episode = static_cast<int>(part % static_cast<std::size_t>(episodes));
   out->status =
@@ -335,7 +335,7 @@ std::unique_ptr<PartResult> RobotTask::evaluate_part(const Genome& genome, std::
 EvaluationOutcome RobotTask::fold_parts(const Genome&,
                                         std::vector<std::unique_ptr<PartResult>>& parts) const {
   const int worlds = config_.world_count();
-  const int episodes = type_ != nullptr ? type_->episodes_per_world() : 1;
+  const int episodes = type_ != nullptr ? type_->descriptor().episodes_per_world : 1;
   if (parts.size() != static_cast<std::size_t>(worlds) * static_cast<std::size_t>(episodes))
     return EvaluationOutcome::failure(std::to_string(parts.size()) + " episodes for " +
                                       std::to_string(worlds) + " worlds of " +

@@ -404,10 +404,10 @@ std::int64_t task_trial_step_us(const TaskConfig& config) {
   if (type == nullptr) return kTrialPhysicsStepUs;
   std::int64_t step = 0;
   for (const sim::EngineKind engine : config.engines) {
-    const std::int64_t allowed = type->trial_physics_step_us(engine);
+    const std::int64_t allowed = type->descriptor().trial_physics_step_us(engine);
     step = step == 0 ? allowed : std::min(step, allowed);
   }
-  return step > 0 ? step : type->trial_physics_step_us(sim::EngineKind::kSimbody);
+  return step > 0 ? step : type->descriptor().trial_physics_step_us(sim::EngineKind::kSimbody);
 }
 
 void apply_task_trial_step(TaskConfig& config) {
@@ -416,18 +416,26 @@ void apply_task_trial_step(TaskConfig& config) {
 
 Status parse_task_config(const nlohmann::json& doc, TaskConfig& out) {
   if (!doc.is_object()) return Status::error("config: must be a JSON object");
-  for (const auto& [key, value] : doc.items()) {
-    bool known = false;
-    for (const char* k : kKnownFields) known = known || key == k;
-    known = known || is_task_settings_field(key);  // any task's: an old run.json holds all
-    if (!known) return Status::error(key + ": unknown field");
-  }
+  const auto shared = [](const std::string& key) {
+    for (const char* k : kKnownFields)
+      if (key == k) return true;
+    return false;
+  };
+  for (const auto& [key, value] : doc.items())
+    if (!shared(key) && tasks_owning_field(key).empty())
+      return Status::error(key + ": unknown field");
   TaskConfig c;
   if (!doc.contains("task") || !doc.at("task").is_string())
     return Status::error("task: missing or not a string");
   c.task = doc.at("task").get<std::string>();
   const TaskType* type = find_task_type(c.task);
   if (type == nullptr) return Status::error("task: '" + c.task + "' is not " + task_type_list());
+  // Another task's own settings are an error (they would be ignored); a run's record of before
+  // the tasks owned their settings is read by parse_task_record.
+  for (const auto& [key, value] : doc.items())
+    if (!shared(key) && !type->descriptor().owns_field(key))
+      return Status::error("field '" + key + "' belongs to " + tasks_owning_field(key, c.task) +
+                           ", not " + c.task);
   if (Status s = parse_settings(doc, c); !s) return s;
   if (Status s = parse_genes(doc, c); !s) return s;
   if (Status s = parse_starts(doc, c); !s) return s;
@@ -440,6 +448,17 @@ Status parse_task_config(const nlohmann::json& doc, TaskConfig& out) {
   if (Status s = type->parse_settings(doc, c, c.own); !s) return s;
   out = std::move(c);
   return {};
+}
+
+Status parse_task_record(const nlohmann::json& doc, TaskConfig& out) {
+  const TaskType* type = doc.is_object() && doc.contains("task") && doc.at("task").is_string()
+                             ? find_task_type(doc.at("task").get<std::string>())
+                             : nullptr;
+  if (type == nullptr) return parse_task_config(doc, out);  // the error names the field
+  nlohmann::json own = doc;
+  for (const auto& [key, value] : doc.items())
+    if (!type->descriptor().owns_field(key) && !tasks_owning_field(key).empty()) own.erase(key);
+  return parse_task_config(own, out);
 }
 
 }  // namespace stride::opt

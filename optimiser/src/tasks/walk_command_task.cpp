@@ -246,27 +246,28 @@ ValidationFigures command_validation_figures(const std::vector<const EpisodeScor
   return out;
 }
 
+/// `command` and the straightness limits.
+std::vector<std::string_view> command_settings_fields() {
+  std::vector<std::string_view> fields = {"command"};
+  fields.insert(fields.end(), std::begin(kStraightnessFields), std::end(kStraightnessFields));
+  return fields;
+}
+
 class WalkCommandTask final : public TaskType {
  public:
-  std::string_view name() const override { return "walk-command"; }
-  int constraint_count() const override { return 5; }
-  ObjectiveLabels objective_labels(const nlohmann::json&) const override {
-    return {"-mean speed / reference over 6 directions [1]", "max |a| [m/s^2]"};
-  }
-  std::string objective_legend() const override {
-    return "f1 -mean over the six directions of speed / NUgus's (each at most 1.5), f2 max |a| "
-           "[m/s^2]";
-  }
-  const char* best_f1_pick() const override { return "fastest"; }
-  const char* best_f2_pick() const override { return "most_stable"; }
-  ValidationWords validation_words() const override {
-    return {"walk every commanded segment",
-            "walks every commanded segment",
-            "does not walk every commanded segment",
-            "speed score",
-            "walk",
-            "its median speed score is {} % worse than in the run"};
-  }
+  WalkCommandTask()
+      : TaskType({.name = "walk-command",
+                  .constraint_count = 5,
+                  .labels = {"-mean speed / reference over 6 directions [1]", "max |a| [m/s^2]"},
+                  .legend = "f1 -mean over the six directions of speed / NUgus's (each at most "
+                            "1.5), f2 max |a| [m/s^2]",
+                  .best_f1_pick = "fastest",
+                  .best_f2_pick = "most_stable",
+                  .words = {"walk every commanded segment", "walks every commanded segment",
+                            "does not walk every commanded segment", "speed score", "walk",
+                            "its median speed score is {} % worse than in the run"},
+                  .measures_directions = true,
+                  .settings_fields = command_settings_fields()}) {}
   bool succeeded(const TaskConfig&, const EpisodeScore& score) const override {
     for (const CommandSegmentFigures& s : score.figures.read<CommandFigures>().segments)
       if (!s.measured || (s.stand && !s.stood)) return false;
@@ -291,14 +292,8 @@ class WalkCommandTask final : public TaskType {
       const std::vector<const EpisodeScore*>& seeds) const override {
     return command_validation_figures(seeds);
   }
-  bool measures_directions() const override { return true; }
   OmniSegments direction_segments(const EpisodeScore& score) const override {
     return score.figures.read<CommandFigures>().directions;
-  }
-  std::vector<std::string_view> settings_fields() const override {
-    std::vector<std::string_view> fields = {"command"};
-    fields.insert(fields.end(), std::begin(kStraightnessFields), std::end(kStraightnessFields));
-    return fields;
   }
   Status parse_settings(const nlohmann::json& doc, const TaskConfig&,
                         OwnSettings& out) const override {
@@ -306,7 +301,7 @@ class WalkCommandTask final : public TaskType {
     if (doc.contains("command"))
       if (Status s = parse_command_schedule(doc.at("command"), c.schedule); !s) return s;
     if (Status s = parse_straightness(doc, c.straightness); !s) return s;
-    out.as<CommandSettings>() = c;
+    out.set(c);
     return {};
   }
   void write_settings(const TaskConfig& config, nlohmann::json& doc) const override {

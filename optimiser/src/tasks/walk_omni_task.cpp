@@ -81,26 +81,27 @@ class WalkOmniEpisode final : public TaskEpisode {
   bool requested_ = false;
 };
 
+/// `omni` and the straightness limits.
+std::vector<std::string_view> omni_settings_fields() {
+  std::vector<std::string_view> fields = {"omni"};
+  fields.insert(fields.end(), std::begin(kStraightnessFields), std::end(kStraightnessFields));
+  return fields;
+}
+
 class WalkOmniTask final : public TaskType {
  public:
-  std::string_view name() const override { return "walk-omni"; }
-  int constraint_count() const override { return 4; }
-  ObjectiveLabels objective_labels(const nlohmann::json&) const override {
-    return {"-(v_f + v_b + 2 v_side + 0.2 w_turn) [m/s]", "max |a| [m/s^2]"};
-  }
-  std::string objective_legend() const override {
-    return "f1 -(v_f + v_b + 2 v_side + 0.2 w_turn), f2 max |a| [m/s^2]";
-  }
-  const char* best_f1_pick() const override { return "fastest"; }
-  const char* best_f2_pick() const override { return "most_stable"; }
-  ValidationWords validation_words() const override {
-    return {"walk every segment",
-            "walks every segment",
-            "does not walk every segment",
-            "speed score",
-            "walk",
-            "its median speed score is {} % worse than in the run"};
-  }
+  WalkOmniTask()
+      : TaskType({.name = "walk-omni",
+                  .constraint_count = 4,
+                  .labels = {"-(v_f + v_b + 2 v_side + 0.2 w_turn) [m/s]", "max |a| [m/s^2]"},
+                  .legend = "f1 -(v_f + v_b + 2 v_side + 0.2 w_turn), f2 max |a| [m/s^2]",
+                  .best_f1_pick = "fastest",
+                  .best_f2_pick = "most_stable",
+                  .words = {"walk every segment", "walks every segment",
+                            "does not walk every segment", "speed score", "walk",
+                            "its median speed score is {} % worse than in the run"},
+                  .measures_directions = true,
+                  .settings_fields = omni_settings_fields()}) {}
   bool succeeded(const TaskConfig&, const EpisodeScore& score) const override {
     return every_direction_measured(score);
   }
@@ -111,19 +112,13 @@ class WalkOmniTask final : public TaskType {
       const std::vector<const EpisodeScore*>& seeds) const override {
     return direction_validation_figures(seeds);
   }
-  bool measures_directions() const override { return true; }
-  std::vector<std::string_view> settings_fields() const override {
-    std::vector<std::string_view> fields = {"omni"};
-    fields.insert(fields.end(), std::begin(kStraightnessFields), std::end(kStraightnessFields));
-    return fields;
-  }
   Status parse_settings(const nlohmann::json& doc, const TaskConfig&,
                         OwnSettings& out) const override {
     OmniSettings o;
     if (doc.contains("omni"))
       if (Status s = parse_omni(doc.at("omni"), o.timing); !s) return s;
     if (Status s = parse_straightness(doc, o.straightness); !s) return s;
-    out.as<OmniSettings>() = o;
+    out.set(o);
     return {};
   }
   void write_settings(const TaskConfig& config, nlohmann::json& doc) const override {

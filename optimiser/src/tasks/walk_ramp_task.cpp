@@ -113,26 +113,31 @@ class RampEpisode final : public TaskEpisode {
   PlanarPose window_start_, direction_start_;
 };
 
+/// `ramp` and the straightness limits.
+std::vector<std::string_view> ramp_settings_fields() {
+  std::vector<std::string_view> fields = {"ramp"};
+  fields.insert(fields.end(), std::begin(kStraightnessFields), std::end(kStraightnessFields));
+  return fields;
+}
+
 class WalkRampTask final : public TaskType {
  public:
-  std::string_view name() const override { return "walk-ramp"; }
-  int constraint_count() const override { return 2; }
-  ObjectiveLabels objective_labels(const nlohmann::json&) const override {
-    return {"-(v_f + v_b + 2 v_side + 0.2 w_turn), top speeds [m/s]", "max |a| [m/s^2]"};
-  }
-  std::string objective_legend() const override {
-    return "f1 -(v_f + v_b + 2 v_side + 0.2 w_turn) of the top speeds, f2 max |a| [m/s^2]";
-  }
-  const char* best_f1_pick() const override { return "fastest"; }
-  const char* best_f2_pick() const override { return "most_stable"; }
-  ValidationWords validation_words() const override {
-    return {"hold a speed in every direction",
-            "holds a speed in every direction",
-            "does not hold a speed in every direction",
-            "speed score",
-            "walk",
-            "its median speed score is {} % worse than in the run"};
-  }
+  WalkRampTask()
+      : TaskType(
+            {.name = "walk-ramp",
+             .constraint_count = 2,
+             .labels = {"-(v_f + v_b + 2 v_side + 0.2 w_turn), top speeds [m/s]",
+                        "max |a| [m/s^2]"},
+             .legend =
+                 "f1 -(v_f + v_b + 2 v_side + 0.2 w_turn) of the top speeds, f2 max |a| [m/s^2]",
+             .best_f1_pick = "fastest",
+             .best_f2_pick = "most_stable",
+             .words = {"hold a speed in every direction", "holds a speed in every direction",
+                       "does not hold a speed in every direction", "speed score", "walk",
+                       "its median speed score is {} % worse than in the run"},
+             .measures_directions = true,
+             .episodes_per_world = kOmniSegments,
+             .settings_fields = ramp_settings_fields()}) {}
   bool succeeded(const TaskConfig&, const EpisodeScore& score) const override {
     return every_direction_measured(score);
   }
@@ -146,20 +151,13 @@ class WalkRampTask final : public TaskType {
       const std::vector<const EpisodeScore*>& seeds) const override {
     return direction_validation_figures(seeds);
   }
-  bool measures_directions() const override { return true; }
-  int episodes_per_world() const override { return kOmniSegments; }
-  std::vector<std::string_view> settings_fields() const override {
-    std::vector<std::string_view> fields = {"ramp"};
-    fields.insert(fields.end(), std::begin(kStraightnessFields), std::end(kStraightnessFields));
-    return fields;
-  }
   Status parse_settings(const nlohmann::json& doc, const TaskConfig&,
                         OwnSettings& out) const override {
     RampSettings r;
     if (doc.contains("ramp"))
       if (Status s = parse_ramp(doc.at("ramp"), r.timing); !s) return s;
     if (Status s = parse_straightness(doc, r.straightness); !s) return s;
-    out.as<RampSettings>() = r;
+    out.set(r);
     return {};
   }
   void write_settings(const TaskConfig& config, nlohmann::json& doc) const override {

@@ -81,10 +81,26 @@ class WalkEpisode final : public TaskEpisode {
   bool requested_ = false;
 };
 
+/// The walk's settings fields: its own and the straightness limits.
+std::vector<std::string_view> walk_settings_fields() {
+  std::vector<std::string_view> fields = {"goal_distance_m", "walk_vx"};
+  fields.insert(fields.end(), std::begin(kStraightnessFields), std::end(kStraightnessFields));
+  return fields;
+}
+
 class WalkTask final : public TaskType {
  public:
-  std::string_view name() const override { return "walk"; }
-  int constraint_count() const override { return 3; }
+  WalkTask()
+      : TaskType({.name = "walk",
+                  .constraint_count = 3,
+                  .labels = {"time to 2.5 m [s]", "max |a| [m/s^2]"},
+                  .legend = "f1 time to goal [s], f2 max |a| [m/s^2]",
+                  .best_f1_pick = "fastest",
+                  .best_f2_pick = "most_stable",
+                  .words = {"reach the goal", "reaches the goal", "does not reach the goal in time",
+                            "time to the goal", "walk", "{} % slower than in the run"},
+                  .settings_fields = walk_settings_fields()}) {}
+  /// The goal in the first label is the config's.
   ObjectiveLabels objective_labels(const nlohmann::json& task_doc) const override {
     double goal = 2.5;
     if (task_doc.is_object() && task_doc.contains("goal_distance_m") &&
@@ -92,20 +108,7 @@ class WalkTask final : public TaskType {
       goal = task_doc["goal_distance_m"].get<double>();
     char f1[64];
     std::snprintf(f1, sizeof f1, "time to %.3g m [s]", goal);
-    return {f1, "max |a| [m/s^2]"};
-  }
-  std::string objective_legend() const override {
-    return "f1 time to goal [s], f2 max |a| [m/s^2]";
-  }
-  const char* best_f1_pick() const override { return "fastest"; }
-  const char* best_f2_pick() const override { return "most_stable"; }
-  ValidationWords validation_words() const override {
-    return {"reach the goal",
-            "reaches the goal",
-            "does not reach the goal in time",
-            "time to the goal",
-            "walk",
-            "{} % slower than in the run"};
+    return {f1, descriptor().labels.f2};
   }
   bool succeeded(const TaskConfig&, const EpisodeScore& score) const override {
     return score.figures.read<WalkFigures>().time_to_goal_s >= 0.0;
@@ -122,11 +125,6 @@ class WalkTask final : public TaskType {
                   config.own_settings<WalkSettings>().goal_distance_m, figures.time_to_goal_s);
     return text;
   }
-  std::vector<std::string_view> settings_fields() const override {
-    std::vector<std::string_view> fields = {"goal_distance_m", "walk_vx"};
-    fields.insert(fields.end(), std::begin(kStraightnessFields), std::end(kStraightnessFields));
-    return fields;
-  }
   Status parse_settings(const nlohmann::json& doc, const TaskConfig&,
                         OwnSettings& out) const override {
     WalkSettings w;
@@ -136,7 +134,7 @@ class WalkTask final : public TaskType {
     if (!(w.walk_vx >= -1.0 && w.walk_vx <= 1.0))
       return Status::error("walk_vx: must be in [-1, 1]");
     if (Status s = parse_straightness(doc, w.straightness); !s) return s;
-    out.as<WalkSettings>() = w;
+    out.set(w);
     return {};
   }
   void write_settings(const TaskConfig& config, nlohmann::json& doc) const override {

@@ -153,8 +153,8 @@ TEST(GetUpTask, TheDefaultScriptsAreTheStartGenomeAndStopOnceStood) {
 TEST(GetUpTask, IsOneEntryOfTheRegistryAndAnUnknownTaskNamesTheChoices) {
   const TaskType* type = find_task_type("getup");
   ASSERT_NE(type, nullptr);
-  EXPECT_EQ(type->episodes_per_world(), 2);
-  EXPECT_EQ(type->constraint_count(), 1);
+  EXPECT_EQ(type->descriptor().episodes_per_world, 2);
+  EXPECT_EQ(type->descriptor().constraint_count, 1);
   const TaskConfig config = getup_config();
   EXPECT_EQ(RobotTask(config).shape().constraints, 1);
   EXPECT_EQ(config.genes.size(), 116u);  // 108 targets and 8 frame durations

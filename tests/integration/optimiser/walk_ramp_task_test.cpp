@@ -99,7 +99,7 @@ TEST(WalkRampTask, IndOsLimitsCommandOnlyTheForwardLevels) {
   const TaskConfig config = ramp_config(trials);
   const RobotTask task(config);
   ASSERT_TRUE(task.check());
-  EXPECT_EQ(task.type()->episodes_per_world(), 6);
+  EXPECT_EQ(task.type()->descriptor().episodes_per_world, 6);
   const auto speeds = top_speeds(task, task.start_genome(), trials, config);
   for (int d = 1; d < kOmniSegments; ++d)
     for (const double v : speeds[static_cast<std::size_t>(d)])

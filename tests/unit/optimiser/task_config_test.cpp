@@ -145,7 +145,7 @@ TEST(TaskConfig, ErrorsNameTheField) {
   d["max_heading_change_deg"] = nullptr;  // off
   EXPECT_EQ(error_of(d), "ok");
   d = minimal();
-  d["task"] = "walk-omni";  // its own setting: read by walk-omni, accepted and not read by walk
+  d["task"] = "walk-omni";  // its own setting: read by walk-omni, an error for walk
   d["omni"] = {{"hold_s", 0.5}};
   EXPECT_EQ(error_of(d), "omni.hold_s: must be at least 1 s");
   d["omni"] = {{"pause_s", 1.0}};
@@ -153,7 +153,7 @@ TEST(TaskConfig, ErrorsNameTheField) {
   d["omni"] = {{"start_s", "soon"}};
   EXPECT_EQ(error_of(d), "omni.start_s: must be a number");
   d["task"] = "walk";
-  EXPECT_EQ(error_of(d), "ok");
+  EXPECT_EQ(error_of(d), "field 'omni' belongs to task walk-omni, not walk");
 }
 
 TEST(TaskConfig, StraightnessLimitsRoundTripIncludingOff) {

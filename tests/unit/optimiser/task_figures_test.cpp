@@ -2,6 +2,9 @@
 // a world's episodes and shown (outcome notes, validation figures) by the task types.
 #include <gtest/gtest.h>
 
+#include <functional>
+#include <vector>
+
 #include "stride/optimiser/tasks/direction_figures.hpp"
 #include "stride/optimiser/tasks/episode_score.hpp"
 #include "stride/optimiser/tasks/getup_figures.hpp"
@@ -15,23 +18,46 @@ namespace {
 TEST(TaskFigures, HoldsOneTasksStructByType) {
   TaskFigures figures;
   EXPECT_TRUE(figures.empty());
-  EXPECT_EQ(figures.get<WalkFigures>(), nullptr);
+  EXPECT_EQ(figures.find<WalkFigures>(), nullptr);
   figures.as<WalkFigures>().time_to_goal_s = 12.5;
-  ASSERT_NE(figures.get<WalkFigures>(), nullptr);
-  EXPECT_EQ(figures.get<WalkFigures>()->time_to_goal_s, 12.5);
-  EXPECT_EQ(figures.get<KickFigures>(), nullptr);  // not another task's
+  ASSERT_NE(figures.find<WalkFigures>(), nullptr);
+  EXPECT_EQ(figures.get<WalkFigures>().time_to_goal_s, 12.5);
+  EXPECT_EQ(figures.find<KickFigures>(), nullptr);  // not another task's
   EXPECT_FALSE(figures.empty());
 }
 
-TEST(TaskFigures, ReadGivesTheDefaultsOfAnotherTasksFigures) {
+TEST(TaskFigures, ReadGivesTheDefaultsOfNoFigures) {
   TaskFigures figures;
   EXPECT_EQ(figures.read<GetUpFigures>().stand_time_s, -1.0);
   figures.as<KickFigures>().ball_distance_m = 0.7;
   EXPECT_EQ(figures.read<KickFigures>().ball_distance_m, 0.7);
-  EXPECT_EQ(figures.read<WalkFigures>().time_to_goal_s, -1.0);
-  // as<T>() over another task's figures starts from T's defaults.
-  EXPECT_EQ(figures.as<GetUpFigures>().stood, 0);
-  EXPECT_EQ(figures.get<KickFigures>(), nullptr);
+  figures.set(GetUpFigures{});  // set replaces them whatever they were
+  EXPECT_EQ(figures.get<GetUpFigures>().stood, 0);
+  EXPECT_EQ(figures.find<KickFigures>(), nullptr);
+}
+
+TEST(TaskFigures, AnotherTasksFiguresAreAnErrorNamingBothTypes) {
+  TaskFigures figures;
+  try {
+    (void)figures.get<WalkFigures>();
+    ADD_FAILURE() << "get<T>() of no figures returned";
+  } catch (const TaskValueTypeError& e) {
+    EXPECT_STREQ(e.what(), "task figures: expected stride::opt::WalkFigures, holds none");
+  }
+  figures.as<KickFigures>().ball_distance_m = 0.7;
+  for (const auto& wrong : std::vector<std::function<void()>>{
+           [&] { (void)figures.get<WalkFigures>(); }, [&] { (void)figures.read<WalkFigures>(); },
+           [&] { (void)figures.as<WalkFigures>(); }}) {
+    try {
+      wrong();
+      ADD_FAILURE() << "another task's figures read as a WalkFigures";
+    } catch (const TaskValueTypeError& e) {
+      EXPECT_STREQ(e.what(),
+                   "task figures: expected stride::opt::WalkFigures, holds "
+                   "stride::opt::KickFigures");
+    }
+  }
+  EXPECT_EQ(figures.get<KickFigures>().ball_distance_m, 0.7);  // unchanged
 }
 
 TEST(TaskFigures, CopiesWithTheScore) {
@@ -100,11 +126,12 @@ TEST(TaskFigures, TheOutcomeNotesComeFromEachTasksFigures) {
   s.figures.as<DirectionFigures>().distance_m = 1.234;
   EXPECT_EQ(find_task_type("walk-omni")->outcome_note(config, s, 20.0),
             "1.23 m in 20 s, goal not reached");
+  s.figures = {};
   s.figures.as<KickFigures>().ball_distance_m = 0.75;
   EXPECT_EQ(find_task_type("kick")->outcome_note(config, s, 3.0), "ball kicked 0.75 m");
   s.fell = true;
   EXPECT_EQ(find_task_type("kick")->outcome_note(config, s, 1.5), "fell at 1.50 s");
-  s.figures.as<GetUpFigures>().stood = 1;
+  s.figures.set(GetUpFigures{.stood = 1});
   EXPECT_EQ(find_task_type("getup")->outcome_note(config, s, 9.0), "stood up in 1 of 2 episodes");
 }
 

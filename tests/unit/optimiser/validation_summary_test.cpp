@@ -52,6 +52,7 @@ TEST(ValidationSummary, MedianReachedAndGateObjective) {
   EXPECT_FALSE(validation_reached(kick, s));
   s.figures.as<KickFigures>().ball_distance_m = 0.5;
   EXPECT_TRUE(validation_reached(kick, s));
+  s = {};
   EXPECT_FALSE(validation_reached(omni, s));  // no segment measured
   for (auto& seg : s.figures.as<DirectionFigures>().segments) seg.measured = true;
   EXPECT_TRUE(validation_reached(omni, s));

@@ -45,7 +45,7 @@ std::vector<OldWorld> old_validation_worlds(const RobotTask& task,
     OldWorld w{std::string("engine ") + sim::to_string(e), base};
     w.options.engine = e;
     w.options.physics_step_ns =
-        std::min(w.options.physics_step_ns, type->trial_physics_step_us(e) * 1000);
+        std::min(w.options.physics_step_ns, type->descriptor().trial_physics_step_us(e) * 1000);
     out.push_back(w);
   }
   out.push_back({"fresh seeds", base});

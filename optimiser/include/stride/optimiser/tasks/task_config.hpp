@@ -74,13 +74,14 @@ struct TaskConfig {
   /// and written by the type (TaskType::parse_settings, write_settings); none for a task that
   /// has none. own_settings<T>() reads them.
   OwnSettings own;
-  /// The task's own settings as a T (the type's defaults if the config holds none of that type).
+  /// The task's own settings, which must be a T: T's defaults if the config holds none (one
+  /// built in code), a TaskValueTypeError naming both types if it holds another task's.
   template <class T>
   const T& own_settings() const {
     static const T defaults{};
-    const T* s = own.get<T>();
-    return s != nullptr ? *s : defaults;
+    return own.empty() ? defaults : own.get<T>();
   }
+  /// The same, to write (T's defaults first if the config holds none).
   template <class T>
   T& own_settings() {
     return own.as<T>();
@@ -132,8 +133,15 @@ struct TaskConfig {
   std::vector<double> hv_nadir;
 };
 
-/// Parses a task config; the error names the field.
+/// Parses a task config; the error names the field. A field that is another task's own setting
+/// (TaskDescriptor::settings_fields) is an error naming the field and the task it belongs to:
+/// "field 'kick_at_s' belongs to task kick, not walk".
 Status parse_task_config(const nlohmann::json& doc, TaskConfig& out);
+/// Parses the task record of a run's run.json (--resume, stride report, stride validate): as
+/// parse_task_config, but other tasks' own settings are left out first. The run.json of a run
+/// from before the tasks owned their settings recorded every task's (their defaults, which its
+/// task never read); to_json writes the task's own only.
+Status parse_task_record(const nlohmann::json& doc, TaskConfig& out);
 /// Reads and parses a file; the error names the file and the field.
 Status load_task_config(const std::filesystem::path& path, TaskConfig& out);
 /// The trials' physics step the config's task type allows on every one of its engines [us]:
