@@ -1,5 +1,6 @@
 // MxServo: the identified MX servo law (firmware P-to-duty, DC motor, friction budget, backlash).
-// Figures: ../shared/robot/servos.md and BAM's published parameter files (see mx_servo.hpp).
+// Figures: the MX motor table (fw::mx_motor, kt, R, armature) and BAM's published friction
+// parameters (../shared/robot/servos.md; see mx_servo.hpp).
 #include "stride/sim_hal/mx_servo.hpp"
 
 #include <algorithm>
@@ -31,19 +32,20 @@ MxServoParams mx_servo_params(fw::ServoModel model, double supply_voltage_v,
   p.supply_voltage_v = supply_voltage_v;
   MxFriction& f = p.friction;
   const bool mx64 = model == fw::ServoModel::kMx64;
+  const fw::MxMotor& motor = fw::mx_motor(model);
   if (friction == MxFrictionModel::kM1) {
     // BAM params mx64/m1.json and mx106/m1.json.
-    p.torque_constant = mx64 ? 1.6224668 : 2.1913757;
-    p.resistance_ohm = mx64 ? 3.9494337 : 2.9649904;
-    p.armature_kg_m2 = mx64 ? 0.0119512 : 0.0266092;
+    p.torque_constant = motor.m1.torque_constant;
+    p.resistance_ohm = motor.m1.resistance_ohm;
+    p.armature_kg_m2 = motor.m1.armature_kg_m2;
     f.base_nm = mx64 ? 0.0903868 : 0.1035203;
     f.viscous_nm_s = mx64 ? 0.0116916 : 0.0352024;
     return p;
   }
-  // BAM M6 (servos.md table).
-  p.torque_constant = mx64 ? 1.6016833 : 2.2098282;
-  p.resistance_ohm = mx64 ? 2.3164043 : 2.0336617;
-  p.armature_kg_m2 = mx64 ? 0.0122659 : 0.0260162;
+  // BAM M6 (servos.md table); the motor's figures from the MX motor table, friction here.
+  p.torque_constant = motor.m6.torque_constant;
+  p.resistance_ohm = motor.m6.resistance_ohm;
+  p.armature_kg_m2 = motor.m6.armature_kg_m2;
   f.base_nm = mx64 ? 6.2179e-7 : 1.02325e-5;
   f.stribeck_nm = mx64 ? 0.1226953 : 0.1219541;
   f.stribeck_speed_rad_s = mx64 ? 2.5752774 : 1.7463252;

@@ -1,7 +1,10 @@
 // ServoModel: MX servo torque model (set-point, P control, torque-speed saturation, friction).
 #include "stride/sim_hal/servo_model.hpp"
 
+#include "stride/firmware/mx_motor.hpp"
+
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace stride::sim {
@@ -10,7 +13,7 @@ namespace {
 constexpr double kRpm = 2.0 * M_PI / 60.0;
 
 /// Piecewise-linear through (v[i], y[i]), extrapolated with the end segments.
-double interpolate(const double (&v)[3], const double (&y)[3], double x) {
+double interpolate(const std::array<double, 3>& v, const std::array<double, 3>& y, double x) {
   const int seg = x < v[1] ? 0 : 1;
   return y[seg] + (y[seg + 1] - y[seg]) * (x - v[seg]) / (v[seg + 1] - v[seg]);
 }
@@ -22,18 +25,13 @@ double quantise_encoder(double angle_rad) {
 }
 
 MotorCurve motor_curve(fw::ServoModel model, double voltage_v) {
-  static constexpr double kVolts[3] = {11.1, 12.0, 14.8};
-  static constexpr double kMx64Torque[3] = {5.5, 6.0, 7.3};
-  static constexpr double kMx64Rpm[3] = {58.0, 63.0, 78.0};
-  static constexpr double kMx106Torque[3] = {8.0, 8.4, 10.0};
-  static constexpr double kMx106Rpm[3] = {41.0, 45.0, 55.0};
-  const bool mx64 = model == fw::ServoModel::kMx64;
+  const fw::MxMotor& motor = fw::mx_motor(model);
   MotorCurve out;
   out.stall_torque_nm =
-      std::max(0.0, interpolate(kVolts, mx64 ? kMx64Torque : kMx106Torque, voltage_v));
+      std::max(0.0, interpolate(fw::kMxDatasheetVolts, motor.stall_torque_nm, voltage_v));
   out.no_load_speed_rad_s =
-      std::max(1e-3, interpolate(kVolts, mx64 ? kMx64Rpm : kMx106Rpm, voltage_v) * kRpm);
-  out.gear_ratio = mx64 ? 200.0 : 225.0;
+      std::max(1e-3, interpolate(fw::kMxDatasheetVolts, motor.no_load_speed_rpm, voltage_v) * kRpm);
+  out.gear_ratio = motor.gear_ratio;
   return out;
 }
 

@@ -6,16 +6,10 @@
 #include <stdexcept>
 #include <string>
 
+#include "stride/firmware/mx_motor.hpp"
+
 namespace stride::fw::walk {
 namespace {
-
-// MX P law: duty per (P register x rad) (Rhoban's oscilloscope measurement, servos.md).
-constexpr double kErrorGain = 0.158;
-constexpr double kNominalSupplyV = 14.8;
-
-// BAM M6 identification (servos.md): torque constant [N m/A] and winding resistance [ohm].
-constexpr double kMx106Kt = 2.2098, kMx106R = 2.0337;
-constexpr double kMx64Kt = 1.6017, kMx64R = 2.3164;
 
 constexpr std::array<const char*, 12> kLegServos = {
     "l_hip_yaw", "l_hip_roll", "l_hip_pitch", "l_knee", "l_ankle_pitch", "l_ankle_roll",
@@ -51,9 +45,9 @@ ComplianceCompensation::ComplianceCompensation(ParameterStore& store, const Robo
   left_foot_joint_ = robot.joint_of_servo(servo_index(servos, "l_ankle_roll"));
   right_foot_joint_ = robot.joint_of_servo(servo_index(servos, "r_ankle_roll"));
   for (std::size_t i = 0; i < hal::kServoCount; ++i) {
-    const bool big = servos[i].model == ServoModel::kMx106;
-    torque_constant_[i] = big ? kMx106Kt : kMx64Kt;
-    resistance_[i] = big ? kMx106R : kMx64R;
+    const MxMotorFit& motor = mx_motor(servos[i].model).m6;
+    torque_constant_[i] = motor.torque_constant;
+    resistance_[i] = motor.resistance_ohm;
   }
 }
 
@@ -131,8 +125,8 @@ void ComplianceCompensation::apply(std::array<double, hal::kServoCount>& targets
     const double tau = -frames_.axis[j].dot(moment);
     torque_[servo] = tau;
     const double volts = sensors.servos[servo].voltage_v;
-    const double v = std::isfinite(volts) && volts > 5.0 ? volts : kNominalSupplyV;
-    const double stiffness = kErrorGain * p_gain[servo] * v;  // duty volts per rad
+    const double v = std::isfinite(volts) && volts > 5.0 ? volts : kMxNominalSupplyV;
+    const double stiffness = kMxErrorGain * p_gain[servo] * v;  // duty volts per rad
     if (!(stiffness > 0.0)) continue;
     const double kt = torque_constant_[servo];
     const double speed =

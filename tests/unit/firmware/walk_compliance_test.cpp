@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "counting_allocator.hpp"
+#include "stride/firmware/mx_motor.hpp"
 #include "stride/firmware/stand_pose.hpp"
 
 namespace stride::fw::walk {
@@ -59,8 +60,10 @@ TEST(WalkCompliance, AStanceLegCarriesTheRobotAndItsKneeIsCommandedStraighter) {
   // The swing leg holds only itself: its knee torque is a small fraction.
   EXPECT_LT(std::abs(tau[index("r_knee")]), 0.1 * std::abs(tau[index("l_knee")]));
   // Offsets are torque / stiffness: an MX-106 at P 38 and 14.8 V gives 0.158 P V kt / R with
-  // the identified kt and R (2.2098 N m/A, 2.0337 ohm): 96.6 N m/rad.
-  const double stiffness = 0.158 * 38.0 * 14.8 * 2.2098 / 2.0337;
+  // the identified kt and R of the MX motor table (2.2098 N m/A, 2.0337 ohm): 96.6 N m/rad.
+  const double stiffness =
+      0.158 * 38.0 * 14.8 * fw::kMx106.m6.torque_constant / fw::kMx106.m6.resistance_ohm;
+  EXPECT_NEAR(stiffness, 96.6, 0.05);
   EXPECT_NEAR(rig.compensation.offsets()[index("l_knee")], tau[index("l_knee")] / stiffness, 1e-12);
   // Arms are left alone.
   EXPECT_EQ(rig.targets[index("l_elbow")], before[index("l_elbow")]);
@@ -103,7 +106,7 @@ TEST(WalkCompliance, BackEmfFeedForwardFollowsTheGoalsSpeed) {
   moved[index("l_knee")] += 0.01;  // 1 rad/s at 100 Hz
   rig.targets = moved;
   rig.compensation.apply(rig.targets, kGravity, {true, true}, rig.gains, rig.sensors);
-  const double expected = 2.2098 * 1.0 / (0.158 * 38.0 * 14.8);
+  const double expected = fw::kMx106.m6.torque_constant * 1.0 / (0.158 * 38.0 * 14.8);
   EXPECT_NEAR(rig.targets[index("l_knee")] - moved[index("l_knee")], expected, 1e-9);
 }
 

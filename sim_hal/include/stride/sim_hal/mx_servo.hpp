@@ -2,7 +2,8 @@
 // does not depend on the physics engine (pure arithmetic, no allocation, no I/O).
 //
 // The law (../shared/robot/servos.md; Rhoban BAM, Duclusaud & Passault, ICRA 2025,
-// arXiv 2410.08650), per physics step of length h:
+// arXiv 2410.08650; the motor's figures from the MX motor table, firmware mx_motor.hpp), per
+// physics step of length h:
 //  1. Moving speed: an internal set-point moves towards the goal at the Moving Speed register's
 //     rate (0 = no speed control: it jumps to the goal), as the MX firmware does.
 //  2. Firmware P law on the output encoder (4096 ticks/rev, quantised):
@@ -32,6 +33,7 @@
 // figure it should use, and the inertia the stopping torque of step 4 is computed with.
 #pragma once
 
+#include "stride/firmware/mx_motor.hpp"
 #include "stride/firmware/servo_table.hpp"
 
 namespace stride::sim {
@@ -67,16 +69,17 @@ struct MxFriction {
 
 struct MxServoParams {
   // Motor and driver.
-  double torque_constant = 2.2098;   ///< kt [N m/A = V s/rad] at the output
-  double resistance_ohm = 2.0337;    ///< R [ohm]
-  double armature_kg_m2 = 0.026016;  ///< reflected inertia about the joint axis
-  double supply_voltage_v = 14.8;    ///< the robot's 4S LiPo, nominal
-  double error_gain = 0.158;         ///< duty per (P register x rad)
-  double max_duty = 0.9625;          ///< largest PWM duty the firmware sets
-  double driver_drop_v = 0.27;       ///< bridge voltage loss (fitted to the speed table)
-  double strength = 1.0;             ///< scales the motor torque (world randomisation)
+  // Defaults: the MX-106 (BAM M6) of the MX motor table (fw::mx_motor).
+  double torque_constant = fw::kMx106.m6.torque_constant;  ///< kt [N m/A = V s/rad] at the output
+  double resistance_ohm = fw::kMx106.m6.resistance_ohm;    ///< R [ohm]
+  double armature_kg_m2 = fw::kMx106.m6.armature_kg_m2;    ///< reflected inertia about the joint
+  double supply_voltage_v = fw::kMxNominalSupplyV;         ///< the robot's 4S LiPo, nominal
+  double error_gain = fw::kMxErrorGain;                    ///< duty per (P register x rad)
+  double max_duty = fw::kMxMaxDuty;                        ///< largest PWM duty the firmware sets
+  double driver_drop_v = 0.27;  ///< bridge voltage loss (fitted to the speed table)
+  double strength = 1.0;        ///< scales the motor torque (world randomisation)
   MxFriction friction{};
-  double backlash_rad = 0.33 * 3.14159265358979323846 / 180.0;  ///< total play (20 arcmin)
+  double backlash_rad = fw::kMxBacklashRad;  ///< total play (20 arcmin)
   // Joint end stops.
   bool limited = false;
   double lower = 0.0, upper = 0.0;  ///< [rad]

@@ -29,8 +29,8 @@ inline constexpr double kMaxMovingSpeedRadS = 1023.0 * 0.114 * 2.0 * 3.141592653
 double quantise_encoder(double angle_rad);
 
 /// Stall torque and no-load speed of a servo model at a supply voltage, interpolated linearly
-/// through the e-manual figures (igus.md 6.1; MX-64 5.5/6.0/7.3 N m, 58/63/78 rpm; MX-106
-/// 8.0/8.4/10.0 N m, 41/45/55 rpm at 11.1/12/14.8 V) and extrapolated beyond them.
+/// through the e-manual figures of the MX motor table (fw::mx_motor: stall torque and no-load
+/// speed at 11.1/12/14.8 V) and extrapolated beyond them; the gear ratio from the same table.
 struct MotorCurve {
   double stall_torque_nm = 0.0;
   double no_load_speed_rad_s = 0.0;

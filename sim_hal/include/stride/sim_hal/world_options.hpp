@@ -135,11 +135,11 @@ struct ServoOptions {
   ServoLaw law = ServoLaw::kIdentified;
   // ServoLaw::kIdentified: the published MX parameters (mx_servo_params) with these options.
   MxFrictionModel friction_model = MxFrictionModel::kM6;
-  double backlash_rad = 0.33 * 3.14159265358979323846 / 180.0;  ///< e-manual: 20 arcmin
-  double driver_drop_v = 0.27;          ///< fitted to BAM's no-load speed table (mx_servo.hpp)
-  double kp_per_register = 4.0 / 2.54;  ///< N m/rad per P unit (see README: the seed's 4 g)
-  double viscous_friction = 1.0;        ///< seed 1 [N m s/rad]
-  double coulomb_friction = 0.5;        ///< seed 0.5 [N m]
+  double backlash_rad = fw::kMxBacklashRad;  ///< e-manual: 20 arcmin (MX motor table)
+  double driver_drop_v = 0.27;               ///< fitted to BAM's no-load speed table (mx_servo.hpp)
+  double kp_per_register = 4.0 / 2.54;       ///< N m/rad per P unit (see README: the seed's 4 g)
+  double viscous_friction = 1.0;             ///< seed 1 [N m s/rad]
+  double coulomb_friction = 0.5;             ///< seed 0.5 [N m]
   /// Motor rotor inertia before the gearbox [kg m^2]; reflected as J N^2 (N = 200 or 225).
   double rotor_inertia_kg_m2 = 6.0e-8;
 };
@@ -218,7 +218,7 @@ bool parse_world_preset(std::string_view text, WorldPreset& out);
 inline constexpr std::int64_t kDefaultPhysicsStepUs = 2000;
 inline constexpr std::uint64_t kDefaultWorldSeed = 1;
 /// The igus robot's nominal supply voltage [V] (WorldOptions' and a world file's default).
-inline constexpr double kNominalSupplyVoltage = 14.8;
+inline constexpr double kNominalSupplyVoltage = fw::kMxNominalSupplyV;
 
 /// The models of a world: the member initialisers are the faithful world (WorldPreset
 /// kFaithful; kSeed is the thesis's world) with the sensor noise off, the quiet world the tests

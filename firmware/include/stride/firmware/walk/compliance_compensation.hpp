@@ -11,9 +11,10 @@
 // acts at its ankle shifted by P's offset from the line between the ankles). For each leg
 // joint j with axis e_j at p_j, the torque the servo must apply to the distal part is
 //   tau_j = -e_j . [ sum_{links k below j} (c_k - p_j) x m_k f  +  (P_foot - p_j) x F_foot ].
-// Servo (the MX firmware's P law into a DC motor with back-EMF; ../shared/robot/servos.md,
-// Rhoban BAM M6 figures): tau = kt (0.158 P (q_goal - q) V - kt w) / R, so the goal that
-// delivers tau at the planned joint speed w is
+// Servo (the MX firmware's P law into a DC motor with back-EMF; kt, R and the P law's 0.158
+// from the MX motor table, mx_motor.hpp, BAM M6):
+//   tau = kt (0.158 P (q_goal - q) V - kt w) / R,
+// so the goal that delivers tau at the planned joint speed w is
 //   q_goal = q_ref + gain * tau R / (0.158 P V kt) + back_emf_gain * kt w / (0.158 P V),
 // clamped to +-max_offset. V is the servo's reported supply voltage (14.8 V if none).
 // Friction is not fed forward: the MX's Stribeck and load friction are a dead band around the
