@@ -7,7 +7,8 @@ time under `nice`.
 
   python3 tests/bench/walk_speed_per_direction.py [--engines simbody,mujoco] [--seeds 1,2,3]
       [--params FILE]... [--grounds turf,soft,hard] [--stride build/release/bin/stride]
-      [--worlds faithful,FILE.json] [--curves] [--json OUT] [-- extra sim options]
+      [--worlds faithful,FILE.json] [--curves] [--only forward,backward,...] [--json OUT]
+      [-- extra sim options]
 
 --params may be given several times (one table row per file, engine and ground); "defaults"
 is the firmware without a parameter file. --grounds are `--contact` values: turf (the
@@ -82,6 +83,7 @@ def main():
     ap.add_argument("--worlds", default="faithful",
                     help="comma-separated worlds: faithful or world files (one row each)")
     ap.add_argument("--curves", action="store_true", help="add the curve and the diagonal")
+    ap.add_argument("--only", help="comma-separated directions to run (default: all)")
     ap.add_argument("--stride", default=os.path.join(ROOT, "build", "release", "bin", "stride"))
     ap.add_argument("--json", help="write every run's result here")
     ap.add_argument("--jobs", type=int, default=2)
@@ -93,6 +95,8 @@ def main():
     grounds = args.grounds.split(",") if args.grounds else [""]
     worlds = args.worlds.split(",")
     directions = DIRECTIONS + (CURVES if args.curves else [])
+    if args.only:
+        directions = [d for d in directions if d[0] in args.only.split(",")]
     jobs = {}
     with concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs) as pool:
         for params in files:
