@@ -3,9 +3,10 @@
 // kick in the default world as their runs found, through `stride sim --params` as a user would
 // run them: walk-fast.json to 2.5 m in well under Ind_O's 19 s, walk-most-stable.json with a
 // lower peak acceleration than Ind_O, walk-fast-steady.json both at once (the seed's headline),
-// walk-omnidirectional.json and walk-omni-robust.json in every direction, kick-right-far.json at
-// least twice Ind_O's distance with less sway. Noise on, judged over seeds 1-5 (tests/README.md):
-// medians against limits, with the figures in the comments, and falls counted with one to spare.
+// walk-omnidirectional.json, walk-omni-robust.json and walk-spline-omni.json in every direction,
+// kick-right-far.json at least twice Ind_O's distance with less sway. Noise on, judged over
+// seeds 1-5 (tests/README.md): medians against limits, with the figures in the comments, and
+// falls counted with one to spare.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
@@ -236,6 +237,41 @@ TEST(ShippedPicks, WalkOmniRobustStepsSidewaysOnSoftGround) {
         [&](const nlohmann::json& r) { return side * r.at("lateral_m").get<double>(); }, &fell);
     EXPECT_LE(fell, 1);
     EXPECT_GT(way.median(), 0.65);  // 0.827 and 0.822 m, IQR <= 0.046
+  }
+}
+
+// The commanded-walk run's fastest (issue 53: walk-command-search.json on the spline walk,
+// optimiser/RESULTS.md "The walk-command run"; its speeds per ground and engine, pushes and
+// servos off the model: tests/bench/RESULTS.md): it walks the five directions in the default
+// world without a fall. 12 s on seeds 1-5; falls counted with one to spare, and the median
+// displacement the commanded way. Measured 2026-11-28, seeds 1-20, no fall in 100 runs: forward
+// 2.501 m (IQR 0.032; the 2.5 m goal ends the episode), backward 2.253 m (IQR 0.016), left
+// 2.340 m (IQR 0.072), right 2.341 m (IQR 0.061), turned left 16.39 rad (IQR 0.40); each limit
+// 10 % under its median, which is more than 3 IQR.
+TEST(ShippedPicks, WalkSplineOmniWalksEveryDirection) {
+  const std::string walk = "walk --duration 12 --params " + kConfig + "walk-spline-omni.json";
+  struct Direction {
+    const char* name;
+    const char* command;
+    double (*figure)(const nlohmann::json&);
+    double limit;
+  };
+  const Direction directions[] = {
+      {"forward [m]", " --vx 1", [](const nlohmann::json& r) { return distance(r); }, 2.25},
+      {"backward [m]", " --vx -1", [](const nlohmann::json& r) { return -distance(r); }, 2.0},
+      {"left [m]", " --vy 1",
+       [](const nlohmann::json& r) { return r.at("lateral_m").get<double>(); }, 2.1},
+      {"right [m]", " --vy -1",
+       [](const nlohmann::json& r) { return -r.at("lateral_m").get<double>(); }, 2.1},
+      {"turned left [rad]", " --vth 1",
+       [](const nlohmann::json& r) { return r.at("turned_rad").get<double>(); }, 14.5},
+  };
+  for (const Direction& d : directions) {
+    SCOPED_TRACE(d.name);
+    int fell = 0;
+    const test::Figures way = over_seeds(d.name, walk + d.command, d.figure, &fell);
+    EXPECT_LE(fell, 1);
+    EXPECT_GT(way.median(), d.limit);
   }
 }
 
