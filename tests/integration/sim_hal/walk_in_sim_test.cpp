@@ -165,11 +165,11 @@ constexpr double kDeg = 180.0 / 3.141592653589793;
 // The stock forward walk, 20 s, seeds 1..10: with the hold on the median seed ends within a few
 // degrees of its start heading (mean over the last 2 s) and its feet near the start line.
 // Measured 2026-11-28, seeds 1-20: median |yaw| 1.42 deg (IQR 1.42, up to 4.06), median |feet y|
-// 0.008 m (IQR 0.024, up to 0.073); no fall (the worst of seeds 1-10, which the test asserted
-// before: 4.4 deg or 3.46 deg, 0.035 or 0.073 m; the hold off 7.7 deg, 0.118 m). Pins the seed's
-// world and walk (issue 22's measurement). In the faithful default world the closed-loop walk with
-// the same hold ends up to 17.8 deg off and its feet up to 0.50 m to the side (seeds 1-10): the
-// straightness of issue 29 point 5, not met there.
+// 0.008 m (IQR 0.024, up to 0.073); no fall in seeds 1-20 (the worst of seeds 1-10, which the test
+// asserted before: 4.4 deg or 3.46 deg, 0.035 or 0.073 m; the hold off 7.7 deg, 0.118 m). Pins the
+// seed's world and walk (issue 22's measurement). In the faithful default world the closed-loop
+// walk with the same hold ends up to 17.8 deg off and its feet up to 0.50 m to the side (seeds
+// 1-10): the straightness of issue 29 point 5, not met there.
 TEST(WalkHeadingHold, StockForwardWalkStaysOnItsHeading) {
   int walked = 0;
   const std::vector<test::Figures> f =
@@ -180,7 +180,11 @@ TEST(WalkHeadingHold, StockForwardWalkStaysOnItsHeading) {
         walked += !r.fell && r.distance_m > 1.5 ? 1 : 0;
         return std::vector<double>{std::abs(e.mean_yaw) * kDeg, std::abs(e.feet_y)};
       });
-  EXPECT_GE(walked, static_cast<int>(f[0].size()) - 1) << "1.5 m without a fall";
+  // Walked 1.5 m without a fall: 91 of seeds 1-100 (2026-11-28, this test's episode on main at
+  // 43103d6; seeds 25, 38, 43, 55, 59, 70, 73, 82 and 85 fell or fell short), though seeds 1-20
+  // happened to hold all 20. So the count is 91 % of N with one to spare, not N - 1.
+  EXPECT_GE(walked, test::count_limit(91.0 / 100.0, static_cast<int>(f[0].size())))
+      << "1.5 m without a fall";
   EXPECT_LT(f[0].median(), 6.0);   // 1.42 deg, IQR 1.42 (seeds 1-20)
   EXPECT_LT(f[1].median(), 0.08);  // 0.008 m, IQR 0.024 (seeds 1-20)
 }
