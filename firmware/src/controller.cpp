@@ -6,9 +6,10 @@
 namespace stride::fw {
 
 Controller::Controller(ParameterStore& params, const ServoTable& servos, std::int64_t period_ns,
-                       Engines engines)
+                       AttitudeEstimator& attitude, Engines engines)
     : period_ns_(period_ns),
-      safety_(params, servos, static_cast<double>(period_ns) * 1e-9),
+      attitude_(attitude),
+      safety_(params, servos),
       motion_(params, static_cast<double>(period_ns) * 1e-9, engines.walk, engines.script) {}
 
 void Controller::request(const MotionRequest& request) {
@@ -45,7 +46,8 @@ void Controller::take_inbox() noexcept {
 
 hal::CommandFrame Controller::step(const hal::SensorFrame& sensors, hal::Tick tick) noexcept {
   take_inbox();
-  safety_.observe(sensors);
+  attitude_.update(sensors.cm730);
+  safety_.observe(sensors, attitude_);
   commands_.tick = tick;
   motion_.step(sensors, tick,
                FallSignal{safety_.fallen(), safety_.falling(), safety_.report().fall_direction,

@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
 namespace stride::fw {
 
@@ -23,8 +22,7 @@ const char* to_string(FallDirection direction) {
   return "?";
 }
 
-FallPredictor::FallPredictor(ParameterStore& params, double period_s)
-    : params_(params), period_s_(period_s) {
+FallPredictor::FallPredictor(ParameterStore& params) : params_(params) {
   tilt_ = params.add_real("fall.tilt_rad", 0.7, 0.2, 1.4, "rad",
                           "torso tilt beyond which any rotation away from upright is a fall");
   rate_ = params.add_real("fall.rate_rad_s", 3.0, 0.5, 20.0, "rad/s",
@@ -32,8 +30,6 @@ FallPredictor::FallPredictor(ParameterStore& params, double period_s)
   confirm_ticks_ =
       params.add({"fall.confirm_ticks", ParamType::kInt, 2, 1, 100, "ticks",
                   "ticks the fall rule must hold before a fall is predicted", false, false});
-  accel_weight_ = params.add_real("fall.accel_weight", 0.02, 0.0, 1.0, "1",
-                                  "per tick pull of the attitude towards the accelerometer");
   upright_ = params.add_real("fall.upright_rad", 0.3, 0.05, 1.0, "rad",
                              "roll and pitch below which the torso is upright (arms the rule)");
 }
@@ -51,25 +47,16 @@ double FallPredictor::tilt_rad() const noexcept {
   return std::max(std::abs(roll_), std::abs(pitch_));
 }
 
-void FallPredictor::observe(const hal::Cm730State& imu) noexcept {
-  const auto& a = imu.accel_mps2;
-  const auto& g = imu.gyro_rad_s;
-  if (!std::isfinite(a[0]) || !std::isfinite(a[1]) || !std::isfinite(a[2]) ||
-      !std::isfinite(g[0]) || !std::isfinite(g[1]))
-    return;                                            // no usable reading this tick
-  const double accel_roll = std::atan2(a[1], a[2]);    // leaning right: +y reads gravity
-  const double accel_pitch = std::atan2(-a[0], a[2]);  // leaning forward: -x reads gravity
-  if (!initialised_) {
-    roll_ = accel_roll;
-    pitch_ = accel_pitch;
-    initialised_ = true;
-  }
-  const double w = params_.value(accel_weight_);
+void FallPredictor::observe(const AttitudeEstimator& attitude) noexcept {
+  if (!attitude.valid()) return;  // no usable reading yet
+  // The predictor's angles are the up direction's projections on the torso's y-z and x-z
+  // planes: they reach +-pi (lying face down or on the back), which the rule's upright arming
+  // needs.
+  const Eigen::Vector3d& u = attitude.up();
+  roll_ = std::atan2(u.y(), u.z());    // leaning right: +y reads gravity
+  pitch_ = std::atan2(-u.x(), u.z());  // leaning forward: -x reads gravity
   // Gyro x is the rate of roll, gyro y the rate of pitch (small-angle, torso frame).
-  roll_ += g[0] * period_s_;
-  pitch_ += g[1] * period_s_;
-  roll_ += w * (std::remainder(accel_roll - roll_, 2.0 * std::numbers::pi));
-  pitch_ += w * (std::remainder(accel_pitch - pitch_, 2.0 * std::numbers::pi));
+  const Eigen::Vector3d& g = attitude.gyro();
 
   const double tilt = params_.value(tilt_);
   const double rate = params_.value(rate_);

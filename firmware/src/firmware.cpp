@@ -25,6 +25,7 @@ std::filesystem::path data_dir() {
 // The motion engines the controller drives. Each engine registers its parameters in its
 // constructor, before the parameter file is applied.
 struct Firmware::Engines {
+  std::unique_ptr<AttitudeEstimator> attitude;           // the one attitude estimate
   std::unique_ptr<WalkEngine> walk_engine;               // the seed's ZMP walk (walk.*)
   std::unique_ptr<SplineWalkEngine> spline_walk_engine;  // the spline walk (walk.spline.*)
   std::unique_ptr<WalkSelector> walk_selector;           // walk.engine chooses one of them
@@ -91,10 +92,12 @@ Status Firmware::create(const FirmwareOptions& options, const FirmwareFiles& fil
   // The motion engines register their parameters here, before the parameter file applies.
   try {
     auto& engines = *fw->engines_;
-    engines.walk_engine =
-        std::make_unique<WalkEngine>(fw->params_, fw->servos_, fw->period_ns_, fw->robot_);
-    engines.spline_walk_engine =
-        std::make_unique<SplineWalkEngine>(fw->params_, fw->servos_, fw->period_ns_, fw->robot_);
+    engines.attitude = std::make_unique<AttitudeEstimator>(
+        fw->params_, static_cast<double>(fw->period_ns_) * 1e-9);
+    engines.walk_engine = std::make_unique<WalkEngine>(fw->params_, fw->servos_, fw->period_ns_,
+                                                       *engines.attitude, fw->robot_);
+    engines.spline_walk_engine = std::make_unique<SplineWalkEngine>(
+        fw->params_, fw->servos_, fw->period_ns_, *engines.attitude, fw->robot_);
     engines.walk_selector = std::make_unique<WalkSelector>(fw->params_, *engines.walk_engine,
                                                            *engines.spline_walk_engine);
   } catch (const std::exception& e) {
@@ -109,9 +112,9 @@ Status Firmware::create(const FirmwareOptions& options, const FirmwareFiles& fil
   }
   fw->engines_->script = fw->engines_->script_engine.get();
 
-  fw->controller_ =
-      std::make_unique<Controller>(fw->params_, fw->servos_, fw->period_ns_,
-                                   ControllerEngines{fw->engines_->walk, fw->engines_->script});
+  fw->controller_ = std::make_unique<Controller>(
+      fw->params_, fw->servos_, fw->period_ns_, *fw->engines_->attitude,
+      ControllerEngines{fw->engines_->walk, fw->engines_->script});
 
   if (options.params_file) {
     if (Status s = fw->params_.load_file_now(*options.params_file); !s) return s;

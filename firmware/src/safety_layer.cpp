@@ -6,8 +6,8 @@
 
 namespace stride::fw {
 
-SafetyLayer::SafetyLayer(ParameterStore& params, const ServoTable& servos, double period_s)
-    : params_(params), servos_(servos), predictor_(params, period_s) {
+SafetyLayer::SafetyLayer(ParameterStore& params, const ServoTable& servos)
+    : params_(params), servos_(servos), predictor_(params) {
   max_torque_limit_ = params.add_real("safety.max_torque_limit", 1.0, 0.0, 1.0, "1",
                                       "upper bound of every servo's torque limit (fraction)");
   max_p_gain_ = params.add_real("safety.max_p_gain", 254.0, 0.0, 254.0, "1",
@@ -29,8 +29,9 @@ SafetyLayer::SafetyLayer(ParameterStore& params, const ServoTable& servos, doubl
        0, 127, "bits", "Dynamixel error bits that count as servo errors", false, false});
 }
 
-void SafetyLayer::observe(const hal::SensorFrame& sensors) noexcept {
-  predictor_.observe(sensors.cm730);
+void SafetyLayer::observe(const hal::SensorFrame& sensors,
+                          const AttitudeEstimator& attitude) noexcept {
+  predictor_.observe(attitude);
   if (predictor_.falling() && !report_.falling) ++report_.predictions;
   report_.falling = predictor_.falling();
   report_.fall_direction = predictor_.direction();

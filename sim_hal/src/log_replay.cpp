@@ -15,41 +15,19 @@
 namespace stride::sim {
 
 // ---------------------------------------------------------------------------------------------
-// TiltFilter
+// Attitude
 
-void TiltFilter::start(const Eigen::Vector3d& accel) {
-  const double n = accel.norm();
-  up_ = n > 1e-6 && accel.allFinite() ? Eigen::Vector3d(accel / n) : Eigen::Vector3d::UnitZ();
-  bias_.setZero();
-}
-
-void TiltFilter::start(const TiltFilter& other) {
-  up_ = other.up_;
-  bias_ = other.bias_;
-}
-
-void TiltFilter::update(const Eigen::Vector3d& accel, const Eigen::Vector3d& gyro, double dt_s) {
-  // A direction fixed in the world, seen from a frame turning at w: d(up)/dt = -w x up. The
-  // correction turns up towards the measured direction a at the rate kp |up x a|; the bias
-  // integrates the same error (Mahony: w = gyro - bias - kp up x a, d(bias)/dt = ki up x a).
-  const double kp = 1.0 / time_constant_s_;
-  const double ki = estimate_bias_ ? 0.25 * kp * kp : 0.0;  // critically damped
-  Eigen::Vector3d error = Eigen::Vector3d::Zero();
-  const double n = accel.norm();
-  constexpr double kG = 9.81;
-  if (accel.allFinite() && n > 0.5 * kG && n < 1.5 * kG) error = up_.cross(accel / n);
-  const Eigen::Vector3d w =
-      (gyro.allFinite() ? gyro : Eigen::Vector3d::Zero()) - bias_ - kp * error;
-  up_ = (up_ - dt_s * w.cross(up_)).normalized();
-  bias_ += dt_s * ki * error;
-}
-
-double TiltFilter::roll() const {
-  return std::atan2(up_.y(), up_.z());
-}
-
-double TiltFilter::pitch() const {
-  return std::atan2(-up_.x(), std::hypot(up_.y(), up_.z()));
+double log_attitude_time_constant(const fw::FlightLog& log) {
+  const nlohmann::json& params =
+      log.header.contains("parameters") ? log.header["parameters"] : nlohmann::json();
+  if (params.is_array()) {
+    for (const nlohmann::json& p : params) {
+      if (p.is_object() && p.value("name", "") == "walk.balance.tilt_filter_time" &&
+          p.contains("value") && p["value"].is_number() && p["value"].get<double>() > 0.0)
+        return p["value"].get<double>();
+    }
+  }
+  return fw::AttitudeEstimator::kDefaultTimeConstantS;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -233,14 +211,16 @@ Eigen::Vector3d gyro_of(const hal::SensorFrame& f) {
   return {f.cm730.gyro_rad_s[0], f.cm730.gyro_rad_s[1], f.cm730.gyro_rad_s[2]};
 }
 
-/// The trunk's attitude at every log tick: TiltFilter over the log, restarted at gaps.
-std::vector<TiltFilter> tilt_over_log(const fw::FlightLog& log, double period_s) {
-  std::vector<TiltFilter> out(log.ticks.size());
-  TiltFilter filter;
+/// The trunk's attitude at every log tick: the firmware's estimator over the log, restarted at
+/// gaps.
+std::vector<fw::AttitudeEstimator> tilt_over_log(const fw::FlightLog& log, double period_s) {
+  const fw::AttitudeEstimator fresh(period_s, log_attitude_time_constant(log), true);
+  std::vector<fw::AttitudeEstimator> out(log.ticks.size(), fresh);
+  fw::AttitudeEstimator filter = fresh;
   for (std::size_t i = 0; i < log.ticks.size(); ++i) {
     const hal::SensorFrame& f = log.ticks[i].sensors;
     if (follows(log, i))
-      filter.update(accel_of(f), gyro_of(f), period_s);
+      filter.update(accel_of(f), gyro_of(f));
     else
       filter.start(accel_of(f));
     out[i] = filter;
@@ -255,7 +235,8 @@ Eigen::Quaterniond trunk_orientation(double roll, double pitch) {
 }
 
 void keep(ReplayTraces& t, double time_s, std::size_t log_index, const hal::SensorFrame& logged,
-          const hal::SensorFrame& sim, const TiltFilter& logged_tilt, const TiltFilter& sim_tilt) {
+          const hal::SensorFrame& sim, const fw::AttitudeEstimator& logged_tilt,
+          const fw::AttitudeEstimator& sim_tilt) {
   t.time_s.push_back(time_s);
   t.log_index.push_back(log_index);
   for (std::size_t i = 0; i < hal::kServoCount; ++i) {
@@ -302,17 +283,15 @@ std::vector<std::size_t> window_starts(const fw::FlightLog& log, std::size_t n) 
 /// Replays one window of n periods from log tick `first` on `robot`; `used` marks the log
 /// ticks compared.
 ReplayWindow replay_window(SimRobot& robot, const fw::FlightLog& log,
-                           const std::vector<TiltFilter>& tilt, std::size_t first, std::size_t n,
-                           double period_s, std::uint64_t seed, const ReplayOptions& options,
-                           ErrorSums& sums, std::vector<char>& used) {
+                           const std::vector<fw::AttitudeEstimator>& tilt, std::size_t first,
+                           std::size_t n, double period_s, std::uint64_t seed,
+                           const ReplayOptions& options, ErrorSums& sums, std::vector<char>& used) {
   ReplayWindow window;
   window.first_index = first;
   window.start_tick = log.ticks[first].meta.tick;
   window.start_s = static_cast<double>(window.start_tick) * period_s;
   const hal::SensorFrame& start = log.ticks[first].sensors;
-  TiltFilter logged_tilt, sim_tilt;
-  logged_tilt.start(tilt[first]);
-  sim_tilt.start(tilt[first]);
+  fw::AttitudeEstimator logged_tilt = tilt[first], sim_tilt = tilt[first];
   window.start_roll_pitch = {logged_tilt.roll(), logged_tilt.pitch()};
 
   ResetSpec spec;
@@ -355,8 +334,8 @@ ReplayWindow replay_window(SimRobot& robot, const fw::FlightLog& log,
       sums.load[i] += sq(sim.servos[i].load - logged.servos[i].load);
       ++sums.servo_samples[i];
     }
-    logged_tilt.update(accel_of(logged), gyro_of(logged), period_s);
-    sim_tilt.update(accel_of(sim), gyro_of(sim), period_s);
+    logged_tilt.update(accel_of(logged), gyro_of(logged));
+    sim_tilt.update(accel_of(sim), gyro_of(sim));
     if (logged.cm730.health == hal::DeviceHealth::kOk) {
       sums.roll += std::pow(sim_tilt.roll() - logged_tilt.roll(), 2);
       sums.pitch += std::pow(sim_tilt.pitch() - logged_tilt.pitch(), 2);
@@ -409,7 +388,7 @@ Status replay_flight_log(const fw::FlightLog& log, const WorldOptions& world,
   WorldOptions world_options = world;
   world_options.control_period_ns = period_ns;
   world_options.ball.present = false;  // the log does not say where a ball was
-  const std::vector<TiltFilter> tilt = tilt_over_log(log, period_s);
+  const std::vector<fw::AttitudeEstimator> tilt = tilt_over_log(log, period_s);
 
   // The windows to replay, then each thread takes every threads-th of them on its own world;
   // the sums are merged in window order, so the result is the same for any thread count.

@@ -69,7 +69,9 @@ void BM_ControllerStepDuringKicks(benchmark::State& state) {
     state.SkipWithError("scripts");
     return;
   }
-  fw::Controller controller(params, fw::ServoTable::defaults(), kPeriodNs, {nullptr, &engine});
+  fw::AttitudeEstimator attitude(params, kPeriodNs * 1e-9);
+  fw::Controller controller(params, fw::ServoTable::defaults(), kPeriodNs, attitude,
+                            {nullptr, &engine});
   hal::SensorFrame sensors = hal::ScriptedRobot::standing_frame(fw::kStandPoseRad);
   hal::Tick tick = 0;
   for (; tick < 200; ++tick) benchmark::DoNotOptimize(controller.step(sensors, tick));

@@ -11,14 +11,19 @@ using namespace stride;
 
 void BM_WalkEngineStep(benchmark::State& state) {
   fw::ParameterStore store;
-  fw::WalkEngine engine(store, fw::ServoTable::defaults(), 10'000'000);
+  fw::AttitudeEstimator attitude(store, 0.01);  // the controller's: updated before each step
+  fw::WalkEngine engine(store, fw::ServoTable::defaults(), 10'000'000, attitude);
   const hal::SensorFrame sensors = hal::ScriptedRobot::standing_frame();
   hal::CommandFrame commands;
   engine.set_velocity(1.0, 0.2, 0.2);
   engine.start(sensors, commands, 0);
   hal::Tick tick = 0;
-  for (; tick < 200; ++tick) engine.step(sensors, tick, commands);  // past the start blend
+  for (; tick < 200; ++tick) {  // past the start blend
+    attitude.update(sensors.cm730);
+    engine.step(sensors, tick, commands);
+  }
   for (auto _ : state) {
+    attitude.update(sensors.cm730);
     engine.step(sensors, tick++, commands);
     benchmark::DoNotOptimize(commands);
   }

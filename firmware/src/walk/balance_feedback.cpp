@@ -41,9 +41,6 @@ BalanceFeedback::BalanceFeedback(ParameterStore& store, double period_s, std::st
   roll_angle_gain_ =
       store.add_real(p + ".balance.roll_angle_gain", 0.0, 0.0, 20.0, "1/s",
                      "torso roll error (rad) added to the fed-back roll rate (0: off)");
-  tilt_filter_time_ =
-      store.add_real(p + ".balance.tilt_filter_time", 0.8442, 0.05, 10.0, "s",
-                     "complementary filter time constant of the torso tilt estimate");
   tilt_reference_time_ =
       store.add_real(p + ".balance.tilt_reference_time", 0.0, 0.0, 20.0, "s",
                      "time constant of the slow mean tilt the tilt term holds the torso to "
@@ -60,7 +57,7 @@ void BalanceFeedback::reset() noexcept {
   gyro_x_ = 0.0;
   gyro_y_ = 0.0;
   tilt_valid_ = false;
-  roll_ = pitch_ = roll_reference_ = pitch_reference_ = 0.0;
+  roll_reference_ = pitch_reference_ = 0.0;
 }
 
 double BalanceFeedback::double_support_weight() const noexcept {
@@ -73,40 +70,31 @@ double BalanceFeedback::start_sway_scale(int step_count) const noexcept {
   return std::clamp(static_cast<double>(step_count) / steps, 0.0, 1.0);
 }
 
-BalanceShift BalanceFeedback::update(const hal::Cm730State& imu) noexcept {
-  const double gx = std::isfinite(imu.gyro_rad_s[0]) ? imu.gyro_rad_s[0] : 0.0;
-  const double gy = std::isfinite(imu.gyro_rad_s[1]) ? imu.gyro_rad_s[1] : 0.0;
+BalanceShift BalanceFeedback::update(const AttitudeEstimator& attitude) noexcept {
+  const double gx = attitude.gyro().x();
+  const double gy = attitude.gyro().y();
   const double alpha = period_s_ / (period_s_ + store_.value(filter_time_));
   gyro_x_ += alpha * (gx - gyro_x_);
   gyro_y_ += alpha * (gy - gyro_y_);
-  // Tilt from the accelerometer (specific force: upright reads +z), fused with the gyro.
-  const double ax = imu.accel_mps2[0], ay = imu.accel_mps2[1], az = imu.accel_mps2[2];
-  if (std::isfinite(ax) && std::isfinite(ay) && std::isfinite(az) && az > 1.0) {
-    const double roll_acc = std::atan2(ay, az);
-    const double pitch_acc = std::atan2(-ax, std::hypot(ay, az));
-    if (!tilt_valid_) {
-      roll_ = roll_reference_ = roll_acc;
-      pitch_ = pitch_reference_ = pitch_acc;
-      tilt_valid_ = true;
-    } else {
-      const double beta = period_s_ / (period_s_ + store_.value(tilt_filter_time_));
-      roll_ += gx * period_s_;
-      pitch_ += gy * period_s_;
-      roll_ += beta * (roll_acc - roll_);
-      pitch_ += beta * (pitch_acc - pitch_);
-    }
+  // Tilt: the attitude estimate; the reference is the accelerometer's tilt at the walk's first
+  // tick with a reading (one sample, as the balance feedback's own filter started from).
+  const double roll = attitude.roll(), pitch = attitude.pitch();
+  if (!tilt_valid_ && attitude.valid()) {
+    roll_reference_ = attitude.measured_roll();
+    pitch_reference_ = attitude.measured_pitch();
+    tilt_valid_ = true;
   }
   if (const double reference_time = store_.value(tilt_reference_time_); reference_time > 0.0) {
     const double gamma = period_s_ / (period_s_ + reference_time);
-    roll_reference_ += gamma * (roll_ - roll_reference_);
-    pitch_reference_ += gamma * (pitch_ - pitch_reference_);
+    roll_reference_ += gamma * (roll - roll_reference_);
+    pitch_reference_ += gamma * (pitch - pitch_reference_);
   }
   const double band = store_.value(deadband_);
   const double limit = store_.value(max_shift_);
   const double rx =
-      deadband(gyro_x_, band) + store_.value(roll_angle_gain_) * (roll_ - roll_reference_);
+      deadband(gyro_x_, band) + store_.value(roll_angle_gain_) * (roll - roll_reference_);
   const double ry =
-      deadband(gyro_y_, band) + store_.value(pitch_angle_gain_) * (pitch_ - pitch_reference_);
+      deadband(gyro_y_, band) + store_.value(pitch_angle_gain_) * (pitch - pitch_reference_);
   auto shift = [&](ParamHandle gain, double rate) {
     return std::clamp(store_.value(gain) * rate, -limit, limit);
   };

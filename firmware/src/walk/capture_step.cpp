@@ -36,8 +36,6 @@ CaptureStep::CaptureStep(ParameterStore& store, double period_s, std::string_vie
                                 "time constant of the learned expected tilt per phase");
   rate_filter_time_ = store.add_real(p + ".capture.rate_filter_time", 0.05, 0.0, 1.0, "s",
                                      "low-pass time constant of the tilt deviation's rate");
-  tilt_filter_time_ = store.add_real(p + ".capture.tilt_filter_time", 0.3, 0.02, 5.0, "s",
-                                     "complementary filter time constant of the trunk tilt");
   touchdown_load_ = store.add_real(p + ".capture.touchdown_load", 0.08, 0.0, 1.0, "1",
                                    "swing knee load (fraction of stall torque) that ends a step "
                                    "late in its phase (0: the clock ends every step)");
@@ -63,27 +61,15 @@ bool CaptureStep::timing_enabled() const noexcept {
   return store_.value(timing_gain_) > 0.0;
 }
 
-void CaptureStep::update(const hal::Cm730State& imu, double pair_phase, double step_time,
+void CaptureStep::update(const AttitudeEstimator& attitude, double pair_phase, double step_time,
                          bool walking, bool standing) noexcept {
-  const double gx = std::isfinite(imu.gyro_rad_s[0]) ? imu.gyro_rad_s[0] : 0.0;
-  const double gy = std::isfinite(imu.gyro_rad_s[1]) ? imu.gyro_rad_s[1] : 0.0;
-  const double ax = imu.accel_mps2[0], ay = imu.accel_mps2[1], az = imu.accel_mps2[2];
-  const bool accel_ok = std::isfinite(ax) && std::isfinite(ay) && std::isfinite(az) && az > 1.0;
+  if (!attitude.valid()) return;
+  roll_ = attitude.roll();
+  pitch_ = attitude.pitch();
   if (!tilt_valid_) {
-    if (!accel_ok) return;
-    roll_ = std::atan2(ay, az);
-    pitch_ = std::atan2(-ax, std::hypot(ay, az));
     expected_roll_.fill(roll_);
     expected_pitch_.fill(pitch_);
     tilt_valid_ = true;
-  } else {
-    roll_ += gx * period_s_;
-    pitch_ += gy * period_s_;
-    if (accel_ok) {
-      const double beta = period_s_ / (period_s_ + store_.value(tilt_filter_time_));
-      roll_ += beta * (std::atan2(ay, az) - roll_);
-      pitch_ += beta * (std::atan2(-ax, std::hypot(ay, az)) - pitch_);
-    }
   }
   // The expectation is piecewise linear over the bins (bin centres at (k + 0.5) / kBins), so
   // the deviation has no steps at the bin edges.

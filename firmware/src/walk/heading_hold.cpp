@@ -38,13 +38,11 @@ void HeadingHold::reset() noexcept {
   reference_ = 0.0;
 }
 
-void HeadingHold::update(const hal::Cm730State& imu, double body_tilt, bool calibrating,
-                         bool hold) noexcept {
-  const double gx = std::isfinite(imu.gyro_rad_s[0]) ? imu.gyro_rad_s[0] : 0.0;
-  const double gz = std::isfinite(imu.gyro_rad_s[2]) ? imu.gyro_rad_s[2] : 0.0;
-  const double yaw_rate = std::cos(body_tilt) * gz - std::sin(body_tilt) * gx;
+void HeadingHold::update(const AttitudeEstimator& attitude, const hal::Cm730State& imu,
+                         bool calibrating, bool hold) noexcept {
+  const double yaw_rate = attitude.vertical_rate();
   using_magnetometer_ = magnetic_.active(imu);
-  if (using_magnetometer_) magnetic_.update(imu, calibrating);
+  if (using_magnetometer_) magnetic_.update(attitude, imu, calibrating);
   if (calibrating) {
     bias_sum_ += yaw_rate;
     ++bias_samples_;

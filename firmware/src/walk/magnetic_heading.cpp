@@ -29,14 +29,11 @@ MagneticHeading::MagneticHeading(ParameterStore& store, double period_s, std::st
   bias_time_ = store.add_real(p + ".balance.heading_mag_bias_time", 0.0, 0.0, 300.0, "s",
                               "time constant of the gyro yaw bias learnt from the magnetometer "
                               "(0: not learnt, the default)");
-  tilt_time_ = store.add_real(p + ".balance.heading_mag_tilt_time", 1.0, 0.05, 10.0, "s",
-                              "complementary filter time constant of the tilt that levels the "
-                              "magnetometer");
 }
 
 void MagneticHeading::reset() noexcept {
   valid_ = false;
-  roll_ = pitch_ = heading_ = magnetic_ = 0.0;
+  heading_ = magnetic_ = 0.0;
   bias_ = bias_sum_ = 0.0;
   bias_samples_ = 0;
 }
@@ -54,35 +51,21 @@ double MagneticHeading::tilt_compensated_heading(const std::array<double, 3>& m,
   return -std::atan2(ly, lx);
 }
 
-void MagneticHeading::update(const hal::Cm730State& imu, bool calibrating) noexcept {
-  const auto& g = imu.gyro_rad_s;
-  const auto& f = imu.accel_mps2;
-  const double p = std::isfinite(g[0]) ? g[0] : 0.0;
-  const double q = std::isfinite(g[1]) ? g[1] : 0.0;
-  const double r = std::isfinite(g[2]) ? g[2] : 0.0;
-  const bool accel_ok = finite3(f) && f[2] > 1.0;
+void MagneticHeading::update(const AttitudeEstimator& attitude, const hal::Cm730State& imu,
+                             bool calibrating) noexcept {
   const bool mag_ok = finite3(imu.mag_gauss) &&
                       std::hypot(imu.mag_gauss[0], imu.mag_gauss[1], imu.mag_gauss[2]) > 1e-6;
   const double dt = period_s_;
+  if (!attitude.valid()) return;
+  const double roll = attitude.roll(), pitch = attitude.pitch();
   if (!valid_) {
-    if (!accel_ok || !mag_ok) return;
-    roll_ = std::atan2(f[1], f[2]);
-    pitch_ = std::atan2(-f[0], std::hypot(f[1], f[2]));
-    magnetic_ = tilt_compensated_heading(imu.mag_gauss, roll_, pitch_);
+    if (!mag_ok) return;
+    magnetic_ = tilt_compensated_heading(imu.mag_gauss, roll, pitch);
     heading_ = magnetic_;
     valid_ = true;
     return;
   }
-  const double sr = std::sin(roll_), cr = std::cos(roll_);
-  const double cp = std::max(std::cos(pitch_), 0.1);
-  const double yaw_rate = (q * sr + r * cr) / cp;
-  roll_ += (p + (q * sr + r * cr) * std::tan(pitch_)) * dt;
-  pitch_ += (q * cr - r * sr) * dt;
-  if (accel_ok) {
-    const double beta = dt / (dt + store_.value(tilt_time_));
-    roll_ += beta * (std::atan2(f[1], f[2]) - roll_);
-    pitch_ += beta * (std::atan2(-f[0], std::hypot(f[1], f[2])) - pitch_);
-  }
+  const double yaw_rate = attitude.vertical_rate();
   if (calibrating) {
     bias_sum_ += yaw_rate;
     ++bias_samples_;
@@ -90,7 +73,7 @@ void MagneticHeading::update(const hal::Cm730State& imu, bool calibrating) noexc
   }
   heading_ += (yaw_rate - bias_) * dt;
   if (!mag_ok) return;
-  magnetic_ = tilt_compensated_heading(imu.mag_gauss, roll_, pitch_);
+  magnetic_ = tilt_compensated_heading(imu.mag_gauss, roll, pitch);
   const double innovation = wrap(magnetic_ - heading_);
   const double time = store_.value(time_);
   if (!(time > 0.0)) return;

@@ -42,10 +42,12 @@ double support_leg_feedback(double u, double d, double landed) {
 }  // namespace
 
 SplineWalkEngine::SplineWalkEngine(ParameterStore& store, const ServoTable& servos,
-                                   std::int64_t period_ns, const RobotDescription& robot)
+                                   std::int64_t period_ns, const AttitudeEstimator& attitude,
+                                   const RobotDescription& robot)
     : parameter_set_(store),
       servos_(servos, "spline walk"),
       period_s_(static_cast<double>(period_ns) * 1e-9),
+      attitude_(attitude),
       balance_(store, period_s_, "walk.spline"),
       heading_(store, period_s_, "walk.spline"),
       compliance_(store, robot, servos, period_s_, "walk.spline"),
@@ -176,9 +178,9 @@ void SplineWalkEngine::begin_step() noexcept {
 void SplineWalkEngine::step(const hal::SensorFrame& sensors, hal::Tick tick,
                             hal::CommandFrame& out) noexcept {
   tick_clamped_ = false;
-  balance_shift_ = balance_.update(sensors.cm730);
+  balance_shift_ = balance_.update(attitude_);
   const bool holding = !(std::abs(command_.angle) > 0.0);
-  heading_.update(sensors.cm730, params_.trunk_pitch, state_ == State::kStarting, holding);
+  heading_.update(attitude_, sensors.cm730, state_ == State::kStarting, holding);
   const double t = static_cast<double>(std::max<hal::Tick>(0, tick - start_tick_)) * period_s_;
   double blend = 1.0;
   if (state_ == State::kStarting) {
@@ -193,7 +195,7 @@ void SplineWalkEngine::step(const hal::SensorFrame& sensors, hal::Tick tick,
   const bool stepping =
       state_ == State::kWalking || state_ == State::kStopping || state_ == State::kLastStep;
   const double pair_phase = 0.5 * ((plan_.swing() == Foot::kLeft ? 0.0 : 1.0) + sample_.phase);
-  capture_.update(sensors.cm730, pair_phase, plan_.duration(),
+  capture_.update(attitude_, pair_phase, plan_.duration(),
                   stepping && static_cast<double>(step_count_) > params_.start_steps, !stepping);
   if (stepping) walk_tick(sensors);
   compute_targets(sample_);

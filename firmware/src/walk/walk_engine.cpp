@@ -21,10 +21,11 @@ using walk::Pose2;
 }  // namespace
 
 WalkEngine::WalkEngine(ParameterStore& store, const ServoTable& servos, std::int64_t period_ns,
-                       const RobotDescription& robot)
+                       const AttitudeEstimator& attitude, const RobotDescription& robot)
     : parameter_set_(store),
       servos_(servos, "walk engine"),
       period_s_(static_cast<double>(period_ns) * 1e-9),
+      attitude_(attitude),
       balance_(store, period_s_),
       heading_(store, period_s_),
       compliance_(store, robot, servos, period_s_),
@@ -162,16 +163,16 @@ void WalkEngine::begin_step() noexcept {
 void WalkEngine::step(const hal::SensorFrame& sensors, hal::Tick tick,
                       hal::CommandFrame& out) noexcept {
   tick_clamped_ = false;
-  balance_shift_ = balance_.update(sensors.cm730);
+  balance_shift_ = balance_.update(attitude_);
   // The heading hold learns the gyro bias while the start blend stands, then holds the heading
   // while no turn is commanded (a NaN command counts as 0, as in scale_command).
   const bool holding = !(std::abs(command_.angle) > 0.0);
-  heading_.update(sensors.cm730, params_.body_tilt, state_ == State::kStarting, holding);
+  heading_.update(attitude_, sensors.cm730, state_ == State::kStarting, holding);
   const bool stepping =
       state_ == State::kWalking || state_ == State::kStopRequest || state_ == State::kLastStep;
   const double pair_phase =
       0.5 * ((swing_ == walk::Foot::kLeft ? 0.0 : 1.0) + std::clamp(snapshot_.phase, 0.0, 1.0));
-  capture_.update(sensors.cm730, pair_phase, params_.step_time,
+  capture_.update(attitude_, pair_phase, params_.step_time,
                   stepping && step_count_ > kStepsWithoutLift, !stepping);
   const double t = static_cast<double>(std::max<hal::Tick>(0, tick - start_tick_)) * period_s_;
   double blend = 1.0;

@@ -20,7 +20,8 @@ namespace {
 TEST(WalkGenomeProperty, TenThousandRandomGenomesNeverGiveNaN) {
   const ServoTable& servos = ServoTable::defaults();
   ParameterStore store;
-  WalkEngine engine(store, servos, 10'000'000);
+  AttitudeEstimator attitude(store, 0.01);
+  WalkEngine engine(store, servos, 10'000'000, attitude);
   SafetyLayer safety(store, servos);
   const hal::SensorFrame sensors = hal::ScriptedRobot::standing_frame();
   std::mt19937_64 rng(5);
@@ -39,6 +40,7 @@ TEST(WalkGenomeProperty, TenThousandRandomGenomesNeverGiveNaN) {
     engine.start(sensors, commands, 0);
     for (hal::Tick t = 0; t < 600; ++t) {
       if (t == 400) engine.request_stop();
+      attitude.update(sensors.cm730);
       engine.step(sensors, t, commands);
       for (std::size_t i = 0; i < hal::kServoCount; ++i) {
         const double q = commands.servos[i].position_rad;

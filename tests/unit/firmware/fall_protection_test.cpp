@@ -34,10 +34,23 @@ hal::Cm730State imu_at(double pitch, double pitch_rate, double roll = 0.0, doubl
   return imu;
 }
 
+/// The fall predictor fed as the controller feeds it: the attitude estimate first.
+struct Predictor {
+  ParameterStore params;
+  AttitudeEstimator attitude{params, kPeriodS};
+  FallPredictor predictor{params};
+  void observe(const hal::Cm730State& imu) {
+    attitude.update(imu);
+    predictor.observe(attitude);
+  }
+  bool falling() const { return predictor.falling(); }
+  FallDirection direction() const { return predictor.direction(); }
+};
+
 /// Feeds a fall that starts upright and accelerates like an inverted pendulum about one axis
 /// (angle'' = 9 angle, from 0.02 rad), `sign` and `about_pitch` choosing the direction. Returns
 /// the angle at which the prediction fired, or NaN.
-double predicted_at(FallPredictor& predictor, double sign, bool about_pitch) {
+double predicted_at(Predictor& predictor, double sign, bool about_pitch) {
   for (int i = 0; i < 50; ++i) predictor.observe(imu_at(0.0, 0.0));  // upright first
   double angle = 0.02, rate = 0.0;
   for (int i = 0; i < 200 && angle < 1.5; ++i) {
@@ -59,8 +72,7 @@ TEST(FallPredictor, PredictsEachDirectionWellBeforeTheTorsoIsDown) {
   for (const Case c :
        {Case{1, true, FallDirection::kForward}, Case{-1, true, FallDirection::kBackward},
         Case{1, false, FallDirection::kRight}, Case{-1, false, FallDirection::kLeft}}) {
-    ParameterStore params;
-    FallPredictor predictor(params, kPeriodS);
+    Predictor predictor;
     const double angle = predicted_at(predictor, c.sign, c.about_pitch);
     ASSERT_TRUE(std::isfinite(angle)) << to_string(c.expected);
     // Fired while the torso was still less than 45 degrees from upright (the ground is at 90).
@@ -71,8 +83,7 @@ TEST(FallPredictor, PredictsEachDirectionWellBeforeTheTorsoIsDown) {
 }
 
 TEST(FallPredictor, LeaningAndSwayingIsNotAFall) {
-  ParameterStore params;
-  FallPredictor predictor(params, kPeriodS);
+  Predictor predictor;
   // Sways of 0.25 rad at up to 1.6 rad/s in pitch and roll (a walk sways far less), for 20 s.
   for (int i = 0; i < 2000; ++i) {
     const double t = i * kPeriodS;
@@ -84,8 +95,7 @@ TEST(FallPredictor, LeaningAndSwayingIsNotAFall) {
 }
 
 TEST(FallPredictor, LyingDoesNotPredictUntilUprightAgain) {
-  ParameterStore params;
-  FallPredictor predictor(params, kPeriodS);
+  Predictor predictor;
   // Starts lying on the back and rocks: it was never upright, so no prediction.
   for (int i = 0; i < 300; ++i)
     predictor.observe(imu_at(-1.5 + 0.05 * std::sin(i * 0.3), -0.5 * std::cos(i * 0.3)));
@@ -95,6 +105,7 @@ TEST(FallPredictor, LyingDoesNotPredictUntilUprightAgain) {
 
 struct Rig {
   ParameterStore params;
+  AttitudeEstimator attitude{params, kPeriodS};
   ScriptEngine scripts{kPeriodNs, params};
   std::unique_ptr<Controller> controller;
   hal::SensorFrame sensors = hal::ScriptedRobot::standing_frame(kStandPoseRad);
@@ -103,7 +114,7 @@ struct Rig {
 
   Rig() {
     EXPECT_TRUE(scripts.load_folder(default_script_folder()));
-    controller = std::make_unique<Controller>(params, ServoTable::defaults(), kPeriodNs,
+    controller = std::make_unique<Controller>(params, ServoTable::defaults(), kPeriodNs, attitude,
                                               ControllerEngines{nullptr, &scripts});
     run(200);  // the stand is reached
     EXPECT_EQ(controller->motion().state(), MotionState::kStand);

@@ -411,7 +411,8 @@ TEST(MotionManager, ControllerDetectsTheFallAndPicksTheSideFromTheImu) {
     ParameterStore params;
     ScriptEngine scripts(kPeriodNs, params);
     ASSERT_TRUE(scripts.load_folder(default_script_folder()));
-    Controller controller(params, ServoTable::defaults(), kPeriodNs, {nullptr, &scripts});
+    AttitudeEstimator attitude(params, kPeriodNs * 1e-9);
+    Controller controller(params, ServoTable::defaults(), kPeriodNs, attitude, {nullptr, &scripts});
     hal::SensorFrame sensors = hal::ScriptedRobot::standing_frame(kStandPoseRad);
     hal::Tick tick = 0;
     for (; tick < 200; ++tick) (void)controller.step(sensors, tick);

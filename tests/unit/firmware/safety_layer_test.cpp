@@ -14,8 +14,15 @@ class SafetyLayerTest : public ::testing::Test {
  protected:
   ParameterStore params;
   const ServoTable& table = ServoTable::defaults();
+  AttitudeEstimator attitude{params, 0.01};
   SafetyLayer safety{params, table};
   hal::SensorFrame sensors = hal::ScriptedRobot::standing_frame();
+
+  /// One tick of fall detection as the controller runs it: the attitude estimate first.
+  void observe(const hal::SensorFrame& frame) {
+    attitude.update(frame.cm730);
+    safety.observe(frame, attitude);
+  }
 
   hal::CommandFrame valid_commands() {
     hal::CommandFrame c;
@@ -106,24 +113,24 @@ TEST_F(SafetyLayerTest, AngleLimitErrorsDoNotSwitchOffByDefault) {
 TEST_F(SafetyLayerTest, DetectsFallAfterPersistentTiltAndRecovers) {
   const auto upright = test::tilted_frame(0.05);
   const auto lying = test::tilted_frame(1.5);
-  for (int i = 0; i < 20; ++i) safety.observe(upright);
+  for (int i = 0; i < 20; ++i) observe(upright);
   EXPECT_FALSE(safety.fallen());
-  safety.observe(lying);
+  observe(lying);
   EXPECT_FALSE(safety.fallen()) << "a single tilted sample is not a fall";
-  for (int i = 0; i < 40; ++i) safety.observe(lying);
+  for (int i = 0; i < 40; ++i) observe(lying);
   EXPECT_TRUE(safety.fallen());
   EXPECT_EQ(safety.report().falls, 1u);
-  for (int i = 0; i < 40; ++i) safety.observe(upright);
+  for (int i = 0; i < 40; ++i) observe(upright);
   EXPECT_FALSE(safety.fallen());
 }
 
 TEST_F(SafetyLayerTest, IgnoresMissingImuReadings) {
   hal::SensorFrame zero = sensors;
   zero.cm730.accel_mps2 = {0.0, 0.0, 0.0};
-  for (int i = 0; i < 50; ++i) safety.observe(zero);
+  for (int i = 0; i < 50; ++i) observe(zero);
   EXPECT_FALSE(safety.fallen());
   zero.cm730.accel_mps2 = {NAN, 0.0, 9.8};
-  for (int i = 0; i < 50; ++i) safety.observe(zero);
+  for (int i = 0; i < 50; ++i) observe(zero);
   EXPECT_FALSE(safety.fallen());
 }
 

@@ -31,6 +31,7 @@ hal::Cm730State imu_at(double roll, double pitch, double roll_rate, double pitch
 
 struct Rig {
   ParameterStore store;
+  AttitudeEstimator attitude{store, kPeriod};  // updated before the capture step, as in the walk
   CaptureStep capture{store, kPeriod};
   double time = 0.0;
   void set(const char* name, double value) { ASSERT_TRUE(store.set_now({{name, value}}).is_ok()); }
@@ -40,13 +41,14 @@ struct Rig {
     for (double end = time + seconds; time < end - 1e-9; time += kPeriod) {
       const double pair_phase = std::fmod(time, 2.0 * kStepTime) / (2.0 * kStepTime);
       const double roll = amplitude * std::sin(omega * time) + extra;
-      capture.update(imu_at(roll, 0.17, amplitude * omega * std::cos(omega * time), 0.0),
-                     pair_phase, kStepTime, true, false);
+      attitude.update(imu_at(roll, 0.17, amplitude * omega * std::cos(omega * time), 0.0));
+      capture.update(attitude, pair_phase, kStepTime, true, false);
     }
   }
   void stand(double seconds) {
     for (double end = time + seconds; time < end - 1e-9; time += kPeriod) {
-      capture.update(imu_at(0.0, 0.17, 0.0, 0.0), 0.0, kStepTime, false, true);
+      attitude.update(imu_at(0.0, 0.17, 0.0, 0.0));
+      capture.update(attitude, 0.0, kStepTime, false, true);
     }
   }
 };
@@ -85,6 +87,9 @@ TEST(WalkCaptureStep, ATiltMovesTheFootstepAndTheTimingTowardsTheFall) {
   rig.set("walk.capture.step_gain_y", 1.0);
   rig.set("walk.capture.step_gain_x", 1.0);
   rig.set("walk.capture.timing_gain", 10.0);
+  // The attitude's time constant the capture step's own tilt filter had before issue 55 (the
+  // default, 0.84 s, follows a 0.2 s tilt to about 0.6 of it).
+  rig.set("walk.balance.tilt_filter_time", 0.3);
   rig.stand(1.0);
   rig.walk(20.0, 0.05);
   EXPECT_LT(std::abs(rig.capture.step_offset_y()), 0.003);
@@ -116,7 +121,8 @@ TEST(WalkCaptureStep, TouchdownNeedsALateEnoughPhaseAndLoad) {
 /// Steps a walk engine for `seconds` with the knees reporting `knee_load`; returns the steps.
 int steps_taken(double touchdown_load, double knee_load, double seconds) {
   ParameterStore store;
-  WalkEngine engine(store, ServoTable::defaults(), 10'000'000);
+  AttitudeEstimator attitude(store, 0.01);
+  WalkEngine engine(store, ServoTable::defaults(), 10'000'000, attitude);
   EXPECT_TRUE(store
                   .set_now({{"walk.capture.touchdown_load", touchdown_load},
                             {"walk.capture.touchdown_phase", 0.9}})
@@ -128,7 +134,10 @@ int steps_taken(double touchdown_load, double knee_load, double seconds) {
   engine.set_velocity(1.0, 0.0, 0.0);
   engine.start(sensors, out, 0);
   const int ticks = static_cast<int>(seconds / 0.01);
-  for (int t = 0; t < ticks; ++t) engine.step(sensors, t, out);
+  for (int t = 0; t < ticks; ++t) {
+    attitude.update(sensors.cm730);
+    engine.step(sensors, t, out);
+  }
   return engine.snapshot().step_count;
 }
 
@@ -154,7 +163,8 @@ struct EngineWalk {
 
 EngineWalk walk_engine(const std::vector<ParamWrite>& gains, double disturb_s, double roll) {
   ParameterStore store;
-  WalkEngine engine(store, ServoTable::defaults(), 10'000'000);
+  AttitudeEstimator attitude(store, 0.01);
+  WalkEngine engine(store, ServoTable::defaults(), 10'000'000, attitude);
   EXPECT_TRUE(store.set_now(gains).is_ok());
   hal::SensorFrame sensors;
   hal::CommandFrame out{};
@@ -165,6 +175,7 @@ EngineWalk walk_engine(const std::vector<ParamWrite>& gains, double disturb_s, d
   WalkEngine::Snapshot last;
   for (hal::Tick tick = 0; tick < 1200; ++tick) {
     sensors.cm730 = imu_at(tick * kPeriod >= disturb_s ? roll : 0.0, 0.0, 0.0, 0.0);
+    attitude.update(sensors.cm730);
     engine.step(sensors, tick, out);
     const WalkEngine::Snapshot& now = engine.snapshot();
     if (now.step_count != last.step_count) {
@@ -190,10 +201,12 @@ std::size_t first_step_after(const EngineWalk& walk, double s) {
 // and the steps' timing changes (the timing feedback). With the gains at 0 (the default) the
 // same disturbance changes nothing.
 TEST(WalkCaptureStep, InTheWalkEngineALateralTiltMovesTheNextFootstep) {
-  const std::vector<ParamWrite> footstep{{"walk.capture.step_gain_y", 1.0}};
+  // The attitude's time constant the capture step's own tilt filter had before issue 55.
+  const std::vector<ParamWrite> footstep{{"walk.capture.step_gain_y", 1.0},
+                                         {"walk.balance.tilt_filter_time", 0.3}};
   const EngineWalk calm = walk_engine(footstep, 1e9, 0.0);
   const EngineWalk tilted = walk_engine(footstep, 8.0, 0.05);
-  const EngineWalk off = walk_engine({}, 8.0, 0.05);
+  const EngineWalk off = walk_engine({{"walk.balance.tilt_filter_time", 0.3}}, 8.0, 0.05);
   ASSERT_EQ(tilted.step_starts, calm.step_starts);  // the timing feedback is off
   ASSERT_EQ(off.step_ends.size(), calm.step_ends.size());
   const std::size_t first = first_step_after(calm, 8.0);

@@ -15,7 +15,8 @@ constexpr std::int64_t kPeriodNs = 10'000'000;  // 100 Hz
 
 struct Rig {
   ParameterStore store;
-  WalkEngine engine{store, ServoTable::defaults(), kPeriodNs};
+  AttitudeEstimator attitude{store, 0.01};  // the controller's: updated before each step
+  WalkEngine engine{store, ServoTable::defaults(), kPeriodNs, attitude};
   hal::SensorFrame sensors;
   hal::CommandFrame out;
   hal::Tick tick = 0;
@@ -23,6 +24,7 @@ struct Rig {
   void run(int ticks) {
     for (int i = 0; i < ticks; ++i) {
       store.apply_staged();
+      attitude.update(sensors.cm730);
       engine.step(sensors, tick++, out);
     }
   }
@@ -34,7 +36,8 @@ std::size_t index(const char* name) {
 
 TEST(WalkEngine, RegistersTheParametersWithIndODefaults) {
   ParameterStore store;
-  WalkEngine engine(store, ServoTable::defaults(), kPeriodNs);
+  AttitudeEstimator attitude(store, 0.01);
+  WalkEngine engine{store, ServoTable::defaults(), kPeriodNs, attitude};
   EXPECT_EQ(store.list("walk.").size() - store.list("walk.balance.").size() -
                 store.list("walk.compliance.").size() - store.list("walk.capture.").size(),
             walk::kWalkParameterCount);

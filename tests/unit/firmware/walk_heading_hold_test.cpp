@@ -30,16 +30,30 @@ hal::Cm730State gyro(double gx, double gz) {
   return s;
 }
 
+/// A heading hold fed as the walk feeds it: the firmware's attitude estimate updated with the
+/// tick's IMU first. (The readings of gyro() have no specific force: the estimate stays
+/// upright and the yaw rate is g_z.)
+struct Hold {
+  explicit Hold(ParameterStore& store) : attitude(store, kPeriod), hold(store, kPeriod) {}
+  AttitudeEstimator attitude;
+  walk::HeadingHold hold;
+  void update(const hal::Cm730State& imu, bool calibrating, bool holding) {
+    attitude.update(imu);
+    hold.update(attitude, imu, calibrating, holding);
+  }
+};
+
 TEST(HeadingHold, IsOnByDefaultAndGainZeroIsOff) {
   for (const bool off : {false, true}) {
     ParameterStore store;
-    walk::HeadingHold hold(store, kPeriod);
+    Hold fed(store);
+    walk::HeadingHold& hold = fed.hold;
     // The faithful world's default: on at 0.5 rad/step per rad (issue 29 point 6).
     if (off) {
       ASSERT_TRUE(store.set_now({{"walk.balance.heading_gain", 0.0}}).is_ok());
     }
-    hold.update(gyro(0.0, 0.0), 0.0, true, true);
-    for (int i = 0; i < 100; ++i) hold.update(gyro(0.0, 0.5), 0.0, false, true);
+    fed.update(gyro(0.0, 0.0), true, true);
+    for (int i = 0; i < 100; ++i) fed.update(gyro(0.0, 0.5), false, true);
     EXPECT_NEAR(hold.heading_error(), 0.5, 1e-9);  // it measures either way
     if (off) {
       EXPECT_EQ(hold.begin_step(), 0.0);
@@ -51,23 +65,24 @@ TEST(HeadingHold, IsOnByDefaultAndGainZeroIsOff) {
 
 TEST(HeadingHold, LearnsTheBiasWhileStandingAndFeedsBackTheTwoStepMeanError) {
   ParameterStore store;
-  walk::HeadingHold hold(store, kPeriod);
+  Hold fed(store);
+  walk::HeadingHold& hold = fed.hold;
   ASSERT_TRUE(store.set_now(kOn).is_ok());
   hold.reset();
-  for (int i = 0; i < 100; ++i) hold.update(gyro(0.0, 0.02), 0.0, true, true);
+  for (int i = 0; i < 100; ++i) fed.update(gyro(0.0, 0.02), true, true);
   EXPECT_NEAR(hold.bias(), 0.02, 1e-12);
   // The bias alone integrates to nothing.
-  for (int i = 0; i < 100; ++i) hold.update(gyro(0.0, 0.02), 0.0, false, true);
+  for (int i = 0; i < 100; ++i) fed.update(gyro(0.0, 0.02), false, true);
   EXPECT_NEAR(hold.heading_error(), 0.0, 1e-12);
   EXPECT_NEAR(hold.begin_step(), 0.0, 1e-12);
   // A step of 0.1 rad/s above the bias for 1 s: 0.1 rad to the left, mean 0.0505 over the step.
-  for (int i = 0; i < 100; ++i) hold.update(gyro(0.0, 0.12), 0.0, false, true);
+  for (int i = 0; i < 100; ++i) fed.update(gyro(0.0, 0.12), false, true);
   EXPECT_NEAR(hold.heading_error(), 0.1, 1e-9);
   EXPECT_NEAR(hold.begin_step(), -0.3 * 0.5 * (0.0 + 0.0505), 1e-9);
   // A still step: the pair mean is (0.0505 + 0.1) / 2, then 0.1; corrected to the right.
-  for (int i = 0; i < 100; ++i) hold.update(gyro(0.0, 0.02), 0.0, false, true);
+  for (int i = 0; i < 100; ++i) fed.update(gyro(0.0, 0.02), false, true);
   EXPECT_NEAR(hold.begin_step(), -0.3 * 0.5 * (0.0505 + 0.1), 1e-9);
-  for (int i = 0; i < 100; ++i) hold.update(gyro(0.0, 0.02), 0.0, false, true);
+  for (int i = 0; i < 100; ++i) fed.update(gyro(0.0, 0.02), false, true);
   EXPECT_NEAR(hold.begin_step(), -0.3 * 0.1, 1e-9);
   EXPECT_NEAR(hold.step_pair_mean(), 0.1, 1e-9);
 }
@@ -76,16 +91,17 @@ TEST(HeadingHold, AYawSwingOfOneStepPairAveragesOut) {
   // The torso yaws +-4 deg once per step pair (0.85 s steps): the step starts catch the swing
   // at its ends, the two-step mean does not.
   ParameterStore store;
-  walk::HeadingHold hold(store, kPeriod);
+  Hold fed(store);
+  walk::HeadingHold& hold = fed.hold;
   ASSERT_TRUE(store.set_now(kOn).is_ok());
-  hold.update(gyro(0.0, 0.0), 0.0, true, true);
+  fed.update(gyro(0.0, 0.0), true, true);
   const double amplitude = 4.0 * std::numbers::pi / 180.0;
   const double omega = std::numbers::pi / 0.85;  // one period per two steps
   double worst = 0.0;
   for (int step = 0; step < 20; ++step) {
     for (int i = 0; i < 85; ++i) {
       const double t = (step * 85 + i) * kPeriod;
-      hold.update(gyro(0.0, amplitude * omega * std::cos(omega * t)), 0.0, false, true);
+      fed.update(gyro(0.0, amplitude * omega * std::cos(omega * t)), false, true);
     }
     const double c = hold.begin_step();
     if (step >= 2) worst = std::max(worst, std::abs(c));
@@ -93,26 +109,31 @@ TEST(HeadingHold, AYawSwingOfOneStepPairAveragesOut) {
   EXPECT_LT(worst, 1e-3);  // the instantaneous error at the step starts: +-0.07 rad
 }
 
-TEST(HeadingHold, ProjectsTheGyroOntoWorldYawWithTheBodyTilt) {
+TEST(HeadingHold, ProjectsTheGyroOntoTheWorldsVerticalWithTheAttitude) {
   ParameterStore store;
-  walk::HeadingHold hold(store, kPeriod);
+  Hold fed(store);
   ASSERT_TRUE(store.set_now(kOn).is_ok());
-  hold.update(gyro(0.0, 0.0), 0.3, true, true);
-  // A pure roll rate of the pitched torso is partly a yaw rate: -sin(tilt) g_x.
-  for (int i = 0; i < 100; ++i) hold.update(gyro(0.2, 0.0), 0.3, false, true);
-  EXPECT_NEAR(hold.heading_error(), -std::sin(0.3) * 0.2, 1e-9);
+  // The torso pitched forward by 0.3 rad (the accelerometer says so): a roll rate about the
+  // torso's x is partly a yaw rate, -sin(0.3) g_x.
+  hal::Cm730State pitched = gyro(0.0, 0.0);
+  pitched.accel_mps2 = {-9.81 * std::sin(0.3), 0.0, 9.81 * std::cos(0.3)};
+  fed.update(pitched, true, true);
+  pitched.gyro_rad_s = {0.2, 0.0, 0.0};
+  for (int i = 0; i < 100; ++i) fed.update(pitched, false, true);
+  EXPECT_NEAR(fed.hold.heading_error(), -std::sin(0.3) * 0.2, 2e-3);
 }
 
 TEST(HeadingHold, ClampsAndIsOffWithZeroGainsAndWhileTurning) {
   ParameterStore store;
-  walk::HeadingHold hold(store, kPeriod);
+  Hold fed(store);
+  walk::HeadingHold& hold = fed.hold;
   ASSERT_TRUE(store.set_now(kOn).is_ok());
-  hold.update(gyro(0.0, 0.0), 0.0, true, true);
-  for (int i = 0; i < 100; ++i) hold.update(gyro(0.0, 1.0), 0.0, false, true);
+  fed.update(gyro(0.0, 0.0), true, true);
+  for (int i = 0; i < 100; ++i) fed.update(gyro(0.0, 1.0), false, true);
   EXPECT_NEAR(hold.heading_error(), 1.0, 1e-9);
   EXPECT_NEAR(hold.begin_step(), -0.1, 1e-12);  // heading_max_correction
   ASSERT_TRUE(store.set_now({{"walk.balance.heading_gain", 0.0}}).is_ok());
-  for (int i = 0; i < 100; ++i) hold.update(gyro(0.0, 0.0), 0.0, false, true);
+  for (int i = 0; i < 100; ++i) fed.update(gyro(0.0, 0.0), false, true);
   EXPECT_EQ(hold.begin_step(), 0.0);
   ASSERT_TRUE(store
                   .set_now({{"walk.balance.heading_gain", 0.3},
@@ -120,26 +141,35 @@ TEST(HeadingHold, ClampsAndIsOffWithZeroGainsAndWhileTurning) {
                             {"walk.balance.heading_max_correction", 0.5}})
                   .is_ok());
   // Error 1 rad for two steps, and the rate term sees the filtered yaw rate (0 now).
-  for (int i = 0; i < 100; ++i) hold.update(gyro(0.0, 0.0), 0.0, false, true);
+  for (int i = 0; i < 100; ++i) fed.update(gyro(0.0, 0.0), false, true);
   EXPECT_NEAR(hold.begin_step(), -0.3, 0.01);
   // The rate term: turning at 1 rad/s for a second with a 0.5 s filter reads ~0.86 rad/s.
-  for (int i = 0; i < 100; ++i) hold.update(gyro(0.0, 1.0), 0.0, false, true);
+  for (int i = 0; i < 100; ++i) fed.update(gyro(0.0, 1.0), false, true);
   EXPECT_LT(hold.begin_step(), -0.3 * 1.25 - 0.07);
   // A commanded turn clears the error: the new heading is held once the turn ends.
-  hold.update(gyro(0.0, 1.0), 0.0, false, false);
+  fed.update(gyro(0.0, 1.0), false, false);
   EXPECT_EQ(hold.heading_error(), 0.0);
   EXPECT_EQ(hold.begin_step(), 0.0);
 }
 
+/// The torso still, pitched forward by the walk's body tilt (Ind_O's 0.174 rad).
+hal::SensorFrame standing_still() {
+  hal::SensorFrame f;
+  f.cm730.accel_mps2 = {-9.81 * std::sin(0.174), 0.0, 9.81 * std::cos(0.174)};
+  return f;
+}
+
 struct Rig {
   ParameterStore store;
-  WalkEngine engine{store, ServoTable::defaults(), kPeriodNs};
-  hal::SensorFrame sensors;
+  AttitudeEstimator attitude{store, kPeriod};  // the controller's: updated before each step
+  WalkEngine engine{store, ServoTable::defaults(), kPeriodNs, attitude};
+  hal::SensorFrame sensors = standing_still();
   hal::CommandFrame out;
   hal::Tick tick = 0;
   void run(int ticks) {
     for (int i = 0; i < ticks; ++i) {
       store.apply_staged();
+      attitude.update(sensors.cm730);
       engine.step(sensors, tick++, out);
     }
   }
@@ -166,9 +196,10 @@ TEST(WalkHeadingHold, AYawToTheLeftTurnsTheStepsToTheRightAndGainZeroIsOpenLoop)
   EXPECT_EQ(still.engine.snapshot().heading_correction, 0.0);
   EXPECT_EQ(open_loop.engine.snapshot().heading_correction, 0.0);
   EXPECT_LT(yawing.engine.snapshot().heading_correction, -0.01);
-  // 10 s of yaw (the first walking tick still counts into the bias: 0.05 / 101 rad/s).
+  // 10 s of yaw (the first walking tick still counts into the bias: 0.05 / 101 rad/s), about
+  // the world's vertical: the torso is pitched by 0.174 rad.
   EXPECT_NEAR(yawing.engine.snapshot().heading_error,
-              9.99 * 0.05 * std::cos(0.174) * (1.0 - 1.0 / 101.0), 1e-9);
+              9.99 * 0.05 * std::cos(0.174) * (1.0 - 1.0 / 101.0), 1e-3);
   // The planned feet turn right (negative yaw); without the hold they do not turn at all.
   EXPECT_LT(foot_yaw_difference(yawing.engine.snapshot()), -0.05);
   EXPECT_NEAR(foot_yaw_difference(open_loop.engine.snapshot()), 0.0, 1e-12);
@@ -179,7 +210,8 @@ TEST(WalkHeadingHold, AYawToTheLeftTurnsTheStepsToTheRightAndGainZeroIsOpenLoop)
 
 TEST(WalkParameters, WideRangesContainTheSeedBoundsAndTheStoreAcceptsThem) {
   ParameterStore store;
-  WalkEngine engine(store, ServoTable::defaults(), kPeriodNs);
+  AttitudeEstimator attitude(store, kPeriod);
+  WalkEngine engine(store, ServoTable::defaults(), kPeriodNs, attitude);
   int widened = 0;
   for (const auto& row : walk::walk_parameter_table()) {
     const walk::WalkParameterRange range = walk::walk_parameter_store_range(row);

@@ -66,19 +66,32 @@ TEST(MagneticHeading, TiltCompensatedHeadingIsTheYawWhateverTheTilt) {
       0.15);
 }
 
+/// A heading hold fed as the walk feeds it: the firmware's attitude estimate updated with the
+/// tick's IMU first.
+struct Hold {
+  explicit Hold(ParameterStore& store) : attitude(store, kPeriod), hold(store, kPeriod) {}
+  AttitudeEstimator attitude;
+  walk::HeadingHold hold;
+  void update(const hal::Cm730State& imu, bool calibrating, bool holding) {
+    attitude.update(imu);
+    hold.update(attitude, imu, calibrating, holding);
+  }
+};
+
 /// A walk of `seconds` after a 1 s stand, with the hold's correction turning the robot over
 /// each 0.5 s step. The gyro reads a bias of `bias` rad/s once the walk starts (the stand saw
 /// none: a drift the start-up calibration missed). Returns the robot's true heading change.
 double walk_with_bias(double bias, bool magnetometer, double seconds, double bias_time = 0.0,
                       double* estimate = nullptr) {
   ParameterStore store;
-  walk::HeadingHold hold(store, kPeriod);
+  Hold fed(store);
+  walk::HeadingHold& hold = fed.hold;
   EXPECT_TRUE(store.set_now({{"walk.balance.heading_mag_bias_time", bias_time}}).is_ok());
   hold.reset();
   const double pitch = 0.12;  // the walk's forward lean
   double yaw = 0.0;
   for (int i = 0; i < 100; ++i)
-    hold.update(reading(attitude(yaw, pitch, 0.0), 0.0, 0.0, magnetometer), pitch, true, true);
+    fed.update(reading(attitude(yaw, pitch, 0.0), 0.0, 0.0, magnetometer), true, true);
   double turn_rate = 0.0;
   const int ticks_per_step = 50;
   const int ticks = static_cast<int>(seconds / kPeriod);
@@ -87,8 +100,7 @@ double walk_with_bias(double bias, bool magnetometer, double seconds, double bia
     // The torso also rolls to and fro with the steps (+-0.05 rad), as walking does.
     const double roll = 0.05 * std::sin(2.0 * kPi * i / (2.0 * ticks_per_step));
     yaw += turn_rate * kPeriod;
-    hold.update(reading(attitude(yaw, pitch, roll), turn_rate, bias, magnetometer), pitch, false,
-                true);
+    fed.update(reading(attitude(yaw, pitch, roll), turn_rate, bias, magnetometer), false, true);
   }
   EXPECT_EQ(hold.using_magnetometer(), magnetometer);
   if (estimate != nullptr) *estimate = hold.heading_error();
@@ -118,31 +130,38 @@ TEST(MagneticHeading, GyroBiasTurnsTheGyroOnlyWalkButNotTheFusedOne) {
 
 TEST(MagneticHeading, LearnsTheGyroBiasFromTheMagnetometer) {
   ParameterStore store;
+  AttitudeEstimator attitude_estimate(store, kPeriod);
   walk::MagneticHeading heading(store, kPeriod);
+  auto tick = [&](const hal::Cm730State& imu, bool calibrating) {
+    attitude_estimate.update(imu);
+    heading.update(attitude_estimate, imu, calibrating);
+  };
   ASSERT_TRUE(store
                   .set_now({{"walk.balance.heading_mag_time", 2.0},
                             {"walk.balance.heading_mag_bias_time", 10.0}})
                   .is_ok());
   const Eigen::Matrix3d r = attitude(0.8, 0.1, -0.05);
   // The heading is measured from magnetic north (0.4 rad from the world's x here).
-  for (int i = 0; i < 100; ++i) heading.update(reading(r, 0.0, 0.0, true, 0.4), true);
+  for (int i = 0; i < 100; ++i) tick(reading(r, 0.0, 0.0, true, 0.4), true);
   EXPECT_NEAR(heading.heading(), 0.8 - 0.4, 1e-6);
   EXPECT_NEAR(heading.bias(), 0.0, 1e-12);
-  for (int i = 0; i < 6000; ++i) heading.update(reading(r, 0.0, 0.03, true, 0.4), false);
+  for (int i = 0; i < 6000; ++i) tick(reading(r, 0.0, 0.03, true, 0.4), false);
   EXPECT_NEAR(heading.bias(), 0.03, 0.002);
   EXPECT_NEAR(heading.heading(), 0.8 - 0.4, 0.01);
-  // The z bias leaks into the roll's Euler rate (times tan(pitch)) until the accelerometer
-  // pulls it back: 0.03 tan(0.1) rad/s over the 1 s tilt filter, about 3 mrad.
-  EXPECT_NEAR(heading.roll(), -0.05, 5e-3);
-  EXPECT_NEAR(heading.pitch(), 0.1, 5e-3);
+  // The z bias turns the estimate's up direction about the torso's z until the accelerometer
+  // pulls it back: 0.03 sin(0.1) rad/s over the 0.84 s time constant, about 3 mrad.
+  EXPECT_NEAR(attitude_estimate.roll(), -0.05, 5e-3);
+  EXPECT_NEAR(attitude_estimate.pitch(), 0.1, 5e-3);
 }
 
 TEST(MagneticHeading, WithoutAMagnetometerTheHoldIsTheGyroOnlyOneToTheBit) {
   ParameterStore plain_store, store;
-  walk::HeadingHold plain(plain_store, kPeriod), hold(store, kPeriod);
+  Hold fed_plain(plain_store), fed(store);
+  walk::HeadingHold &plain = fed_plain.hold, &hold = fed.hold;
   // Off by its parameter: a reading with a field but heading_mag_time 0.
   ParameterStore off_store;
-  walk::HeadingHold off(off_store, kPeriod);
+  Hold fed_off(off_store);
+  walk::HeadingHold& off = fed_off.hold;
   ASSERT_TRUE(off_store.set_now({{"walk.balance.heading_mag_time", 0.0}}).is_ok());
   for (int i = 0; i < 1500; ++i) {
     const double gz = 0.013 * std::sin(0.01 * i) + 0.004;
@@ -155,9 +174,9 @@ TEST(MagneticHeading, WithoutAMagnetometerTheHoldIsTheGyroOnlyOneToTheBit) {
     switched_off.mag_gauss = with_field.mag_gauss;
     switched_off.has_magnetometer = true;
     const bool calibrating = i < 100, holding = i < 700 || i > 800;
-    plain.update(s, 0.1, calibrating, holding);
-    hold.update(with_field, 0.1, calibrating, holding);
-    off.update(switched_off, 0.1, calibrating, holding);
+    fed_plain.update(s, calibrating, holding);
+    fed.update(with_field, calibrating, holding);
+    fed_off.update(switched_off, calibrating, holding);
     ASSERT_EQ(plain.heading_error(), hold.heading_error()) << i;
     ASSERT_EQ(plain.heading_error(), off.heading_error()) << i;
     if (i % 50 == 0) {

@@ -33,7 +33,8 @@ Outcome run_walk(const std::vector<ParamWrite>& genome, int ticks, double vx, do
                  double vtheta) {
   ParameterStore store;
   const ServoTable& servos = ServoTable::defaults();
-  WalkEngine engine(store, servos, kPeriodNs);
+  AttitudeEstimator attitude(store, kPeriodNs * 1e-9);
+  WalkEngine engine(store, servos, kPeriodNs, attitude);
   SafetyLayer safety(store, servos);
   Outcome outcome;
   if (!store.set_now(genome)) {
@@ -47,6 +48,7 @@ Outcome run_walk(const std::vector<ParamWrite>& genome, int ticks, double vx, do
   for (hal::Tick t = 0; t < ticks; ++t) {
     if (t == ticks / 2) engine.set_velocity(-vx, -vy, -vtheta);
     if (t == ticks - 250) engine.request_stop();
+    attitude.update(sensors.cm730);
     engine.step(sensors, t, commands);
     for (std::size_t i = 0; i < hal::kServoCount; ++i) {
       const double q = commands.servos[i].position_rad;
@@ -54,7 +56,7 @@ Outcome run_walk(const std::vector<ParamWrite>& genome, int ticks, double vx, do
       if (q < servos[i].min_rad || q > servos[i].max_rad) ++outcome.engine_limit_violations;
     }
     hal::CommandFrame safe = commands;
-    safety.observe(sensors);
+    safety.observe(sensors, attitude);
     safety.apply(sensors, safe);
     for (std::size_t i = 0; i < hal::kServoCount; ++i) {
       const double q = safe.servos[i].position_rad;

@@ -23,8 +23,9 @@ constexpr int kTicksPerSecond = 100;
 
 struct Rig {
   ParameterStore store;
-  WalkEngine seed{store, ServoTable::defaults(), kPeriodNs};
-  SplineWalkEngine spline{store, ServoTable::defaults(), kPeriodNs};
+  AttitudeEstimator attitude{store, 0.01};  // the controller's: updated before each step
+  WalkEngine seed{store, ServoTable::defaults(), kPeriodNs, attitude};
+  SplineWalkEngine spline{store, ServoTable::defaults(), kPeriodNs, attitude};
   WalkSelector selector{store, seed, spline};
   hal::SensorFrame sensors = hal::ScriptedRobot::standing_frame();
   hal::CommandFrame out;
@@ -38,6 +39,7 @@ struct Rig {
   void run(int ticks) {
     for (int i = 0; i < ticks; ++i) {
       store.apply_staged();
+      attitude.update(sensors.cm730);
       selector.step(sensors, tick++, out);
     }
   }
@@ -66,7 +68,8 @@ TEST(WalkSelector, WalkEngineChoosesTheEngineWhenAWalkStarts) {
 
 TEST(SplineWalkEngine, RegistersItsParametersAndClosedLoopPartsUnderWalkSpline) {
   ParameterStore store;
-  SplineWalkEngine engine(store, ServoTable::defaults(), kPeriodNs);
+  AttitudeEstimator attitude(store, 0.01);
+  SplineWalkEngine engine(store, ServoTable::defaults(), kPeriodNs, attitude);
   for (const auto& row : walk::spline_walk_parameter_table()) {
     const auto h = store.find(row.name);
     ASSERT_TRUE(h.has_value()) << row.name;

@@ -2,8 +2,9 @@
 //
 // step() is pure with respect to the outside world: no I/O, no clock, no heap allocation and
 // no exceptions; the same step runs on the robot, in the simulator and in every optimiser
-// evaluation. Order inside a step: requests -> fall detection -> motion manager (active
-// engine) -> torque switch -> safety layer (always last).
+// evaluation. Order inside a step: requests -> attitude estimate (attitude_estimator.hpp) ->
+// fall detection -> motion manager (active engine) -> torque switch -> safety layer (always
+// last).
 //
 // Thread rules: step() on the control thread. request(), set_torque() and status() may be
 // called from one other thread (console); they never block the control thread (it try-locks).
@@ -13,6 +14,7 @@
 #include <cstdint>
 #include <mutex>
 
+#include "stride/firmware/attitude_estimator.hpp"
 #include "stride/firmware/motion_manager.hpp"
 #include "stride/firmware/motion_request.hpp"
 #include "stride/firmware/parameter_store.hpp"
@@ -45,9 +47,11 @@ class Controller {
  public:
   using Engines = ControllerEngines;
 
-  /// Registers the controller's parameters. `servos` and the engines must outlive it.
+  /// Registers the controller's parameters. `servos`, `attitude` and the engines must outlive
+  /// it. `attitude` is the firmware's one attitude estimate: step() updates it with the tick's
+  /// IMU before anything reads it (the engines were built reading the same object).
   Controller(ParameterStore& params, const ServoTable& servos, std::int64_t period_ns,
-             Engines engines = {});
+             AttitudeEstimator& attitude, Engines engines = {});
 
   /// One control cycle. Real-time: no I/O, no clock, no allocation, no exceptions.
   hal::CommandFrame step(const hal::SensorFrame& sensors, hal::Tick tick) noexcept;
@@ -62,12 +66,14 @@ class Controller {
 
   const MotionManager& motion() const noexcept { return motion_; }
   const SafetyLayer& safety() const noexcept { return safety_; }
+  const AttitudeEstimator& attitude() const noexcept { return attitude_; }
   std::int64_t period_ns() const noexcept { return period_ns_; }
 
  private:
   void take_inbox() noexcept;
 
   std::int64_t period_ns_;
+  AttitudeEstimator& attitude_;
   SafetyLayer safety_;
   MotionManager motion_;
   hal::CommandFrame commands_{};

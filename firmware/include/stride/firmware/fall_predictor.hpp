@@ -1,8 +1,9 @@
 // FallPredictor: sees a fall coming from the IMU, before the trunk hits the ground.
 //
-// Attitude: roll and pitch of the torso from a complementary filter, the gyro integrated each
-// tick and pulled towards the accelerometer's gravity direction by fall.accel_weight
-// (pitch > 0 leaning forward, roll > 0 leaning right; upright and still both are 0).
+// Attitude: roll and pitch of the torso from the firmware's one attitude estimate
+// (attitude_estimator.hpp): roll = atan2(u_y, u_z), pitch = atan2(-u_x, u_z) of its up
+// direction u (pitch > 0 leaning forward, roll > 0 leaning right; upright and still both are
+// 0; lying down they reach +-pi/2 and beyond).
 // Rule, per axis (the form of Bit-Bots' bitbots_hcm "Falling" decision, thresholds ours):
 // the torso is falling when it rotates away from upright and
 //   |angle| / fall.tilt_rad + |rate| / fall.rate_rad_s >= 1,
@@ -18,6 +19,7 @@
 
 #include <cstdint>
 
+#include "stride/firmware/attitude_estimator.hpp"
 #include "stride/firmware/parameter_store.hpp"
 #include "stride/hal/sensor_frame.hpp"
 
@@ -29,12 +31,12 @@ const char* to_string(FallDirection direction);
 
 class FallPredictor {
  public:
-  /// Registers fall.tilt_rad, fall.rate_rad_s, fall.confirm_ticks, fall.accel_weight and
-  /// fall.upright_rad.
-  FallPredictor(ParameterStore& params, double period_s);
+  /// Registers fall.tilt_rad, fall.rate_rad_s, fall.confirm_ticks and fall.upright_rad.
+  explicit FallPredictor(ParameterStore& params);
 
-  /// Updates the attitude and the prediction from this tick's IMU. Real-time: yes.
-  void observe(const hal::Cm730State& imu) noexcept;
+  /// Updates the prediction from this tick's attitude estimate (already updated with this
+  /// tick's IMU). Real-time: yes.
+  void observe(const AttitudeEstimator& attitude) noexcept;
 
   /// True while a fall is predicted (confirmed).
   bool falling() const noexcept { return falling_; }
@@ -47,10 +49,8 @@ class FallPredictor {
 
  private:
   ParameterStore& params_;
-  double period_s_;
-  ParamHandle tilt_, rate_, confirm_ticks_, accel_weight_, upright_;
+  ParamHandle tilt_, rate_, confirm_ticks_, upright_;
   double roll_ = 0.0, pitch_ = 0.0;
-  bool initialised_ = false;
   bool falling_ = false;
   bool armed_ = false;  // upright since the last prediction
   FallDirection direction_ = FallDirection::kNone;

@@ -6,8 +6,10 @@
 // Fall detection: tilt = angle between the torso z axis and the measured specific force
 // (upright and still: accel = (0, 0, +9.81), tilt 0). The robot is "fallen" when the low-pass
 // filtered tilt stays above safety.fall_tilt for safety.fall_ticks ticks, and "upright" again
-// when it drops below safety.upright_tilt. Before that, FallPredictor (fall_predictor.hpp) sees
-// a fall coming from the attitude and its rate; the motion manager then protects the robot.
+// when it drops below safety.upright_tilt (the accelerometer alone, low-passed: whether the
+// robot lies is a question for a still torso). Before that, FallPredictor (fall_predictor.hpp)
+// sees a fall coming from the firmware's attitude estimate and its rate; the motion manager then
+// protects the robot.
 //
 // Parameters: safety.max_torque_limit [0..1], safety.max_p_gain [register], safety.fall_tilt
 // [rad], safety.upright_tilt [rad], safety.fall_ticks, safety.error_ticks (consecutive ticks
@@ -43,11 +45,11 @@ struct SafetyReport {
 
 class SafetyLayer {
  public:
-  /// `period_s` is the control period (the fall predictor integrates the gyro over it).
-  SafetyLayer(ParameterStore& params, const ServoTable& servos, double period_s = 0.01);
+  SafetyLayer(ParameterStore& params, const ServoTable& servos);
 
-  /// Updates the fall state from this tick's IMU. Real-time: yes.
-  void observe(const hal::SensorFrame& sensors) noexcept;
+  /// Updates the fall state from this tick's IMU and the attitude estimate (already updated
+  /// with it; the fall predictor reads it). Real-time: yes.
+  void observe(const hal::SensorFrame& sensors, const AttitudeEstimator& attitude) noexcept;
 
   /// Makes `commands` safe in place (clamps, NaN guard, torque limits, error torque-off).
   /// Real-time: yes.

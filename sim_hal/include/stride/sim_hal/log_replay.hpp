@@ -2,11 +2,11 @@
 //
 // The log is cut into windows of whole control periods. Each window puts the simulated robot
 // in the logged state at the window's start (joint angles from the encoders, trunk roll and
-// pitch from a complementary filter over the logged IMU, yaw 0, the lowest contact point on the
-// grass; no ball: the log does not say where one was), then feeds the logged CommandFrames one
-// control period each and compares the simulated SensorFrames with the logged ones: RMS error per
-// joint of position, speed and load, and of the IMU's attitude, rate and specific force. Format of
-// the log: FLIGHT_LOG.md.
+// pitch from the firmware's attitude estimator over the logged IMU, yaw 0, the lowest contact point
+// on the grass; no ball: the log does not say where one was), then feeds the logged CommandFrames
+// one control period each and compares the simulated SensorFrames with the logged ones: RMS error
+// per joint of position, speed and load, and of the IMU's attitude, rate and specific force. Format
+// of the log: FLIGHT_LOG.md.
 #pragma once
 
 #include <array>
@@ -18,6 +18,7 @@
 #include <Eigen/Core>
 
 #include "stride/core/status.hpp"
+#include "stride/firmware/attitude_estimator.hpp"
 #include "stride/firmware/recorder/flight_log_reader.hpp"
 #include "stride/firmware/robot_description.hpp"
 #include "stride/firmware/servo_table.hpp"
@@ -25,31 +26,12 @@
 
 namespace stride::sim {
 
-/// Trunk roll and pitch from the IMU: the "up" direction in the torso frame, propagated by the
-/// gyro and pulled towards the accelerometer's direction with time constant `time_constant_s`
-/// (a specific force far from 1 g is not trusted), the gyro's bias about the horizontal axes
-/// estimated on the way (the integral term of a Mahony filter, critically damped). Upright and
-/// still: roll = pitch = 0.
-class TiltFilter {
- public:
-  explicit TiltFilter(double time_constant_s = 2.0, bool estimate_bias = true)
-      : time_constant_s_(time_constant_s), estimate_bias_(estimate_bias) {}
-  /// Starts from the accelerometer alone (up along the specific force), no gyro bias.
-  void start(const Eigen::Vector3d& accel);
-  /// Starts from the state of another filter (its direction and bias).
-  void start(const TiltFilter& other);
-  void update(const Eigen::Vector3d& accel, const Eigen::Vector3d& gyro, double dt_s);
-  double roll() const;
-  double pitch() const;
-  const Eigen::Vector3d& up() const { return up_; }
-  const Eigen::Vector3d& gyro_bias() const { return bias_; }
-
- private:
-  double time_constant_s_;
-  bool estimate_bias_;
-  Eigen::Vector3d up_ = Eigen::Vector3d::UnitZ();
-  Eigen::Vector3d bias_ = Eigen::Vector3d::Zero();
-};
+/// The trunk's attitude over a log is the firmware's own estimator (fw::AttitudeEstimator,
+/// attitude_estimator.hpp) run over the logged IMU readings, with the time constant the log's
+/// firmware used (the header's walk.balance.tilt_filter_time; its default for a log without
+/// it) and the gyro's bias about the horizontal axes learnt (the replay sees the whole log).
+/// The time constant of `log` [s].
+double log_attitude_time_constant(const fw::FlightLog& log);
 
 /// Checks that `log` can be replayed with the firmware files in use: a sim-able header
 /// (period), whole (unless `allow_truncated`), and recorded with the same servo table and robot
@@ -79,7 +61,7 @@ struct ReplayErrors {
   double position_all_rad = 0.0;                ///< over every servo sample
   double speed_all_rad_s = 0.0;
   double load_all = 0.0;
-  double roll_rad = 0.0, pitch_rad = 0.0;  ///< TiltFilter attitude
+  double roll_rad = 0.0, pitch_rad = 0.0;  ///< attitude estimate (fw::AttitudeEstimator)
   Eigen::Vector3d gyro_rad_s = Eigen::Vector3d::Zero();
   Eigen::Vector3d accel_mps2 = Eigen::Vector3d::Zero();
   /// The mean of logged minus simulated IMU reading (signed) over the compared samples from 1 s
@@ -91,7 +73,7 @@ struct ReplayErrors {
   /// (the seed walk's Obj2, measured on the robot and predicted by the world).
   double peak_accel_logged_mps2 = 0.0, peak_accel_sim_mps2 = 0.0;
   std::size_t mean_samples = 0;  ///< the IMU samples in the means and peaks
-  std::size_t samples = 0;      ///< ticks compared
+  std::size_t samples = 0;       ///< ticks compared
 };
 
 /// The traces of one window (one entry per compared tick), logged and simulated.

@@ -12,9 +12,9 @@
 // more toe-down ankle and more backward hip pitch on the support leg, both of which rotate the
 // torso back; likewise for roll. Gains k_j are in seconds (rad of joint per rad/s of rate).
 //
-// Tilt term (walk.balance.{pitch,roll}_angle_gain, 1/s; 0 = rate feedback only): a
-// complementary filter estimates torso pitch and roll from gyro and accelerometer
-// (time constant walk.balance.tilt_filter_time); its slow mean (walk.balance.tilt_reference_time)
+// Tilt term (walk.balance.{pitch,roll}_angle_gain, 1/s; 0 = rate feedback only): the torso's
+// pitch and roll are the firmware's attitude estimate (attitude_estimator.hpp, time constant
+// walk.balance.tilt_filter_time); its slow mean (walk.balance.tilt_reference_time)
 // is the reference (0: the tilt measured when the walk starts), so the term reacts to a tilt
 // away from the recent (or the starting) posture. The fed-back rate becomes
 //   r = deadband(g_f) + angle_gain * (tilt - tilt_reference)                          [rad/s]
@@ -27,6 +27,7 @@
 
 #include <string_view>
 
+#include "stride/firmware/attitude_estimator.hpp"
 #include "stride/firmware/parameter_store.hpp"
 #include "stride/firmware/walk/leg_kinematics.hpp"
 #include "stride/hal/sensor_frame.hpp"
@@ -52,8 +53,9 @@ class BalanceFeedback {
   BalanceFeedback(ParameterStore& store, double period_s, std::string_view prefix = "walk");
 
   void reset() noexcept;
-  /// Filters this tick's gyro and returns the joint shifts for the support leg. Real-time.
-  BalanceShift update(const hal::Cm730State& imu) noexcept;
+  /// Filters this tick's gyro (the attitude estimate's reading, updated this tick) and returns
+  /// the joint shifts for the support leg. Real-time.
+  BalanceShift update(const AttitudeEstimator& attitude) noexcept;
   /// Share of the shift the swing leg takes in double support (0..1).
   double double_support_weight() const noexcept;
   /// ZMP excursion scale of step `step_count` after the start (0..1].
@@ -64,11 +66,11 @@ class BalanceFeedback {
   double period_s_;
   ParamHandle ankle_pitch_gain_, ankle_roll_gain_, hip_pitch_gain_, hip_roll_gain_;
   ParamHandle filter_time_, deadband_, max_shift_;
-  ParamHandle pitch_angle_gain_, roll_angle_gain_, tilt_filter_time_, tilt_reference_time_;
+  ParamHandle pitch_angle_gain_, roll_angle_gain_, tilt_reference_time_;
   ParamHandle double_support_weight_, start_sway_steps_;
   double gyro_x_ = 0.0, gyro_y_ = 0.0;
   bool tilt_valid_ = false;
-  double roll_ = 0.0, pitch_ = 0.0, roll_reference_ = 0.0, pitch_reference_ = 0.0;
+  double roll_reference_ = 0.0, pitch_reference_ = 0.0;
 };
 
 }  // namespace stride::fw::walk

@@ -5,8 +5,8 @@
 // & Behnke, Humanoids 2016; ../shared/research/walk-anchors.md 1 and 5). Parameters
 // walk.capture.* (not in the genome; every gain 0 = the seed's clock-driven walk).
 //
-// Tilt: a complementary filter of gyro and accelerometer gives the trunk's roll and pitch
-// (time constant walk.balance.tilt_filter_time is not reused: walk.capture.tilt_filter_time).
+// Tilt: the trunk's roll and pitch are the firmware's attitude estimate
+// (attitude_estimator.hpp, time constant walk.balance.tilt_filter_time).
 // Expected tilt: the walk rocks the trunk once per step pair, so the expected tilt is learned
 // per phase of the step pair (kBins bins, each an exponential mean over learn_steps step pairs,
 // started at the standing tilt), and the deviation is d = tilt - expected(phase). With the
@@ -30,6 +30,7 @@
 
 #include <array>
 
+#include "stride/firmware/attitude_estimator.hpp"
 #include "stride/firmware/parameter_store.hpp"
 #include "stride/hal/sensor_frame.hpp"
 
@@ -52,7 +53,7 @@ class CaptureStep {
   /// right step); `walking`: steps are being taken (the expected tilt learns only then);
   /// `standing`: the robot stands (the standing tilt is averaged into the expectation).
   /// `step_time` [s] paces the learning.
-  void update(const hal::Cm730State& imu, double pair_phase, double step_time, bool walking,
+  void update(const AttitudeEstimator& attitude, double pair_phase, double step_time, bool walking,
               bool standing) noexcept;
   /// Footstep offset for the step that starts now [m] (walk frame: x forward, y left).
   double step_offset_x() const noexcept;
@@ -71,7 +72,7 @@ class CaptureStep {
   double period_s_;
   ParamHandle step_gain_x_, step_gain_y_, max_step_x_, max_step_y_;
   ParamHandle timing_gain_, max_timing_, com_height_, learn_steps_, rate_filter_time_,
-      tilt_filter_time_, touchdown_load_, touchdown_phase_;
+      touchdown_load_, touchdown_phase_;
   bool tilt_valid_ = false;
   double roll_ = 0.0, pitch_ = 0.0;
   std::array<double, kBins> expected_roll_{}, expected_pitch_{};

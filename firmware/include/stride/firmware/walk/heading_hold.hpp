@@ -4,9 +4,12 @@
 // MuJoCo model of the robot turns the stock walk by up to 1.5 rad over 2.5 m; issue 22).
 // Parameters walk.balance.heading_* (not in the 46-parameter genome; heading_gain 0 = off).
 //
-// Per tick, with the torso gyro g [rad/s] in the torso frame and the walk's body tilt theta
-// (the torso pitched forward about y), the world yaw rate is
-//   r = cos(theta) g_z - sin(theta) g_x                                                  [rad/s]
+// Per tick, the world yaw rate is the firmware's attitude estimate's vertical rate
+// (attitude_estimator.hpp): with the world's up direction u seen in the torso frame and the
+// torso gyro g [rad/s],
+//   r = u . g                                                                            [rad/s]
+// (upright u = (0, 0, 1) and r = g_z; the torso pitched forward by theta gives
+// r = cos(theta) g_z - sin(theta) g_x).
 // During the start blend (the robot stands) r is averaged into a bias b. Afterwards, while no
 // turn is commanded, the heading error integrates e += (r - b) dt, and a low-pass
 //   r_f += alpha (r - b - r_f), alpha = dt / (dt + heading_filter_time)
@@ -43,7 +46,10 @@ class HeadingHold {
   void reset() noexcept;
   /// One tick. `calibrating`: the robot stands (start blend), the sample goes into the bias;
   /// `hold`: no turn is commanded, the error integrates (otherwise it is cleared).
-  void update(const hal::Cm730State& imu, double body_tilt, bool calibrating, bool hold) noexcept;
+  /// `attitude` is the firmware's estimate, already updated with `imu` (the magnetometer's
+  /// reading is taken from `imu`).
+  void update(const AttitudeEstimator& attitude, const hal::Cm730State& imu, bool calibrating,
+              bool hold) noexcept;
   /// At a step start: closes the step's averaging window and returns the turn velocity to add
   /// to the new step [rad/step] (0 while a turn is commanded, during the start blend, and when
   /// heading_gain and heading_rate_gain are 0).

@@ -2,17 +2,15 @@
 // tilt-compensated heading, for the heading hold when the CM730 has a magnetometer (NimbRo's
 // firmware, igus.md 6.5). Parameters walk.balance.heading_mag_* (not in the genome).
 //
-// Per tick, with the gyro (p, q, r) and accelerometer f in the torso frame:
-//  - tilt: roll phi and pitch theta (Z-Y-X Euler angles, pitch positive nose down) integrate
-//    their Euler rates phi' = p + (q sin phi + r cos phi) tan theta, theta' = q cos phi - r sin
-//    phi, and move the fraction dt / (dt + heading_mag_tilt_time) towards the accelerometer's
-//    phi_a = atan2(f_y, f_z), theta_a = atan2(-f_x, hypot(f_y, f_z)) (a complementary filter);
+// Per tick, from the firmware's attitude estimate (attitude_estimator.hpp: the torso's roll phi
+// and pitch theta, pitch positive nose down, and the rotation rate w about the world's
+// vertical) and the magnetometer m in the torso frame:
 //  - magnetic heading: the field m levelled by the tilt,
 //      l_x = m_x cos theta + (m_y sin phi + m_z cos phi) sin theta,
 //      l_y = m_y cos phi - m_z sin phi,
 //    gives psi_m = -atan2(l_y, l_x) (anticlockwise positive, zero at magnetic north);
-//  - fusion (a complementary filter, second order when the bias is learnt): with the yaw Euler
-//    rate w = (q sin phi + r cos phi) / cos theta and the innovation e = wrap(psi_m - psi),
+//  - fusion (a complementary filter, second order when the bias is learnt): with the
+//    innovation e = wrap(psi_m - psi),
 //      psi += (w - b) dt + e dt / heading_mag_time,
 //      b -= e dt / (heading_mag_time heading_mag_bias_time)   (heading_mag_bias_time > 0 only),
 //    psi continuous (not wrapped), b the gyro's yaw bias (its start: the mean of w while the
@@ -34,6 +32,7 @@
 
 #include <array>
 
+#include "stride/firmware/attitude_estimator.hpp"
 #include "stride/firmware/parameter_store.hpp"
 #include "stride/hal/sensor_frame.hpp"
 
@@ -45,21 +44,21 @@ class MagneticHeading {
   /// start-up only; throws on a name clash).
   MagneticHeading(ParameterStore& store, double period_s, std::string_view prefix = "walk");
 
-  /// At the walk's start: forgets the tilt, the heading and the bias.
+  /// At the walk's start: forgets the heading and the bias.
   void reset() noexcept;
   /// True when the heading hold should use this estimate: a magnetometer reading and
   /// heading_mag_time > 0.
   bool active(const hal::Cm730State& imu) const noexcept;
-  /// One tick. `calibrating`: the robot stands; the yaw rate's mean becomes the bias.
-  void update(const hal::Cm730State& imu, bool calibrating) noexcept;
+  /// One tick, after `attitude` was updated with `imu`. `calibrating`: the robot stands; the
+  /// yaw rate's mean becomes the bias.
+  void update(const AttitudeEstimator& attitude, const hal::Cm730State& imu,
+              bool calibrating) noexcept;
   /// Fused heading [rad], continuous (not wrapped).
   double heading() const noexcept { return heading_; }
   /// Tilt-compensated magnetic heading of the latest tick [rad], in (-pi, pi].
   double magnetic_heading() const noexcept { return magnetic_; }
   /// Estimated gyro yaw-rate bias [rad/s].
   double bias() const noexcept { return bias_; }
-  double roll() const noexcept { return roll_; }
-  double pitch() const noexcept { return pitch_; }
 
   /// psi_m of a field `mag` [any unit] in the torso frame tilted by roll and pitch [rad].
   static double tilt_compensated_heading(const std::array<double, 3>& mag, double roll,
@@ -68,9 +67,8 @@ class MagneticHeading {
  private:
   const ParameterStore& store_;
   double period_s_;
-  ParamHandle time_, bias_time_, tilt_time_;
+  ParamHandle time_, bias_time_;
   bool valid_ = false;
-  double roll_ = 0.0, pitch_ = 0.0;
   double heading_ = 0.0, magnetic_ = 0.0;
   double bias_ = 0.0, bias_sum_ = 0.0;
   int bias_samples_ = 0;

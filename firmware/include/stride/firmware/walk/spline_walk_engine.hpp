@@ -41,6 +41,7 @@
 #include <array>
 #include <cstdint>
 
+#include "stride/firmware/attitude_estimator.hpp"
 #include "stride/firmware/motion_engine.hpp"
 #include "stride/firmware/parameter_store.hpp"
 #include "stride/firmware/robot_description.hpp"
@@ -78,8 +79,11 @@ class SplineWalkEngine final : public WalkControl {
   static constexpr double kStartBlendTime = 1.0;
 
   /// Registers walk.spline.* in `store` (throws std::invalid_argument on a name clash,
-  /// std::runtime_error if a servo is missing from `servos`). `robot` must outlive the engine.
+  /// std::runtime_error if a servo is missing from `servos`). `robot` must outlive the engine;
+  /// `attitude` (kept by reference) is the firmware's attitude estimate, which the controller
+  /// updates with each tick's IMU before the engine steps.
   SplineWalkEngine(ParameterStore& store, const ServoTable& servos, std::int64_t period_ns,
+                   const AttitudeEstimator& attitude,
                    const RobotDescription& robot = RobotDescription::defaults());
 
   std::string_view name() const noexcept override { return "walk"; }
@@ -114,6 +118,7 @@ class SplineWalkEngine final : public WalkControl {
   walk::WalkServos servos_;
   walk::SplineWalkParameters params_;
   double period_s_;
+  const AttitudeEstimator& attitude_;  // the firmware's, updated by the controller each tick
   walk::BalanceFeedback balance_;
   walk::BalanceShift balance_shift_;
   walk::HeadingHold heading_;

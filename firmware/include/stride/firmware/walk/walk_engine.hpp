@@ -30,6 +30,7 @@
 #include <array>
 #include <cstdint>
 
+#include "stride/firmware/attitude_estimator.hpp"
 #include "stride/firmware/motion_engine.hpp"
 #include "stride/firmware/parameter_store.hpp"
 #include "stride/firmware/robot_description.hpp"
@@ -79,8 +80,10 @@ class WalkEngine final : public WalkControl {
   /// Registers the walk.* parameters in `store` (throws std::invalid_argument on a name
   /// clash, std::runtime_error if a servo name is missing from `servos`). `robot` (kept by
   /// reference: it must outlive the engine) is the rigid-body model of the compliance
-  /// compensation.
+  /// compensation; `attitude` (kept by reference) the firmware's attitude estimate, which the
+  /// controller updates with each tick's IMU before the engine steps.
   WalkEngine(ParameterStore& store, const ServoTable& servos, std::int64_t period_ns,
+             const AttitudeEstimator& attitude,
              const RobotDescription& robot = RobotDescription::defaults());
 
   std::string_view name() const noexcept override { return "walk"; }
@@ -122,6 +125,7 @@ class WalkEngine final : public WalkControl {
   walk::WalkServos servos_;
   walk::WalkParameters params_;
   double period_s_;
+  const AttitudeEstimator& attitude_;  // the firmware's, updated by the controller each tick
   walk::BalanceFeedback balance_;
   walk::BalanceShift balance_shift_;
   walk::HeadingHold heading_;
