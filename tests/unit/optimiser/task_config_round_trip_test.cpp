@@ -161,7 +161,7 @@ TEST(TaskConfig, EveryShippedConfigKeepsEveryValueThroughRunJson) {
     // What the reader rebuilds writes the same record again (nothing lost on a second trip).
     EXPECT_EQ(to_json(reread), written);
   }
-  EXPECT_EQ(configs, 11);  // every shipped config was read
+  EXPECT_EQ(configs, 12);  // every shipped config was read
 }
 
 TEST(TaskConfig, EveryTaskSettingAwayFromItsDefaultSurvivesRunJson) {
