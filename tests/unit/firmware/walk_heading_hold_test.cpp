@@ -13,6 +13,8 @@
 
 #include "stride/firmware/walk/walk_engine.hpp"
 
+#include "fed_heading_hold.hpp"
+
 namespace stride::fw {
 namespace {
 
@@ -30,17 +32,10 @@ hal::Cm730State gyro(double gx, double gz) {
   return s;
 }
 
-/// A heading hold fed as the walk feeds it: the firmware's attitude estimate updated with the
-/// tick's IMU first. (The readings of gyro() have no specific force: the estimate stays
-/// upright and the yaw rate is g_z.)
-struct Hold {
-  explicit Hold(ParameterStore& store) : attitude(store, kPeriod), hold(store, kPeriod) {}
-  AttitudeEstimator attitude;
-  walk::HeadingHold hold;
-  void update(const hal::Cm730State& imu, bool calibrating, bool holding) {
-    attitude.update(imu);
-    hold.update(attitude, imu, calibrating, holding);
-  }
+/// A heading hold fed as the walk feeds it (fed_heading_hold.hpp). (The readings of gyro() have no
+/// specific force: the estimate stays upright and the yaw rate is g_z.)
+struct Hold : test::FedHeadingHold {
+  explicit Hold(ParameterStore& store) : FedHeadingHold(store, kPeriod) {}
 };
 
 TEST(HeadingHold, IsOnByDefaultAndGainZeroIsOff) {

@@ -11,6 +11,8 @@
 
 #include "stride/firmware/walk/heading_hold.hpp"
 
+#include "fed_heading_hold.hpp"
+
 namespace stride::fw {
 namespace {
 
@@ -66,16 +68,9 @@ TEST(MagneticHeading, TiltCompensatedHeadingIsTheYawWhateverTheTilt) {
       0.15);
 }
 
-/// A heading hold fed as the walk feeds it: the firmware's attitude estimate updated with the
-/// tick's IMU first.
-struct Hold {
-  explicit Hold(ParameterStore& store) : attitude(store, kPeriod), hold(store, kPeriod) {}
-  AttitudeEstimator attitude;
-  walk::HeadingHold hold;
-  void update(const hal::Cm730State& imu, bool calibrating, bool holding) {
-    attitude.update(imu);
-    hold.update(attitude, imu, calibrating, holding);
-  }
+/// A heading hold fed as the walk feeds it (fed_heading_hold.hpp).
+struct Hold : test::FedHeadingHold {
+  explicit Hold(ParameterStore& store) : FedHeadingHold(store, kPeriod) {}
 };
 
 /// A walk of `seconds` after a 1 s stand, with the hold's correction turning the robot over
