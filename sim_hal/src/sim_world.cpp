@@ -41,6 +41,9 @@ struct SimWorld::Impl {
   // Randomised per reset.
   std::array<double, hal::kServoCount> strength{};
   int latency_ticks = 0;  ///< RobotCalibration's and the randomised tick
+  /// The robot as it may be (Randomisation's servo and supply draws): scales on top of
+  /// RobotCalibration's, and the supply voltage this reset [V].
+  double friction_scale = 1.0, torque_scale = 1.0, supply_v = 0.0;
   Eigen::Vector3d accel_bias = Eigen::Vector3d::Zero(), gyro_bias = Eigen::Vector3d::Zero();
 
   // Time and status.
@@ -79,6 +82,33 @@ struct SimWorld::Impl {
   }
 };
 
+Status check_servo_draws(const Randomisation& r) {
+  const auto bounds = [](const char* name, double lo, double hi, double min, double max,
+                         const char* unit) -> Status {
+    if (!(lo >= min && hi <= max && lo <= hi))
+      return Status::error(std::string(name) + "_min and _max: need " + fw::format_number(min) +
+                           " <= min <= max <= " + fw::format_number(max) + unit + ", got " +
+                           fw::format_number(lo) + " and " + fw::format_number(hi));
+    return {};
+  };
+  if (Status s = bounds("servo_friction", r.servo_friction_min, r.servo_friction_max, 0.1, 3.0, "");
+      !s)
+    return s;
+  if (Status s = bounds("servo_torque", r.servo_torque_min, r.servo_torque_max, 0.1, 3.0, ""); !s)
+    return s;
+  if (r.supply_min_v == 0.0 && r.supply_max_v == 0.0) return {};  // the world's supply
+  return bounds("supply", r.supply_min_v, r.supply_max_v, 6.0, 20.0, " V");
+}
+
+namespace {
+
+/// A scale drawn uniform in [lo, hi]; equal bounds draw nothing (the stream stays as it was).
+double draw_between(double lo, double hi, WorldRng& rng) {
+  return hi > lo ? rng.uniform(lo, hi) : lo;
+}
+
+}  // namespace
+
 Status SimWorld::Impl::configure() {
   const WorldOptions& o = options;
   if (Status s = check_physics_step(o.physics_step_ns, o.control_period_ns); !s) return s;
@@ -94,6 +124,8 @@ Status SimWorld::Impl::configure() {
     return Status::error("contact_range: must be in 0..1");
   if (!(o.randomise.com_range >= 0.0 && o.randomise.com_range <= kMaxComRange))
     return Status::error("com_range: must be in 0.." + fw::format_number(kMaxComRange) + " m");
+  if (Status s = check_servo_draws(o.randomise); !s) return s;
+  supply_v = o.battery_voltage_v;
   for (const TorsoPush& p : o.pushes)
     if (!(p.time_s >= 0.0) || !std::isfinite(p.time_s) || !std::isfinite(p.direction_rad) ||
         !(p.impulse_n_s >= 0.0) || !std::isfinite(p.impulse_n_s))
@@ -176,6 +208,11 @@ void SimWorld::Impl::draw_randomisation() {
     em.root_com_shift.x() = r.com_range * rng.uniform(-1.0, 1.0);
     em.root_com_shift.y() = r.com_range * rng.uniform(-1.0, 1.0);
   }
+  // The servos and the supply: one draw each, only when its bounds differ.
+  friction_scale = draw_between(r.servo_friction_min, r.servo_friction_max, rng);
+  torque_scale = draw_between(r.servo_torque_min, r.servo_torque_max, rng);
+  supply_v = r.supply_max_v > 0.0 ? draw_between(r.supply_min_v, r.supply_max_v, rng)
+                                  : options.battery_voltage_v;
 }
 
 void SimWorld::Impl::skip_reset_draws() {
@@ -300,9 +337,9 @@ Status SimWorld::reset(const ResetSpec& spec) {
     const RobotCalibration& calibration = w.options.robot;
     ServoSetup setup;
     setup.model = w.servo_models[i];
-    setup.supply_voltage_v = w.options.battery_voltage_v;
-    setup.strength = w.strength[i] * calibration.torque_scale(w.servo_models[i]);
-    setup.friction_scale = calibration.friction_scale;
+    setup.supply_voltage_v = w.supply_v;
+    setup.strength = w.strength[i] * calibration.torque_scale(w.servo_models[i]) * w.torque_scale;
+    setup.friction_scale = calibration.friction_scale * w.friction_scale;
     setup.options = &w.options.servo;
     setup.joint = &w.model.joints()[static_cast<std::size_t>(w.servo_joint[i])];
     // Before the first command the servos hold the start pose at the MX's power-on P (32,
@@ -376,7 +413,7 @@ hal::ServoState SimWorld::servo_state(std::size_t index) const {
   out.position_rad = quantise_encoder(w.engine->joint_angle(joint));
   out.speed_rad_s = std::round(w.engine->joint_speed(joint) / kSpeedUnit) * kSpeedUnit;
   out.load = servo.load();
-  out.voltage_v = w.options.battery_voltage_v;
+  out.voltage_v = w.supply_v;
   out.temperature_c = std::round(servo.temperature_c());
   out.goal_position_rad = cmd.position_rad;
   out.p_gain = cmd.p_gain;
@@ -458,7 +495,7 @@ const RobotModel& SimWorld::model() const {
   return impl_->model;
 }
 double SimWorld::battery_voltage() const {
-  return impl_->options.battery_voltage_v;
+  return impl_->supply_v;
 }
 
 GroundTruth SimWorld::ground_truth() const {

@@ -17,6 +17,12 @@ namespace {
 constexpr double kMinStepUs = 1.0, kMaxStepUs = 20000.0;
 /// A relative randomisation range below 1 (a scale never reaches 0).
 constexpr double kMaxRange = 0.99;
+/// The bounds of a drawn servo friction or torque scale (world_file.cpp's calibration bounds
+/// are 0..5 for friction and 0.1..3 for torque; a draw stays inside both).
+constexpr double kMinServoScale = 0.1, kMaxServoScale = 3.0;
+/// The largest drawn supply voltage [V] (the MX's recommended maximum is 14.8 V; a full 4S
+/// LiPo gives 16.8 V).
+constexpr double kMaxSupplyV = 20.0;
 
 using nlohmann::json;
 
@@ -80,12 +86,12 @@ std::string default_text(const json& value) {
 /// One of the per-reset randomisation ranges: a number in [0, max] bound to `field`.
 template <double Randomisation::*field>
 WorldOptionInfo randomisation_row(std::string_view key, std::string_view unit,
-                                  std::string_view help, double max) {
+                                  std::string_view help, double max, double min = 0.0) {
   return {.key = key,
           .unit = unit,
           .help = help,
           .value = WorldValue::kNumber,
-          .min = 0.0,
+          .min = min,
           .max = max,
           .randomisation = true,
           .set = [](WorldSpec& s, const std::string&, double v, const std::string&) -> Status {
@@ -241,6 +247,30 @@ std::vector<WorldOptionInfo> make_table() {
           "trunk centre of mass moved at each reset, x and y uniform in +-range "
           "(make_variants.py: 0.01)",
           kMaxComRange),
+      randomisation_row<&Randomisation::servo_friction_min>(
+          "servo_friction_min", "",
+          "every servo's friction scale drawn at each reset, uniform in [min, max] (worn "
+          "gears; issue 54: 0.8); equal bounds: that scale, no draw",
+          kMaxServoScale, kMinServoScale),
+      randomisation_row<&Randomisation::servo_friction_max>(
+          "servo_friction_max", "", "the upper bound of servo_friction_min's draw (issue 54: 1.6)",
+          kMaxServoScale, kMinServoScale),
+      randomisation_row<&Randomisation::servo_torque_min>(
+          "servo_torque_min", "",
+          "every servo's motor torque scale drawn at each reset, uniform in [min, max] (issue "
+          "54: 0.8); equal bounds: that scale, no draw",
+          kMaxServoScale, kMinServoScale),
+      randomisation_row<&Randomisation::servo_torque_max>(
+          "servo_torque_max", "", "the upper bound of servo_torque_min's draw (issue 54: 1.05)",
+          kMaxServoScale, kMinServoScale),
+      randomisation_row<&Randomisation::supply_min_v>(
+          "supply_min", "V",
+          "supply voltage drawn at each reset, uniform in [min, max] (a battery through a half; "
+          "issue 54: 12); 0 with supply_max 0: the world's",
+          kMaxSupplyV),
+      randomisation_row<&Randomisation::supply_max_v>(
+          "supply_max", "V", "the upper bound of supply_min's draw (a full 4S battery: 16.8)",
+          kMaxSupplyV),
       {.key = "latency_ticks",
        .default_text = "the world file's, " + std::to_string(RobotCalibration{}.latency_ticks),
        .help = "control periods between a command and the servos acting on it",

@@ -148,7 +148,7 @@ static std::string stride_validation_html(const json& doc) {
       html += cell(w.contains(k) ? scalar_text(w[k]) : "-");
     html += cell(std::to_string(world.value("seeds", json::array()).size())) +
             cell(world.contains("unavailable") ? "unavailable: " + scalar_text(world["unavailable"])
-                                               : "",
+                                               : validation_servo_draws_text(w),
                  "name") +
             "</tr>\n";
   }

@@ -175,6 +175,18 @@ Status validation_worlds(const RobotTask& task, const ValidationOptions& options
   r.com_range = std::min(0.05, 1.5 * r.com_range);  // the run's robot variants, if it had them
   r.latency_probability = std::max(0.5, r.latency_probability);
   out.push_back(std::move(wider));
+  // The robot as it may be (issue 54 point 2): worn or weak servos and a battery anywhere
+  // between flat and full, beside the run's randomisation.
+  ValidationWorld servos{"servos off the model", base, seeds};
+  sim::Randomisation& o = servos.world.randomise;
+  o.servo_friction_min = kOffModelServos.servo_friction_min;
+  o.servo_friction_max = kOffModelServos.servo_friction_max;
+  o.servo_torque_min = kOffModelServos.servo_torque_min;
+  o.servo_torque_max = kOffModelServos.servo_torque_max;
+  o.supply_min_v = kOffModelServos.supply_min_v;
+  o.supply_max_v = kOffModelServos.supply_max_v;
+  o.latency_probability = std::max(0.5, o.latency_probability);
+  out.push_back(std::move(servos));
   ValidationWorld half{options.physics_step_ns > 0
                            ? "step " + std::to_string(step_ns / 1000) + " us"
                            : std::string("half step"),

@@ -298,7 +298,30 @@ json validation_world_columns(const json& world) {
                   {"latency_probability", spec.randomise.latency_probability},
                   {"contact_range", spec.randomise.contact_range}};
   if (spec.randomise.com_range > 0.0) columns["com_range"] = spec.randomise.com_range;
+  // The servo and supply draws, where the world has them (issue 54).
+  for (const char* key : {"servo_friction_min", "servo_friction_max", "servo_torque_min",
+                          "servo_torque_max", "supply_min", "supply_max"})
+    if (spec.is_set(key)) columns[key] = sim::find_world_option(key)->get(spec);
   return columns;
+}
+
+std::string validation_servo_draws_text(const json& columns) {
+  if (!columns.contains("servo_friction_min") && !columns.contains("servo_friction_max") &&
+      !columns.contains("servo_torque_min") && !columns.contains("servo_torque_max") &&
+      !columns.contains("supply_min") && !columns.contains("supply_max"))
+    return "";
+  char text[160];
+  std::snprintf(text, sizeof text, "servo friction x%.3g-%.3g, torque x%.3g-%.3g%s",
+                columns.value("servo_friction_min", 1.0), columns.value("servo_friction_max", 1.0),
+                columns.value("servo_torque_min", 1.0), columns.value("servo_torque_max", 1.0),
+                columns.contains("supply_max") ? "" : ", the world's supply");
+  std::string out = text;
+  if (columns.contains("supply_max")) {
+    std::snprintf(text, sizeof text, ", supply %.3g-%.3g V", columns.value("supply_min", 0.0),
+                  columns.value("supply_max", 0.0));
+    out += text;
+  }
+  return out;
 }
 
 std::string validation_text(const json& result) {
@@ -311,15 +334,16 @@ std::string validation_text(const json& result) {
       << ")\nworlds (IMU noise on in all):\n";
   for (const json& world : result.value("worlds", json::array())) {
     const json w = validation_world_columns(world);
+    const std::string servos = validation_servo_draws_text(w);
     std::snprintf(
         line, sizeof line,
         "  %-20s %-7s step %4lld us, %s, friction +-%.3g, mass +-%.3g, strength "
-        "+-%.3g, latency p %.2g, ground +-%.2g, %zu seeds%s%s\n",
+        "+-%.3g, latency p %.2g, ground +-%.2g, %zu seeds%s%s%s%s\n",
         world.value("name", "").c_str(), w.value("engine", "").c_str(),
         static_cast<long long>(w.value("physics_step_us", 0)), w.value("contact", "turf").c_str(),
         w.value("friction_range", 0.0), w.value("mass_range", 0.0), w.value("strength_range", 0.0),
         w.value("latency_probability", 0.0), w.value("contact_range", 0.0),
-        world.value("seeds", json::array()).size(),
+        world.value("seeds", json::array()).size(), servos.empty() ? "" : ", ", servos.c_str(),
         world.contains("unavailable") ? ": UNAVAILABLE, " : "",
         world.contains("unavailable") ? world["unavailable"].get<std::string>().c_str() : "");
     out << line;

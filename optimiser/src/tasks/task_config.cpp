@@ -358,6 +358,8 @@ Status parse_trials(const nlohmann::json& doc, TaskConfig& c) {
         return Status::error("randomisation." + name + ": must be a number");
       if (Status s = ranges.set(o, option_text(r.at(name)), "randomisation." + name); !s) return s;
     }
+    if (Status s = sim::check_servo_draws(ranges.randomise); !s)
+      return Status::error("randomisation." + s.message());
     static_cast<sim::Randomisation&>(c.randomisation) = ranges.randomise;
   }
   return {};

@@ -73,12 +73,13 @@ TEST(ValidateCli, TinyWalkRunValidatesTheSameForAnyThreadCountAndReportShowsIt) 
   EXPECT_EQ(v["format"], "stride-validation-2");
   EXPECT_EQ(v["task"], "walk");
   EXPECT_EQ(v["run_engines"], json({"simbody"}));
-  // The worlds: the other engine, fresh seeds, wider randomisation, half the run's 2.5 ms step
+  // The worlds: the other engine, fresh seeds, wider randomisation, the servos off the model
+  // (issue 54), half the run's 2.5 ms step
   // (the walk's trial step), the soft and the hard ground. Each world's options are a `world`
   // object of the world option table's keys: what differs from the defaults (Simbody, no
   // ranges, the base world's ground, noise on).
   const json& worlds = v["worlds"];
-  ASSERT_EQ(worlds.size(), 6u);
+  ASSERT_EQ(worlds.size(), 7u);
   auto option = [&worlds](std::size_t w, const char* key) {
     return worlds[w]["world"].contains(key) ? worlds[w]["world"][key] : json();
   };
@@ -91,17 +92,25 @@ TEST(ValidateCli, TinyWalkRunValidatesTheSameForAnyThreadCountAndReportShowsIt) 
   EXPECT_DOUBLE_EQ(option(2, "mass_range").get<double>(), 0.075);
   EXPECT_DOUBLE_EQ(option(2, "strength_range").get<double>(), 0.15);
   EXPECT_DOUBLE_EQ(option(2, "latency_probability").get<double>(), 0.5);
-  EXPECT_EQ(worlds[3]["name"], "half step");
-  EXPECT_EQ(option(3, "physics_step_us"), 1250);
-  for (std::size_t w = 0; w < 4; ++w) {
+  EXPECT_EQ(worlds[3]["name"], "servos off the model");
+  EXPECT_DOUBLE_EQ(option(3, "servo_friction_min").get<double>(), 0.8);
+  EXPECT_DOUBLE_EQ(option(3, "servo_friction_max").get<double>(), 1.6);
+  EXPECT_DOUBLE_EQ(option(3, "servo_torque_min").get<double>(), 0.8);
+  EXPECT_DOUBLE_EQ(option(3, "servo_torque_max").get<double>(), 1.05);
+  EXPECT_DOUBLE_EQ(option(3, "supply_min").get<double>(), 12.0);
+  EXPECT_DOUBLE_EQ(option(3, "supply_max").get<double>(), 16.8);
+  EXPECT_DOUBLE_EQ(option(3, "latency_probability").get<double>(), 0.5);
+  EXPECT_EQ(worlds[4]["name"], "half step");
+  EXPECT_EQ(option(4, "physics_step_us"), 1250);
+  for (std::size_t w = 0; w < 5; ++w) {
     EXPECT_EQ(option(w, "base"), "faithful");  // its ground: turf
     EXPECT_TRUE(option(w, "contact").is_null()) << worlds[w]["name"];
   }
-  EXPECT_EQ(worlds[4]["name"], "ground soft");
-  EXPECT_EQ(option(4, "contact"), "soft");
-  EXPECT_EQ(worlds[5]["name"], "ground hard");
-  EXPECT_EQ(option(5, "contact"), "hard");
-  for (std::size_t w = 4; w < 6; ++w) {
+  EXPECT_EQ(worlds[5]["name"], "ground soft");
+  EXPECT_EQ(option(5, "contact"), "soft");
+  EXPECT_EQ(worlds[6]["name"], "ground hard");
+  EXPECT_EQ(option(6, "contact"), "hard");
+  for (std::size_t w = 5; w < 7; ++w) {
     EXPECT_TRUE(option(w, "engine").is_null());  // the run's engine (Simbody), step, ranges
     EXPECT_EQ(option(w, "physics_step_us"), 2500);
     EXPECT_EQ(option(w, "friction"), 1.0);  // turf's, the run's ground's
@@ -199,11 +208,11 @@ TEST(ValidateCli, AnExplodingWorldIsAFallWithItsReasonAndNoValidateWritesNothing
       "validate " + run.string() + " --seeds 2 --physics-step-us 10000 --engine simbody --json",
       err, code));
   ASSERT_EQ(code, 0) << test::read_file(err);
-  ASSERT_EQ(v["worlds"].size(), 6u);
+  ASSERT_EQ(v["worlds"].size(), 7u);
   EXPECT_EQ(v["worlds"][0]["name"], "engine simbody");  // --engine replaces the list
-  EXPECT_EQ(v["worlds"][3]["name"], "step 10000 us");
+  EXPECT_EQ(v["worlds"][4]["name"], "step 10000 us");
   for (const json& ind : v["individuals"]) {
-    const json& cell = ind["worlds"][3];
+    const json& cell = ind["worlds"][4];
     EXPECT_EQ(cell["falls"], 2);
     EXPECT_EQ(cell["reached"], 0);
     EXPECT_FALSE(cell["gate"]["passed"].get<bool>());

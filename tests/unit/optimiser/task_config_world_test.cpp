@@ -61,11 +61,18 @@ TEST(TaskConfig, TheContactRangeReachesTheTrialsAndNamesTheFieldOnError) {
 TEST(TaskConfig, EveryRandomisationRangeOfTheTableReachesTheTrials) {
   auto d = minimal();
   d["trials"] = 2;
+  // The servo and supply draws are [min, max] pairs (issue 54's off-nominal robot); the other
+  // ranges distinct small values.
+  const nlohmann::json pairs = {{"servo_friction_min", 0.8}, {"servo_friction_max", 1.6},
+                                {"servo_torque_min", 0.8},   {"servo_torque_max", 1.05},
+                                {"supply_min", 12.0},        {"supply_max", 16.8}};
   nlohmann::json ranges = nlohmann::json::object();
   double value = 0.0;
   for (const sim::WorldOptionInfo& o : sim::world_option_table())
-    if (o.randomisation) ranges[std::string(o.key)] = value += 0.005;
-  ASSERT_EQ(ranges.size(), 6u);
+    if (o.randomisation)
+      ranges[std::string(o.key)] =
+          pairs.contains(o.key) ? pairs[std::string(o.key)].get<double>() : value += 0.005;
+  ASSERT_EQ(ranges.size(), 12u);
   d["randomisation"] = ranges;
   TaskConfig c;
   ASSERT_TRUE(parse_task_config(d, c));
@@ -87,6 +94,11 @@ TEST(TaskConfig, EveryRandomisationRangeOfTheTableReachesTheTrials) {
                                     {"contact_range", 0.0}}));
   d["randomisation"] = {{"latency_probability", 2}};
   EXPECT_EQ(error_of(d), "randomisation.latency_probability: must be in 0..1, got 2");
+  d["randomisation"] = {{"servo_torque_min", 0.05}};
+  EXPECT_EQ(error_of(d), "randomisation.servo_torque_min: must be in 0.1..3, got 0.05");
+  d["randomisation"] = {{"supply_min", 16.8}, {"supply_max", 12}};
+  EXPECT_EQ(error_of(d),
+            "randomisation.supply_min and _max: need 6 <= min <= max <= 20 V, got 16.8 and 12");
 }
 
 TEST(TaskConfig, RobotFieldsReachTheWorldsAndNameTheFieldOnError) {
@@ -234,7 +246,8 @@ TEST(TaskConfig, AWorldObjectTakesTheTablesOptions) {
             "world.gravity: unknown world option (known: base, engine, physics_step_us, "
             "servo_law, imu, mag_disturbance, contact, friction, urdf, noise, seed, "
             "friction_range, mass_range, strength_range, latency_probability, contact_range, "
-            "com_range, latency_ticks, push)");
+            "com_range, servo_friction_min, servo_friction_max, servo_torque_min, "
+            "servo_torque_max, supply_min, supply_max, latency_ticks, push)");
   d["world"] = {{"friction", 9}};
   EXPECT_EQ(error_of(d), "world.friction: must be in 0.05..3, got 9");
   d["world"] = {{"push", {"3,up,1"}}};

@@ -59,6 +59,17 @@ std::vector<OldWorld> old_validation_worlds(const RobotTask& task,
   r.com_range = std::min(0.05, 1.5 * r.com_range);
   r.latency_probability = std::max(0.5, r.latency_probability);
   out.push_back(wider);
+  // Added by issue 54 (not in 838df13): the servos and the supply drawn off the model.
+  OldWorld servos{"servos off the model", base};
+  sim::Randomisation& o = servos.options.randomise;
+  o.servo_friction_min = 0.8;
+  o.servo_friction_max = 1.6;
+  o.servo_torque_min = 0.8;
+  o.servo_torque_max = 1.05;
+  o.supply_min_v = 12.0;
+  o.supply_max_v = 16.8;
+  o.latency_probability = std::max(0.5, o.latency_probability);
+  out.push_back(servos);
   OldWorld half{options.physics_step_ns > 0 ? "step " + std::to_string(step_ns / 1000) + " us"
                                             : std::string("half step"),
                 base};
@@ -180,19 +191,23 @@ TEST(ValidationWorlds, TheFileWritesEachWorldWithTheTablesKeysAndReadsItBack) {
                       worlds[w].name);
   }
   // What the tables show of a world: the ground's name and the figures, from the record.
-  // Worlds: engine mujoco, fresh seeds, wider randomisation, half step, ground soft, hard.
-  ASSERT_EQ(worlds.size(), 6u);
+  // Worlds: engine mujoco, fresh seeds, wider randomisation, servos off the model, half step,
+  // ground soft, hard.
+  ASSERT_EQ(worlds.size(), 7u);
   const nlohmann::json engine = validation_world_columns(doc["worlds"][0]);
   EXPECT_EQ(engine["engine"], "mujoco");
   EXPECT_EQ(engine["contact"], "seed");  // the run's ground (with its friction 0.9)
   const nlohmann::json wider = validation_world_columns(doc["worlds"][2]);
   EXPECT_EQ(wider["engine"], "simbody");
   EXPECT_DOUBLE_EQ(wider["latency_probability"].get<double>(), 0.5);
+  const nlohmann::json servos = validation_world_columns(doc["worlds"][3]);
+  EXPECT_DOUBLE_EQ(servos["servo_friction_max"].get<double>(), 1.6);
+  EXPECT_DOUBLE_EQ(servos["supply_min"].get<double>(), 12.0);
   // Half the walk's 2.5 ms trial step.
-  EXPECT_EQ(validation_world_columns(doc["worlds"][3])["physics_step_us"], 1250);
-  EXPECT_EQ(validation_world_columns(doc["worlds"][4])["contact"], "soft");
-  EXPECT_EQ(validation_world_columns(doc["worlds"][5])["contact"], "hard");
-  EXPECT_EQ(doc["worlds"][5]["unavailable"], "not run");
+  EXPECT_EQ(validation_world_columns(doc["worlds"][4])["physics_step_us"], 1250);
+  EXPECT_EQ(validation_world_columns(doc["worlds"][5])["contact"], "soft");
+  EXPECT_EQ(validation_world_columns(doc["worlds"][6])["contact"], "hard");
+  EXPECT_EQ(doc["worlds"][6]["unavailable"], "not run");
 }
 
 TEST(ValidationWorlds, TheTablesReadTheWorldsOfAStrideValidation1File) {

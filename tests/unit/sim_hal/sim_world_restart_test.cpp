@@ -23,6 +23,13 @@ WorldOptions randomised(EngineKind engine, std::uint64_t seed, bool chain_imu) {
   o.randomise = {0.2, 0.05, 0.1, 0.5};
   o.randomise.contact_range = 0.5;  // the ground drawn too (one more draw)
   o.randomise.com_range = 0.01;     // and the trunk's centre of mass (two more)
+  // and the servos and the supply (three more, issue 54)
+  o.randomise.servo_friction_min = 0.8;
+  o.randomise.servo_friction_max = 1.6;
+  o.randomise.servo_torque_min = 0.8;
+  o.randomise.servo_torque_max = 1.05;
+  o.randomise.supply_min_v = 12.0;
+  o.randomise.supply_max_v = 16.8;
   return o;
 }
 

@@ -11,6 +11,7 @@
 #include <string_view>
 #include <vector>
 
+#include "stride/core/status.hpp"
 #include "stride/firmware/servo_table.hpp"
 #include "stride/hal/command_frame.hpp"
 #include "stride/sim_hal/imu_model.hpp"
@@ -161,7 +162,18 @@ struct Randomisation {
   /// (sim_hal/models/make_variants.py's variants move it 1 cm): robots that differ from the
   /// URDF as real ones do. 0: no draw at all.
   double com_range = 0.0;
+  /// The robot as it may be (issue 54 point 2): every servo's friction scale, every servo's
+  /// motor torque scale and the supply voltage, each drawn once per reset, uniform in
+  /// [min, max], on top of the world's (RobotCalibration, battery_voltage_v). Equal bounds draw
+  /// nothing: the scales are then that value (1: the world's), a supply of 0 the world's.
+  double servo_friction_min = 1.0, servo_friction_max = 1.0;
+  double servo_torque_min = 1.0, servo_torque_max = 1.0;
+  double supply_min_v = 0.0, supply_max_v = 0.0;  ///< [V]; 0, 0: the world's supply
 };
+
+/// The servo and supply draws' bounds: each pair ordered, the scales in 0.1..3, the supply
+/// 0, 0 (the world's) or in 6..20 V; the error names the pair and both values.
+Status check_servo_draws(const Randomisation& r);
 
 /// How one robot differs from the model (issue 30 point 3): what `stride calibrate` fits from
 /// the robot's flight logs and a world file holds (world_file.hpp). The nominal values change

@@ -83,7 +83,8 @@ struct WorldOptionInfo {
 
 /// Every option of a world, in the order the help lists them: base, engine, physics_step_us,
 /// servo_law, imu, mag_disturbance, contact, friction, urdf, noise, seed, friction_range,
-/// mass_range, strength_range, latency_probability, contact_range, com_range, latency_ticks,
+/// mass_range, strength_range, latency_probability, contact_range, com_range, servo_friction_min,
+/// servo_friction_max, servo_torque_min, servo_torque_max, supply_min, supply_max, latency_ticks,
 /// push.
 const std::vector<WorldOptionInfo>& world_option_table();
 /// The option of `key`, or null.

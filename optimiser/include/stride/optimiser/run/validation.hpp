@@ -14,6 +14,9 @@
 //                       the ground range at 1.5x the run's (none if the run had none).
 //                       sim_hal has no centre-of-mass randomisation: the mass scale per link
 //                       moves the whole robot's centre of mass only through the link masses.
+//   servos off the model every servo's friction x0.8-1.6 and motor torque x0.8-1.05, the supply
+//                       12.0-16.8 V, each drawn per seed (kOffModelServos, issue 54), one tick of
+//                       latency in half of the worlds, beside the run's randomisation
 //   half step           the physics step halved (or --physics-step-us), the run's randomisation
 //   ground soft         the soft ground (deep turf, studs sink 4 mm; sim::ContactOptions::soft),
 //   ground hard         the hard one (carpet, 0.4 mm): the run's engine, friction and
@@ -51,6 +54,14 @@ inline constexpr double kGateMaxWorseFraction = 0.25;
 /// First of the validation seeds, above trial_seed (the run's trials use trial_seed + k, k <
 /// trials <= 1000).
 inline constexpr std::uint64_t kValidationSeedOffset = 1000;
+
+/// The "servos off the model" world's draws (issue 54 point 2): worn gears to a smooth new
+/// servo, a weaker batch to the datasheet, a battery late in a half to a full 4S LiPo.
+inline constexpr struct {
+  double servo_friction_min = 0.8, servo_friction_max = 1.6;
+  double servo_torque_min = 0.8, servo_torque_max = 1.05;
+  double supply_min_v = 12.0, supply_max_v = 16.8;
+} kOffModelServos{};
 
 struct ValidationOptions {
   /// The engines of the "engine E" worlds; empty: every engine the run did not use.
@@ -114,6 +125,9 @@ bool is_validation_file(const nlohmann::json& doc);
 /// latency_probability; the entry itself for a stride-validation-1 file, the `world` object as
 /// it stands if it cannot be read.
 nlohmann::json validation_world_columns(const nlohmann::json& world);
+/// The servo and supply draws of a world's columns ("servo friction x0.8-1.6, torque
+/// x0.8-1.05, supply 12-16.8 V"), "" for a world without them.
+std::string validation_servo_draws_text(const nlohmann::json& columns);
 
 /// Runs every individual in every world and summarises (format kValidationFormat). A
 /// missing Ind_O score in the log is computed with task.evaluate().
