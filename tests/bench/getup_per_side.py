@@ -8,8 +8,10 @@ seed's 2 cm grass) and seed:
 - knocked over: `stride sim stand --push 1,DIR,IMPULSE --after-fall getup` for DIR forward,
   backward, left and right (stood_up_s: from the fall to standing; the get-up script it chose).
 With --variants DIR (the URDFs of sim_hal/models/make_variants.py) the lying-still episodes also
-run on each robot variant, on turf. With --draws each episode also draws its world as the get-up
-run's trials do (friction +-20 %, link masses +-5 %, servo strength +-10 %; optimiser/configs/
+run on each robot variant, on turf. With --off-model the lying-still episodes also run, on turf, in
+each world file of tests/bench/worlds (servos off the model: supply 12.5 / 13.5 V, friction x1.5,
+torque x0.85) and with the seed's servo law (issue 54's table). With --draws each episode also
+draws its world as the get-up run's trials do (friction +-20 %, link masses +-5 %, servo strength +-10 %; optimiser/configs/
 getup.json), the draw fixed by its seed.
 
 Standing (sim::StoodUpWatch, docs/simulation.md): the motion manager back in Stand after a get-up
@@ -17,7 +19,7 @@ script, the trunk within 25 deg of vertical and its origin above 0.45 m, held fo
 
   python3 tests/bench/getup_per_side.py [--seeds 20] [--engines simbody,mujoco]
       [--grounds turf,soft,hard] [--pushes forward,backward,left,right] [--impulse 12]
-      [--variants DIR] [--draws] [--first-seed 1] [--params FILE] [--duration 20] [--jobs 2]
+      [--variants DIR] [--off-model] [--draws] [--first-seed 1] [--params FILE] [--duration 20] [--jobs 2]
       [--json OUT]
       [--stride build/release/bin/stride]
 
@@ -67,6 +69,16 @@ def jobs_of(a):
                     yield dict(row=(engine, ground, "pushed " + direction), seed=seed,
                                args=["stand", "--push", push, "--after-fall", "getup"] + world +
                                common)
+        if a.off_model:
+            worlds = [(w[:-5], ["--world", os.path.join(HERE, "worlds", w)])
+                      for w in sorted(os.listdir(os.path.join(HERE, "worlds")))
+                      if w.endswith(".json")] + [("seed servo law", ["--servo-law", "seed"])]
+            for name, world in worlds:
+                for side in ("front", "back"):
+                    for seed in seeds:
+                        yield dict(row=(engine, name, "lying on the " + side), seed=seed,
+                                   args=["getup", "--lying", side, "--engine", engine] + world +
+                                   common)
         if a.variants:
             for urdf in sorted(os.listdir(a.variants)):
                 if not urdf.endswith(".urdf"):
@@ -108,6 +120,8 @@ def main():
     p.add_argument("--impulse", type=float, default=12.0,
                    help="push impulse [N s] (12 topples the stand every way, FALLING.md)")
     p.add_argument("--variants", help="folder of robot variant URDFs (make_variants.py)")
+    p.add_argument("--off-model", action="store_true",
+                   help="also the worlds of tests/bench/worlds and the seed's servo law, on turf")
     p.add_argument("--draws", action="store_true",
                    help="draw each episode's world as the get-up run's trials do")
     p.add_argument("--first-seed", type=int, default=1, help="the first seed (default 1)")
