@@ -105,8 +105,8 @@ Status Firmware::create(const FirmwareOptions& options, const FirmwareFiles& fil
   }
   fw->engines_->walk = fw->engines_->walk_selector.get();
   // Scripts are loaded before the controller: the motion manager resolves the get-up scripts.
-  fw->engines_->script_engine =
-      std::make_unique<ScriptEngine>(fw->period_ns_, fw->params_, fw->servos_);
+  fw->engines_->script_engine = std::make_unique<ScriptEngine>(
+      fw->period_ns_, fw->params_, fw->servos_, fw->engines_->attitude.get());
   for (const Script& script : files.scripts) {
     if (Status s = fw->engines_->script_engine->add_script(script); !s) return s;
   }

@@ -60,9 +60,20 @@ MotionManager::MotionManager(ParameterStore& params, double period_s, WalkContro
                                  "servo gain while fallen (0-100), soft to protect the robot");
   get_up_enabled_ = params.add({"motion.get_up", ParamType::kBool, 1, 0, 1, "",
                                 "get up automatically after a fall", false, false});
+  get_up_roll_ = params.add({"motion.get_up_roll", ParamType::kBool, 1, 0, 1, "",
+                             "after a failed get-up from the back, roll onto the front "
+                             "(script roll_to_front) and get up from there",
+                             false, false});
+  get_up_slow_after_ = params.add(
+      {"motion.get_up_slow_after", ParamType::kInt, 2, 0, 10, "attempts",
+       "from this many failed get-ups on, play the get-ups slower (0: never)", false, false});
+  get_up_slow_scale_ =
+      params.add_real("motion.get_up_slow_scale", 1.5, 1.0, 3.0, "1",
+                      "frame durations of the slower get-up, times the script's own");
   if (script_ != nullptr) {
     get_up_front_ = script_->find("get_up_front");
     get_up_back_ = script_->find("get_up_back");
+    roll_to_front_ = script_->find("roll_to_front");
   }
 }
 
@@ -82,11 +93,16 @@ bool MotionManager::start_script(int index, std::string_view name, const hal::Se
                                  const hal::CommandFrame& last, hal::Tick tick) noexcept {
   if (script_ == nullptr || !script_->select(index)) return false;
   copy_name(active_script_name_, name);
+  const bool get_up = index == get_up_front_ || index == get_up_back_ || index == roll_to_front_;
   const MotionState next =
-      (index == get_up_front_ || index == get_up_back_) && state_ == MotionState::kFallen
-          ? MotionState::kGetUp
-          : MotionState::kScript;
+      get_up && state_ == MotionState::kFallen ? MotionState::kGetUp : MotionState::kScript;
   state_ = next;
+  playing_get_up_ = next == MotionState::kGetUp ? index : -1;
+  // The slower variant after failed attempts (a get-up only; a roll and other scripts as timed).
+  const auto slow_after = static_cast<int>(params_.value(get_up_slow_after_));
+  const bool slow = next == MotionState::kGetUp && index != roll_to_front_ && slow_after > 0 &&
+                    failed_get_ups_ >= slow_after;
+  script_->set_time_scale(slow ? params_.value(get_up_slow_scale_) : 1.0);
   script_->start(sensors, last, tick);
   return true;
 }
@@ -147,6 +163,8 @@ void MotionManager::note_fall(const FallSignal& fall, hal::Tick tick) noexcept {
   if (fallen && state_ != MotionState::kFallen && state_ != MotionState::kGetUp) {
     relaxed_ = state_ == MotionState::kFalling;  // a protected fall relaxes through the impact
     state_ = MotionState::kFallen;
+    failed_get_ups_ = 0;
+    back_attempt_failed_ = false;
     fallen_since_ = tick;
     moving_since_fall_ = tick;
     want_walk_ = false;
@@ -199,9 +217,15 @@ void MotionManager::step_fallen(const hal::SensorFrame& sensors, hal::Tick tick,
     const bool clear = std::abs(a[0]) > std::abs(a[1]) ||
                        still >= params_.value(fallen_still_time_) ||
                        lying >= 2.0 * params_.value(fallen_settle_time_);
-    const int index = on_front ? get_up_front_ : get_up_back_;
-    if (clear && index >= 0 &&
-        start_script(index, on_front ? "get_up_front" : "get_up_back", sensors, last, tick)) {
+    int index = on_front ? get_up_front_ : get_up_back_;
+    std::string_view name = on_front ? "get_up_front" : "get_up_back";
+    // After a failed attempt from the back: roll onto the front first.
+    if (!on_front && back_attempt_failed_ && roll_to_front_ >= 0 &&
+        params_.value(get_up_roll_) != 0.0) {
+      index = roll_to_front_;
+      name = "roll_to_front";
+    }
+    if (clear && index >= 0 && start_script(index, name, sensors, last, tick)) {
       relaxed_ = false;
       script_->step(sensors, tick, out);
       return;
@@ -288,13 +312,22 @@ void MotionManager::step(const hal::SensorFrame& sensors, hal::Tick tick, const 
 
     case MotionState::kGetUp:
       if (script_->done()) {
-        if (fallen) {
+        if (fallen || script_->aborted()) {
+          // A failed attempt (the roll is not one): the next one differs (see the header).
+          if (playing_get_up_ != roll_to_front_) {
+            ++failed_get_ups_;
+            back_attempt_failed_ = playing_get_up_ == get_up_back_;
+          } else {
+            back_attempt_failed_ = false;
+          }
           state_ = MotionState::kFallen;
           fallen_since_ = tick;
           moving_since_fall_ = tick;
           active_script_name_.fill(0);
           hold_soft(sensors, out);
         } else {
+          failed_get_ups_ = 0;
+          back_attempt_failed_ = false;
           enter(MotionState::kStand, stand_, sensors, last, tick);
           stand_.step(sensors, tick, out);
         }

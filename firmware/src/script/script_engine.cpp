@@ -10,8 +10,32 @@
 
 namespace stride::fw {
 
-ScriptEngine::ScriptEngine(std::int64_t period_ns, ParameterStore& params, const ServoTable& servos)
-    : period_ns_(period_ns), params_(params), servos_(servos) {
+namespace {
+
+/// The parameters of a frame's wait and guard: (suffix, unit, bounds, the file's value).
+struct CheckParam {
+  const char* suffix;
+  const char* unit;
+  double min, max;
+  double value;
+};
+
+std::array<CheckParam, 6> check_params(const ScriptFrame& frame) {
+  constexpr double kHalfPi = 1.5707963267948966;
+  return {{{"wait.pitch_min", "rad", -kHalfPi, kHalfPi, frame.wait.pitch_min_rad},
+           {"wait.pitch_max", "rad", -kHalfPi, kHalfPi, frame.wait.pitch_max_rad},
+           {"wait.rate_max", "rad/s", 0.0, 20.0, frame.wait.rate_max_rad_s},
+           {"wait.timeout_ms", "ms", 0.0, kMaxFrameDurationMs,
+            static_cast<double>(frame.wait.timeout_ms)},
+           {"guard.pitch_min", "rad", -kHalfPi, kHalfPi, frame.guard.pitch_min_rad},
+           {"guard.pitch_max", "rad", -kHalfPi, kHalfPi, frame.guard.pitch_max_rad}}};
+}
+
+}  // namespace
+
+ScriptEngine::ScriptEngine(std::int64_t period_ns, ParameterStore& params, const ServoTable& servos,
+                           const AttitudeEstimator* attitude)
+    : period_ns_(period_ns), params_(params), servos_(servos), attitude_(attitude) {
   if (period_ns <= 0) throw std::invalid_argument("ScriptEngine: period_ns must be positive");
   duration_modifier_ = params_.add_real("script.duration_modifier", 1.0, 0.25, 4.0, "1",
                                         "multiplies every script frame duration (1 = as written)");
@@ -24,7 +48,7 @@ Status ScriptEngine::add_script(Script script) {
   }
   if (find(script.name) >= 0) return Status::error(origin + ": name: already loaded");
   // Check every parameter name and default before registering any (all or nothing).
-  std::vector<ParamSpec> specs, duration_specs;
+  std::vector<ParamSpec> specs, duration_specs, check_specs;
   for (std::size_t f = 0; f < script.frames.size(); ++f) {
     for (const ScriptTarget& t : script.frames[f].targets) {
       if (t.servo >= hal::kServoCount) {
@@ -63,13 +87,36 @@ Status ScriptEngine::add_script(Script script) {
       return Status::error(origin + ": parameter " + duration.name + " already registered");
     }
     duration_specs.push_back(std::move(duration));
+    const ScriptFrame& frame = script.frames[f];
+    const auto checks = check_params(frame);
+    for (std::size_t k = 0; k < checks.size(); ++k) {
+      if (!(k < 4 ? frame.wait.enabled : frame.guard.enabled)) continue;
+      ParamSpec check;
+      check.name =
+          "script." + script.name + ".frame" + std::to_string(f + 1) + "." + checks[k].suffix;
+      check.type = ParamType::kReal;
+      check.default_value = checks[k].value;
+      check.min = checks[k].min;
+      check.max = checks[k].max;
+      check.unit = checks[k].unit;
+      check.description = script.name + " frame " + std::to_string(f + 1) + " " + checks[k].suffix +
+                          " (the trunk's pitch from the attitude estimate)";
+      if (params_.find(check.name)) {
+        return Status::error(origin + ": parameter " + check.name + " already registered");
+      }
+      check_specs.push_back(std::move(check));
+    }
   }
   LoadedScript loaded;
-  std::size_t next_spec = 0;
+  std::size_t next_spec = 0, next_check = 0;
   loaded.handles.resize(script.frames.size());
+  loaded.checks.resize(script.frames.size());
   for (std::size_t f = 0; f < script.frames.size(); ++f) {
     const auto& targets = script.frames[f].targets;
     loaded.durations.push_back(params_.add(std::move(duration_specs[f])));
+    for (std::size_t k = 0; k < 6; ++k)
+      if (k < 4 ? script.frames[f].wait.enabled : script.frames[f].guard.enabled)
+        loaded.checks[f][k] = params_.add(std::move(check_specs[next_check++]));
     for (std::size_t j = 0; j < targets.size(); ++j) {
       loaded.handles[f].push_back(params_.add(std::move(specs[next_spec++])));
       loaded.queues[targets[j].servo].emplace_back(static_cast<std::uint16_t>(f),
@@ -120,9 +167,12 @@ void ScriptEngine::start(const hal::SensorFrame& /*sensors*/,
   playing_ = selected_;
   stepped_ = false;
   last_step_tick_ = tick;
+  frame_ = 0;
+  waiting_ = false;
+  aborted_ = false;
   if (playing_ < 0) return;
   const LoadedScript& loaded = scripts_[static_cast<std::size_t>(playing_)];
-  const double modifier = params_.value(duration_modifier_);
+  const double modifier = params_.value(duration_modifier_) * std::max(time_scale_, 0.0);
   const double period_ms = static_cast<double>(period_ns_) * 1e-6;
   double elapsed_ms = 0.0;  // integer-valued as written: the sum is exact
   hal::Tick previous = tick;
@@ -135,15 +185,66 @@ void ScriptEngine::start(const hal::SensorFrame& /*sensors*/,
     for (std::size_t j = 0; j < frame.targets.size(); ++j) {
       positions_[f][frame.targets[j].servo] = params_.value(loaded.handles[f][j]);
     }
+    FrameCheck& c = checks_[f];
+    c = FrameCheck{};
+    c.wait = frame.wait.enabled && attitude_ != nullptr;
+    c.guard = frame.guard.enabled && attitude_ != nullptr;
+    const auto& h = loaded.checks[f];
+    if (c.wait) {
+      c.wait_min = params_.value(h[0]);
+      c.wait_max = params_.value(h[1]);
+      c.rate_max = params_.value(h[2]);
+      c.timeout_ticks = static_cast<hal::Tick>(std::llround(params_.value(h[3]) / period_ms));
+    }
+    if (c.guard) {
+      c.guard_min = params_.value(h[4]);
+      c.guard_max = params_.value(h[5]);
+    }
   }
   for (ServoPlayback& p : playback_) p = ServoPlayback{};
 }
 
+void ScriptEngine::advance_frames(hal::Tick tick) noexcept {
+  const std::size_t frames = scripts_[static_cast<std::size_t>(playing_)].script.frames.size();
+  if (attitude_ == nullptr) return;  // played as timed
+  const double pitch = attitude_->pitch();
+  while (frame_ < frames) {
+    const FrameCheck& c = checks_[frame_];
+    if (c.guard && (pitch < c.guard_min || pitch > c.guard_max)) {
+      aborted_ = true;
+      return;
+    }
+    if (deadlines_[frame_] > tick) return;  // the frame plays on
+    if (c.wait) {
+      if (!waiting_) {
+        waiting_ = true;
+        wait_start_ = tick;
+      }
+      const bool met = pitch >= c.wait_min && pitch <= c.wait_max &&
+                       std::abs(attitude_->gyro().y()) <= c.rate_max;
+      if (!met) {
+        if (tick - wait_start_ >= c.timeout_ticks) {
+          aborted_ = true;
+          return;
+        }
+        // Hold: this frame and every later one move back to keep this frame's deadline ahead.
+        const hal::Tick delay = tick + 1 - deadlines_[frame_];
+        for (std::size_t f = frame_; f < frames; ++f) deadlines_[f] += delay;
+        return;
+      }
+      waiting_ = false;
+    }
+    ++frame_;
+  }
+}
+
 void ScriptEngine::step(const hal::SensorFrame& sensors, hal::Tick tick,
                         hal::CommandFrame& out) noexcept {
-  if (playing_ < 0) return;
+  if (playing_ < 0 || aborted_) return;
   stepped_ = true;
   last_step_tick_ = tick;
+  advance_frames(tick);
+  if (aborted_) return;  // the servos keep the last commands; the motion manager takes over
   const LoadedScript& loaded = scripts_[static_cast<std::size_t>(playing_)];
   const double period_s = static_cast<double>(period_ns_) * 1e-9;
   for (std::size_t servo = 0; servo < hal::kServoCount; ++servo) {
@@ -184,7 +285,7 @@ hal::Tick ScriptEngine::end_tick() const noexcept {
 }
 
 bool ScriptEngine::done() const noexcept {
-  if (playing_ < 0) return true;
+  if (playing_ < 0 || aborted_) return true;
   return stepped_ && last_step_tick_ >= end_tick();
 }
 

@@ -98,10 +98,64 @@ Status parse_target(const nlohmann::json& doc, const std::string& where, const S
   return {};
 }
 
+/// "pitch_min" < "pitch_max", each within +-pi/2 [rad].
+Status read_pitch_band(const nlohmann::json& doc, const std::string& where, double& min,
+                       double& max) {
+  constexpr double kHalfPi = 1.5707963267948966;
+  if (Status s = read_number(doc, where, "pitch_min", min); !s) return s;
+  if (Status s = read_number(doc, where, "pitch_max", max); !s) return s;
+  for (const auto& [key, v] : {std::pair{"pitch_min", min}, std::pair{"pitch_max", max}})
+    if (v < -kHalfPi || v > kHalfPi)
+      return fail(where + "." + key, format_number(v) + " outside [-pi/2, pi/2] rad");
+  if (!(min < max))
+    return fail(where, "pitch_min " + format_number(min) + " must be below pitch_max " +
+                           format_number(max));
+  return {};
+}
+
+Status parse_wait(const nlohmann::json& doc, const std::string& where, ScriptWait& out) {
+  if (!doc.is_object()) return fail(where, "must be an object");
+  if (Status s = check_keys(doc, where, {"pitch_min", "pitch_max", "rate_max", "timeout_ms"}); !s)
+    return s;
+  ScriptWait w;
+  w.enabled = true;
+  if (Status s = read_pitch_band(doc, where, w.pitch_min_rad, w.pitch_max_rad); !s) return s;
+  if (doc.contains("rate_max")) {
+    if (Status s = read_number(doc, where, "rate_max", w.rate_max_rad_s); !s) return s;
+    if (w.rate_max_rad_s < 0.0 || w.rate_max_rad_s > 20.0)
+      return fail(where + ".rate_max", format_number(w.rate_max_rad_s) + " outside [0, 20] rad/s");
+  }
+  double timeout = 0.0;
+  if (Status s = read_number(doc, where, "timeout_ms", timeout); !s) return s;
+  if (timeout != std::floor(timeout) || timeout < 0 || timeout > kMaxFrameDurationMs)
+    return fail(where + ".timeout_ms", "must be an integer 0.." +
+                                           std::to_string(kMaxFrameDurationMs) + ", got " +
+                                           format_number(timeout));
+  w.timeout_ms = static_cast<int>(timeout);
+  out = w;
+  return {};
+}
+
+Status parse_guard(const nlohmann::json& doc, const std::string& where, ScriptGuard& out) {
+  if (!doc.is_object()) return fail(where, "must be an object");
+  if (Status s = check_keys(doc, where, {"pitch_min", "pitch_max"}); !s) return s;
+  ScriptGuard g;
+  g.enabled = true;
+  if (Status s = read_pitch_band(doc, where, g.pitch_min_rad, g.pitch_max_rad); !s) return s;
+  out = g;
+  return {};
+}
+
 Status parse_frame(const nlohmann::json& doc, const std::string& where, const ServoTable& servos,
                    ScriptFrame& out) {
   if (!doc.is_object()) return fail(where, "must be an object");
-  if (Status s = check_keys(doc, where, {"duration_ms", "targets"}); !s) return s;
+  if (Status s = check_keys(doc, where, {"duration_ms", "targets", "wait", "guard"}); !s) return s;
+  out.wait = ScriptWait{};
+  out.guard = ScriptGuard{};
+  if (doc.contains("wait"))
+    if (Status s = parse_wait(doc["wait"], where + ".wait", out.wait); !s) return s;
+  if (doc.contains("guard"))
+    if (Status s = parse_guard(doc["guard"], where + ".guard", out.guard); !s) return s;
   double duration = 0.0;
   if (Status s = read_number(doc, where, "duration_ms", duration); !s) return s;
   if (duration != std::floor(duration) || duration < 1 || duration > kMaxFrameDurationMs) {
@@ -215,7 +269,16 @@ nlohmann::json script_to_json(const Script& script, const ServoTable& servos) {
                          {"gain", t.gain},
                          {"torque", t.torque}});
     }
-    frames.push_back({{"duration_ms", frame.duration_ms}, {"targets", std::move(targets)}});
+    nlohmann::json f = {{"duration_ms", frame.duration_ms}, {"targets", std::move(targets)}};
+    if (frame.wait.enabled)
+      f["wait"] = {{"pitch_min", frame.wait.pitch_min_rad},
+                   {"pitch_max", frame.wait.pitch_max_rad},
+                   {"rate_max", frame.wait.rate_max_rad_s},
+                   {"timeout_ms", frame.wait.timeout_ms}};
+    if (frame.guard.enabled)
+      f["guard"] = {{"pitch_min", frame.guard.pitch_min_rad},
+                    {"pitch_max", frame.guard.pitch_max_rad}};
+    frames.push_back(std::move(f));
   }
   doc["frames"] = std::move(frames);
   return doc;

@@ -24,8 +24,8 @@ std::size_t idx(const char* name) {
 Script two_frame_script() {
   Script s;
   s.name = "probe";
-  s.frames.push_back({100, {{idx("r_knee"), 1.0, 20, 50}}});
-  s.frames.push_back({50, {{idx("r_knee"), 0.4, 100, 100}, {idx("l_knee"), 0.8, 30, 100}}});
+  s.frames.push_back({100, {{idx("r_knee"), 1.0, 20, 50}}, {}, {}});
+  s.frames.push_back({50, {{idx("r_knee"), 0.4, 100, 100}, {idx("l_knee"), 0.8, 30, 100}}, {}, {}});
   return s;
 }
 
@@ -133,7 +133,7 @@ TEST(ScriptEngine, ServoThatDidNotAnswerStartsFromTheLastCommand) {
 TEST(ScriptEngine, TorqueZeroSwitchesTheServoOff) {
   Script s;
   s.name = "probe";
-  s.frames.push_back({30, {{idx("r_elbow"), -1.0, 0, 0}}});
+  s.frames.push_back({30, {{idx("r_elbow"), -1.0, 0, 0}}, {}, {}});
   Fixture f(std::move(s));
   f.out.servos[idx("r_elbow")].torque_enable = true;
   f.engine.start(f.sensors, f.out, 0);
@@ -191,9 +191,9 @@ TEST(ScriptEngine, EachFrameDurationIsAParameterReadAtStart) {
 TEST(ScriptEngine, EveryFrameGetsAtLeastOneTick) {
   Script s;
   s.name = "probe";
-  s.frames.push_back({3, {{idx("r_knee"), 0.5, 20, 100}}});
-  s.frames.push_back({3, {{idx("r_knee"), 0.6, 20, 100}}});
-  s.frames.push_back({3, {{idx("r_knee"), 0.7, 20, 100}}});
+  s.frames.push_back({3, {{idx("r_knee"), 0.5, 20, 100}}, {}, {}});
+  s.frames.push_back({3, {{idx("r_knee"), 0.6, 20, 100}}, {}, {}});
+  s.frames.push_back({3, {{idx("r_knee"), 0.7, 20, 100}}, {}, {}});
   Fixture f(std::move(s));
   f.engine.start(f.sensors, f.out, 0);
   EXPECT_EQ(f.engine.deadline(0), 1);

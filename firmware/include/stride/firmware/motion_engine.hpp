@@ -49,6 +49,12 @@ class ScriptControl : public MotionEngine {
   virtual int find(std::string_view name) const noexcept = 0;
   /// Selects the script to play from the next start(). Returns false for a bad index.
   virtual bool select(int script_index) noexcept = 0;
+  /// Every frame duration of the next start() times `scale` (>= 1: slower; on top of the
+  /// player's own modifier): the motion manager's slower get-up variant. 1 until changed.
+  virtual void set_time_scale(double scale) noexcept = 0;
+  /// True when the playing script ended early: a frame's wait timed out or its guard tripped
+  /// (then done() is true too). False again at the next start().
+  virtual bool aborted() const noexcept = 0;
 };
 
 }  // namespace stride::fw

@@ -29,10 +29,34 @@ struct ScriptTarget {
   double torque = 100.0;      ///< 0..100 % of maximum torque; 0 switches the servo off
 };
 
+/// A frame's end on what the IMU says (issue 54, a get-up that closes the loop): at the frame's
+/// deadline the script holds the frame's targets until the trunk's pitch (the firmware's
+/// attitude estimate: 0 upright, + nose down, -pi/2 lying on the back) is within
+/// [pitch_min, pitch_max] and its rate |gyro y| at most rate_max; the later frames move back by
+/// the time waited. Not there within timeout_ms: the script aborts (ScriptEngine::aborted).
+struct ScriptWait {
+  bool enabled = false;
+  double pitch_min_rad = -1.5707963267948966;
+  double pitch_max_rad = 1.5707963267948966;
+  double rate_max_rad_s = 20.0;  ///< 0..20
+  int timeout_ms = 1000;         ///< 0..60000
+};
+
+/// A band the trunk's pitch must stay in while the frame plays (from its start to its end,
+/// waiting included): outside it the script aborts, so that a rise going wrong ends in the
+/// motion manager's soft hold instead of being thrown through.
+struct ScriptGuard {
+  bool enabled = false;
+  double pitch_min_rad = -1.5707963267948966;
+  double pitch_max_rad = 1.5707963267948966;
+};
+
 /// One keyframe: targets to reach `duration_ms` after the previous frame's deadline.
 struct ScriptFrame {
   int duration_ms = 0;                ///< 1..60000
   std::vector<ScriptTarget> targets;  ///< in file order, each servo at most once
+  ScriptWait wait;                    ///< optional ("wait" in the file)
+  ScriptGuard guard;                  ///< optional ("guard" in the file)
 };
 
 struct Script {
@@ -58,7 +82,9 @@ double torque_limit_from_percent(double torque);
 /// kMaxScriptFrames; each frame an object with an integer "duration_ms" in 1..60000 and a
 /// non-empty "targets" array; each target an object with "servo" (a servo table name, at most
 /// once per frame), "position" (finite, within the servo's limits), "gain" and "torque"
-/// (0..100); no unknown keys anywhere (a misspelt key is an error, not a silent default).
+/// (0..100); an optional "wait" {"pitch_min", "pitch_max" (rad, -pi/2..pi/2, min < max),
+/// "rate_max" (rad/s, 0..20, optional), "timeout_ms" (0..60000)} and "guard" {"pitch_min",
+/// "pitch_max"}; no unknown keys anywhere (a misspelt key is an error, not a silent default).
 Status parse_script(const nlohmann::json& doc, std::string_view origin, const ServoTable& servos,
                     Script& out);
 

@@ -23,6 +23,22 @@
 // kick genome does (see script_genome.hpp). Positions are read from the store at start(), so a
 // playing script never changes half-way.
 //
+// Closing the loop (issue 54). A frame may carry a wait and a guard (script.hpp ScriptWait,
+// ScriptGuard), read from the trunk's pitch and pitch rate of the firmware's attitude estimate
+// (attitude_estimator.hpp):
+//  - wait: when the frame's deadline D_i arrives and the pitch is outside [pitch_min,
+//    pitch_max] or |gyro y| > rate_max, the frame is held (its servos keep their targets) and
+//    D_i, D_i+1, ... move back one tick per tick held; once the condition holds the next frame
+//    starts. Held timeout_ms without it: the script aborts.
+//  - guard: while the frame plays (from the previous deadline to its own, a wait included) the
+//    pitch outside [pitch_min, pitch_max] aborts the script.
+// An aborted script is done() and aborted(); its servos keep the last commands until the
+// motion manager takes over (a get-up: the soft hold of kFallen). Their values are parameters
+// too, script.<name>.frame<k>.wait.{pitch_min, pitch_max, rate_max, timeout_ms} and
+// .guard.{pitch_min, pitch_max} [rad, rad/s, ms], read at start(). Without an attitude
+// estimate (a player made without one, as some tests are) waits and guards are not evaluated:
+// the script plays as timed.
+//
 // Real-time: start(), step(), done(), find(), select() do not allocate, throw, read a clock or
 // do I/O. Loading (add_script, load_folder) allocates and must happen before the loop runs.
 #pragma once
@@ -34,6 +50,7 @@
 #include <string_view>
 #include <vector>
 
+#include "stride/firmware/attitude_estimator.hpp"
 #include "stride/firmware/motion_engine.hpp"
 #include "stride/firmware/parameter_store.hpp"
 #include "stride/firmware/script/script.hpp"
@@ -50,7 +67,8 @@ class ScriptEngine final : public ScriptControl {
   /// `period_ns` is the loop period. Throws std::invalid_argument if period_ns <= 0 or the
   /// parameter already exists.
   ScriptEngine(std::int64_t period_ns, ParameterStore& params,
-               const ServoTable& servos = ServoTable::defaults());
+               const ServoTable& servos = ServoTable::defaults(),
+               const AttitudeEstimator* attitude = nullptr);
 
   /// Adds a validated script and registers its position parameters. Fails (changing nothing)
   /// on a duplicate script name or a parameter name already in the store.
@@ -72,8 +90,11 @@ class ScriptEngine final : public ScriptControl {
              hal::Tick tick) noexcept override;
   void step(const hal::SensorFrame& sensors, hal::Tick tick,
             hal::CommandFrame& out) noexcept override;
-  /// True when no script is playing or the last step() was at or after the final deadline.
+  /// True when no script is playing, the last step() was at or after the final deadline, or
+  /// the script aborted.
   bool done() const noexcept override;
+  void set_time_scale(double scale) noexcept override { time_scale_ = scale; }
+  bool aborted() const noexcept override { return aborted_; }
 
   // --- inspection (tests, status output) ----------------------------------------------------
   int selected() const noexcept { return selected_; }
@@ -88,6 +109,9 @@ class ScriptEngine final : public ScriptControl {
     Script script;
     std::vector<std::vector<ParamHandle>> handles;  ///< [frame][target]
     std::vector<ParamHandle> durations;             ///< [frame], in ms
+    /// [frame]: wait pitch_min, pitch_max, rate_max, timeout_ms; guard pitch_min, pitch_max
+    /// (handles of the frames that have them).
+    std::vector<std::array<ParamHandle, 6>> checks;
     /// For each servo: (frame, target) indices of its targets in frame order.
     std::array<std::vector<std::pair<std::uint16_t, std::uint16_t>>, hal::kServoCount> queues;
   };
@@ -98,9 +122,21 @@ class ScriptEngine final : public ScriptControl {
     double speed_rad_s = 0.0;          ///< moving speed of the front target
   };
 
+  /// A frame's wait and guard as read at start().
+  struct FrameCheck {
+    bool wait = false, guard = false;
+    double wait_min = 0.0, wait_max = 0.0, rate_max = 0.0;
+    hal::Tick timeout_ticks = 0;
+    double guard_min = 0.0, guard_max = 0.0;
+  };
+  /// Moves frame_ past the deadlines reached at `tick`, holding a frame whose wait is not met
+  /// and aborting on a timed-out wait or a tripped guard.
+  void advance_frames(hal::Tick tick) noexcept;
+
   std::int64_t period_ns_;
   ParameterStore& params_;
   const ServoTable& servos_;
+  const AttitudeEstimator* attitude_;
   ParamHandle duration_modifier_;
   std::vector<LoadedScript> scripts_;
   int selected_ = -1;
@@ -112,6 +148,12 @@ class ScriptEngine final : public ScriptControl {
   /// Target positions [frame][servo] of the playing script, read from the store at start().
   std::array<std::array<double, hal::kServoCount>, kMaxScriptFrames> positions_{};
   std::array<ServoPlayback, hal::kServoCount> playback_{};
+  std::array<FrameCheck, kMaxScriptFrames> checks_{};
+  std::size_t frame_ = 0;     ///< the frame playing (or held by its wait)
+  bool waiting_ = false;      ///< frame_'s deadline passed, its wait not yet met
+  hal::Tick wait_start_ = 0;  ///< the tick frame_'s wait began
+  bool aborted_ = false;
+  double time_scale_ = 1.0;
 };
 
 }  // namespace stride::fw
