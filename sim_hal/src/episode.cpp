@@ -99,6 +99,8 @@ EpisodeResult run_episode(SimRobot& robot, const StepFunction& controller,
       result.max_accel =
           std::max(result.max_accel, std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]));
       result.max_fps = std::max(result.max_fps, std::sqrt(a[0] * a[0] + a[1] * a[1]));
+      result.peak_servo_torque_nm =
+          std::max(result.peak_servo_torque_nm, world.last_period_peaks().servo_torque_nm);
     }
     const double yaw = yaw_of(torso);  // unwrapped into turned_rad, tick by tick
     result.turned_rad += std::remainder(yaw - last_yaw, 2.0 * std::numbers::pi);
@@ -140,6 +142,7 @@ nlohmann::json to_json(const EpisodeResult& r) {
                       {"time_to_goal_s", nullptr},
                       {"max_accel", r.max_accel},
                       {"max_fps", r.max_fps},
+                      {"peak_servo_torque_nm", r.peak_servo_torque_nm},
                       {"ball_distance_m", r.ball_distance_m},
                       {"sim_time_s", r.sim_time_s},
                       {"wall_time_s", r.wall_time_s},

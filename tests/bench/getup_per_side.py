@@ -25,7 +25,8 @@ script, the trunk within 25 deg of vertical and its origin above 0.45 m, held fo
 
 Prints one markdown table: per row the episodes that stood up, those that stood up at the first
 attempt, the median time to stand (a robot that stayed down counts as slower than any that stood),
-the slowest time of those that stood, and the peak torso acceleration's median. Two simulations at a
+the slowest time of those that stood, and the medians of the peak torso acceleration and of the
+peak servo load (the largest |motor torque| of any servo, the get-up task's Obj2). Two simulations at a
 time under `nice` (--jobs).
 """
 import argparse
@@ -48,7 +49,8 @@ def run(job):
         raise RuntimeError(" ".join(cmd) + ": " + out.stderr.strip())
     result = json.loads(out.stdout.strip().splitlines()[-1])
     return dict(job, stood_up_s=result.get("stood_up_s"), attempts=result.get("get_up_attempts"),
-                script=result.get("get_up_script"), max_accel=result.get("max_accel"))
+                script=result.get("get_up_script"), max_accel=result.get("max_accel"),
+                peak_load=result.get("peak_servo_torque_nm"))
 
 
 def jobs_of(a):
@@ -95,17 +97,19 @@ def table(results):
     for r in results:
         rows.setdefault(r["row"], []).append(r)
     lines = ["| engine | ground or robot | episode | stood up | first attempt | median [s] | "
-             "slowest [s] | median peak \\|a\\| [m/s^2] |", "|---|---|---|---|---|---|---|---|"]
+             "slowest [s] | median peak \\|a\\| [m/s^2] | median peak servo load [N m] |",
+             "|---|---|---|---|---|---|---|---|---|"]
     for key, rs in rows.items():
         times = [r["stood_up_s"] for r in rs if r["stood_up_s"] is not None]
         first = sum(1 for r in rs if r["stood_up_s"] is not None and r["attempts"] == 1)
         median = statistics.median(
             [r["stood_up_s"] if r["stood_up_s"] is not None else float("inf") for r in rs])
         accel = statistics.median(r["max_accel"] for r in rs)
-        lines.append("| %s | %s | %s | %d of %d | %d | %s | %s | %.0f |" % (
+        load = statistics.median(r["peak_load"] for r in rs)
+        lines.append("| %s | %s | %s | %d of %d | %d | %s | %s | %.0f | %.1f |" % (
             key[0], key[1], key[2], len(times), len(rs), first,
             "%.2f" % median if median != float("inf") else "down",
-            "%.2f" % max(times) if times else "-", accel))
+            "%.2f" % max(times) if times else "-", accel, load))
     return "\n".join(lines)
 
 

@@ -11,6 +11,9 @@
 //   time_to_goal_s   first time the torso was goal_distance_m ahead of its start (null if never)
 //   max_accel        max over samples of |a| of the IMU accelerometer [m/s^2] (seed walk Obj2)
 //   max_fps          max over samples of sqrt(ax^2 + ay^2), the field-plane sway (seed kick Obj1)
+//   peak_servo_torque_nm  the largest |motor torque| of any servo over the physics steps, the
+//                    load the gear train carries (SimWorld::last_period_peaks; the get-up
+//                    task's Obj2) [N m]
 //   ball_distance_m  distance the ball moved in the field plane [m]
 //   sim_time_s, wall_time_s, rtf (= sim / wall), state_hash (SimWorld::state_hash, hex)
 #pragma once
@@ -92,6 +95,7 @@ struct EpisodeResult {
   std::optional<double> time_to_goal_s;
   double max_accel = 0.0;
   double max_fps = 0.0;
+  double peak_servo_torque_nm = 0.0;
   double ball_distance_m = 0.0;
   double sim_time_s = 0.0;
   double wall_time_s = 0.0;
