@@ -8,7 +8,10 @@ seed's 2 cm grass) and seed:
 - knocked over: `stride sim stand --push 1,DIR,IMPULSE --after-fall getup` for DIR forward,
   backward, left and right (stood_up_s: from the fall to standing; the get-up script it chose).
 With --variants DIR (the URDFs of sim_hal/models/make_variants.py) the lying-still episodes also
-run on each robot variant, on turf. With --off-model the lying-still episodes also run, on turf, in
+run on each robot variant, on turf. With --walk-params FILE the robot also walks at full forward command with that
+file and is pushed at 3 s (`stride sim walk --vx 1 --push 3,DIR,IMPULSE --after-fall getup`):
+a walk that stands up walks on, and the row counts those that then walk 2 m more
+(walked_after_get_up_m, issue 54 point 4). With --off-model the lying-still episodes also run, on turf, in
 each world file of tests/bench/worlds (servos off the model: supply 12.5 / 13.5 V, friction x1.5,
 torque x0.85) and with the seed's servo law (issue 54's table). With --draws each episode also
 draws its world as the get-up run's trials do (friction +-20 %, link masses +-5 %, servo strength +-10 %; optimiser/configs/
@@ -50,7 +53,8 @@ def run(job):
     result = json.loads(out.stdout.strip().splitlines()[-1])
     return dict(job, stood_up_s=result.get("stood_up_s"), attempts=result.get("get_up_attempts"),
                 script=result.get("get_up_script"), max_accel=result.get("max_accel"),
-                peak_load=result.get("peak_servo_torque_nm"))
+                peak_load=result.get("peak_servo_torque_nm"),
+                walked=result.get("walked_after_get_up_m"))
 
 
 def jobs_of(a):
@@ -71,6 +75,14 @@ def jobs_of(a):
                     yield dict(row=(engine, ground, "pushed " + direction), seed=seed,
                                args=["stand", "--push", push, "--after-fall", "getup"] + world +
                                common)
+        if a.walk_params:
+            for direction in a.pushes:
+                for seed in seeds:
+                    push = "3,%s,%g" % (direction, a.impulse)
+                    yield dict(row=(engine, "turf", "walking, pushed " + direction), seed=seed,
+                               args=["walk", "--vx", "1", "--push", push, "--after-fall", "getup",
+                                     "--engine", engine, "--params", a.walk_params,
+                                     "--duration", str(max(a.duration, 30.0))])
         if a.off_model:
             worlds = [(w[:-5], ["--world", os.path.join(HERE, "worlds", w)])
                       for w in sorted(os.listdir(os.path.join(HERE, "worlds")))
@@ -97,8 +109,8 @@ def table(results):
     for r in results:
         rows.setdefault(r["row"], []).append(r)
     lines = ["| engine | ground or robot | episode | stood up | first attempt | median [s] | "
-             "slowest [s] | median peak \\|a\\| [m/s^2] | median peak servo load [N m] |",
-             "|---|---|---|---|---|---|---|---|---|"]
+             "slowest [s] | median peak \\|a\\| [m/s^2] | median peak servo load [N m] | "
+             "walked 2 m more |", "|---|---|---|---|---|---|---|---|---|---|"]
     for key, rs in rows.items():
         times = [r["stood_up_s"] for r in rs if r["stood_up_s"] is not None]
         first = sum(1 for r in rs if r["stood_up_s"] is not None and r["attempts"] == 1)
@@ -106,10 +118,13 @@ def table(results):
             [r["stood_up_s"] if r["stood_up_s"] is not None else float("inf") for r in rs])
         accel = statistics.median(r["max_accel"] for r in rs)
         load = statistics.median(r["peak_load"] for r in rs)
-        lines.append("| %s | %s | %s | %d of %d | %d | %s | %s | %.0f | %.1f |" % (
+        walking = key[2].startswith("walking")
+        walked = sum(1 for r in rs if (r.get("walked") or 0.0) >= 2.0)
+        lines.append("| %s | %s | %s | %d of %d | %d | %s | %s | %.0f | %.1f | %s |" % (
             key[0], key[1], key[2], len(times), len(rs), first,
             "%.2f" % median if median != float("inf") else "down",
-            "%.2f" % max(times) if times else "-", accel, load))
+            "%.2f" % max(times) if times else "-", accel, load,
+            "%d of %d" % (walked, len(rs)) if walking else "-"))
     return "\n".join(lines)
 
 
@@ -124,6 +139,9 @@ def main():
     p.add_argument("--impulse", type=float, default=12.0,
                    help="push impulse [N s] (12 topples the stand every way, FALLING.md)")
     p.add_argument("--variants", help="folder of robot variant URDFs (make_variants.py)")
+    p.add_argument("--walk-params",
+                   help="also walk at full forward command with this parameter file, pushed at 3 s "
+                        "in each --pushes direction, and count the walks that stand and walk 2 m")
     p.add_argument("--off-model", action="store_true",
                    help="also the worlds of tests/bench/worlds and the seed's servo law, on turf")
     p.add_argument("--draws", action="store_true",

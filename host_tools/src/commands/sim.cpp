@@ -65,6 +65,9 @@ struct GetUpOutcome {
   std::optional<double> stood_up_s;  ///< from lying still (getup) or from the fall [s]
   int attempts = 0;
   std::string first_script;
+  /// walk --after-fall getup: how far the torso went (horizontally) from the moment it stood
+  /// up, walking its command again, to the episode's end [m]; unset if it did not stand.
+  std::optional<double> walked_after_m;
 };
 
 // "stood up after 9.78 s (2 get-up attempts)" or "stayed down (3 get-up attempts)".
@@ -189,9 +192,11 @@ void print_help(const stride::core::CliArgs& args) {
       "above 0.45 m, all held for 1 s; stood_up_s is the start of that second.\n"
       "With --after-fall getup a stand or walk episode does not end at a fall (fell,\n"
       "fall_time_s: trunk tilted past 60 deg or its origin below 0.25 m) but goes on\n"
-      "through the get-up (the walk is not resumed; 30 s by default), and stood_up_s counts\n"
+      "through the get-up (30 s by default), and stood_up_s counts\n"
       "from the fall.\n"
-      "Both also report get_up_attempts and get_up_script (the first get-up played).\n\n"
+      "Both also report get_up_attempts and get_up_script (the first get-up played).\n"
+      "A walk that stood up walks its command again and reports walked_after_get_up_m:\n"
+      "how far the torso went from the moment it stood up to the end (null if it did not).\n\n"
       "%s",
       args.help().c_str());
 }
@@ -308,11 +313,24 @@ Status run_controlled_episode(const SimRequest& r, stride::fw::Firmware& firmwar
   // The first tick the firmware predicted a fall (FallPredictor), whether or not it protects.
   const double period_s = static_cast<double>(robot.period_ns()) * 1e-9;
   const stride::hal::Tick first_tick = robot.current_tick();
+  // Back on its feet, back in the game (issue 54 point 4): a walk that fell and stood up walks
+  // its command again; where the torso was when it stood up.
+  const bool resume_walk = watch_get_up && r.motion == "walk";
+  stride::fw::MotionState last_state = controller.motion().state();
+  std::optional<Eigen::Vector2d> stood_at;
   const sim::StepFunction step = [&controller, &stood_up, &robot, watch_get_up, &predicted_s,
-                                  period_s, first_tick](const stride::hal::SensorFrame& sensors,
-                                                        stride::hal::Tick tick) {
+                                  period_s, first_tick, resume_walk, &last_state, &stood_at,
+                                  &r](const stride::hal::SensorFrame& sensors,
+                                      stride::hal::Tick tick) {
     stride::hal::CommandFrame commands = controller.step(sensors, tick);
     if (watch_get_up) stood_up.after_step(controller, robot.world(), tick);
+    const stride::fw::MotionState state = controller.motion().state();
+    if (resume_walk && state == stride::fw::MotionState::kStand &&
+        last_state == stride::fw::MotionState::kGetUp)
+      controller.request(stride::fw::MotionRequest::walk(r.vx, r.vy, r.vth));
+    last_state = state;
+    if (resume_walk && !stood_at && stood_up.stood_up_at_s())
+      stood_at = robot.world().torso_pose().translation().head<2>();
     if (!predicted_s && controller.safety().report().predictions > 0)
       predicted_s = static_cast<double>(tick - first_tick) * period_s;
     return commands;
@@ -327,6 +345,9 @@ Status run_controlled_episode(const SimRequest& r, stride::fw::Firmware& firmwar
     // stand up from.
     if (stood_up.stood_up_at_s() && (getup || result.fell))
       get_up.stood_up_s = *stood_up.stood_up_at_s() - (getup ? 0.0 : result.fall_time_s);
+    if (stood_at && result.fell)
+      get_up.walked_after_m =
+          (robot.world().torso_pose().translation().head<2>() - *stood_at).norm();
   }
   return {};
 }
@@ -362,6 +383,9 @@ void print_result(bool json_output, const SimRequest& r, const sim::EpisodeResul
       json["stood_up_s"] = get_up.stood_up_s ? nlohmann::json(*get_up.stood_up_s) : nullptr;
       json["get_up_attempts"] = get_up.attempts;
       json["get_up_script"] = get_up.first_script;
+      if (r.motion == "walk")
+        json["walked_after_get_up_m"] =
+            get_up.walked_after_m ? nlohmann::json(*get_up.walked_after_m) : nullptr;
     }
     std::printf("%s\n", json.dump().c_str());
   } else if (get_up.watched) {
