@@ -64,6 +64,10 @@ MotionManager::MotionManager(ParameterStore& params, double period_s, WalkContro
                              "after a failed get-up from the back, roll onto the front "
                              "(script roll_to_front) and get up from there",
                              false, false});
+  get_up_retry_ = params.add({"motion.get_up_retry", ParamType::kBool, 1, 0, 1, "",
+                              "after a failed get-up, get up from the front with "
+                              "get_up_front_retry (a quicker push-up at a higher servo load)",
+                              false, false});
   get_up_slow_after_ = params.add(
       {"motion.get_up_slow_after", ParamType::kInt, 2, 0, 10, "attempts",
        "from this many failed get-ups on, play the get-ups slower (0: never)", false, false});
@@ -74,6 +78,7 @@ MotionManager::MotionManager(ParameterStore& params, double period_s, WalkContro
     get_up_front_ = script_->find("get_up_front");
     get_up_back_ = script_->find("get_up_back");
     roll_to_front_ = script_->find("roll_to_front");
+    get_up_front_retry_ = script_->find("get_up_front_retry");
   }
 }
 
@@ -93,15 +98,16 @@ bool MotionManager::start_script(int index, std::string_view name, const hal::Se
                                  const hal::CommandFrame& last, hal::Tick tick) noexcept {
   if (script_ == nullptr || !script_->select(index)) return false;
   copy_name(active_script_name_, name);
-  const bool get_up = index == get_up_front_ || index == get_up_back_ || index == roll_to_front_;
+  const bool get_up = index == get_up_front_ || index == get_up_back_ || index == roll_to_front_ ||
+                      index == get_up_front_retry_;
   const MotionState next =
       get_up && state_ == MotionState::kFallen ? MotionState::kGetUp : MotionState::kScript;
   state_ = next;
   playing_get_up_ = next == MotionState::kGetUp ? index : -1;
   // The slower variant after failed attempts (a get-up only; a roll and other scripts as timed).
   const auto slow_after = static_cast<int>(params_.value(get_up_slow_after_));
-  const bool slow = next == MotionState::kGetUp && index != roll_to_front_ && slow_after > 0 &&
-                    failed_get_ups_ >= slow_after;
+  const bool slow = next == MotionState::kGetUp && index != roll_to_front_ &&
+                    index != get_up_front_retry_ && slow_after > 0 && failed_get_ups_ >= slow_after;
   script_->set_time_scale(slow ? params_.value(get_up_slow_scale_) : 1.0);
   script_->start(sensors, last, tick);
   return true;
@@ -224,6 +230,14 @@ void MotionManager::step_fallen(const hal::SensorFrame& sensors, hal::Tick tick,
         params_.value(get_up_roll_) != 0.0) {
       index = roll_to_front_;
       name = "roll_to_front";
+    }
+    // On the front after an odd number of failed attempts: the quicker push-up (after an even
+    // number, the gentle one again, slower from motion.get_up_slow_after on): each attempt
+    // differs from the one before.
+    if (on_front && failed_get_ups_ % 2 == 1 && get_up_front_retry_ >= 0 &&
+        params_.value(get_up_retry_) != 0.0) {
+      index = get_up_front_retry_;
+      name = "get_up_front_retry";
     }
     if (clear && index >= 0 && start_script(index, name, sensors, last, tick)) {
       relaxed_ = false;

@@ -26,7 +26,10 @@
 //                         at once: the soft hold below, not the rest of the rise
 // Each attempt differs from the failed one before it (issue 54): after a failed get_up_back the
 // robot rolls onto its front (script roll_to_front, if loaded and motion.get_up_roll is on) and
-// gets up from there; from the motion.get_up_slow_after-th failed attempt on, the get-ups play
+// gets up from there; lying on the front after an odd number of failed attempts it plays
+// get_up_front_retry (if loaded and motion.get_up_retry is on: a quicker push-up at a higher
+// servo load), after an even number get_up_front again; from the
+// motion.get_up_slow_after-th failed attempt on, the other get-ups play
 // motion.get_up_slow_scale times slower (the waits of their frames hold as long as before).
 // Without a walk or script engine the corresponding requests are refused (counted).
 // While fallen the servos are held soft (motion.fallen_gain) at their measured positions; after
@@ -102,7 +105,7 @@ class MotionManager {
   WalkControl* walk_;
   ScriptControl* script_;
   ParamHandle fallen_settle_time_, fallen_still_time_, fallen_still_rate_, fallen_gain_,
-      get_up_enabled_, get_up_roll_, get_up_slow_after_, get_up_slow_scale_;
+      get_up_enabled_, get_up_roll_, get_up_retry_, get_up_slow_after_, get_up_slow_scale_;
 
   MotionState state_ = MotionState::kStand;
   bool started_ = false;
@@ -121,6 +124,7 @@ class MotionManager {
   int get_up_front_ = -1;
   int get_up_back_ = -1;
   int roll_to_front_ = -1;
+  int get_up_front_retry_ = -1;
   int playing_get_up_ = -1;           // the script of the kGetUp in progress
   int failed_get_ups_ = 0;            // failed get-up attempts since the robot fell
   bool back_attempt_failed_ = false;  // the last attempt was get_up_back and failed
