@@ -11,20 +11,14 @@
 #include <string>
 #include <vector>
 
-#include "run_command.hpp"
 #include "seeds.hpp"
+#include "stride_sim_json.hpp"
 
 namespace {
 
-const std::string kConfigs = std::string(STRIDE_SOURCE_DIR) + "/tests/integration/sim_hal/";
+using stride::test::sim_json;
 
-nlohmann::json sim_json(const std::string& args) {
-  int code = -1;
-  const std::string out = stride::test::run_command(
-      std::string(STRIDE_BIN_DIR) + "/stride sim " + args + " --json", code);
-  EXPECT_EQ(code, 0) << args << ": " << out;
-  return out.empty() ? nlohmann::json::object() : nlohmann::json::parse(out);
-}
+const std::string kConfigs = std::string(STRIDE_SOURCE_DIR) + "/tests/integration/sim_hal/";
 
 /// A stand pushed at 1 s with 12 N s, going on 1.5 s past the push (--after-fall keeps the
 /// episode running through the landing); `protect` false loads fall-unprotected.json.

@@ -12,24 +12,13 @@
 #include <sstream>
 #include <string>
 
-#include "run_command.hpp"
 #include "seeds.hpp"
+#include "stride_sim_json.hpp"
 
 namespace {
 
-nlohmann::json sim_json(const std::string& args) {
-  int code = -1;
-  const std::string out = stride::test::run_command(
-      std::string(STRIDE_BIN_DIR) + "/stride sim " + args + " --json", code);
-  EXPECT_EQ(code, 0) << args << ": " << out;
-  return out.empty() ? nlohmann::json::object() : nlohmann::json::parse(out);
-}
-
-// Seconds from lying still to standing, or 1e9 for null (stayed down).
-double stood_up_s(const nlohmann::json& result) {
-  const nlohmann::json& value = result.at("stood_up_s");
-  return value.is_null() ? 1e9 : value.get<double>();
-}
+using stride::test::sim_json;
+using stride::test::stood_up_s;
 
 std::string seed_arg(std::uint64_t seed) {
   return " --seed " + std::to_string(seed);

@@ -7,24 +7,15 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "run_command.hpp"
 #include "seeds.hpp"
+#include "stride_sim_json.hpp"
 
 namespace {
 
+using stride::test::sim_json;
+using stride::test::stood_up_s;
+
 const std::string kWorlds = std::string(STRIDE_SOURCE_DIR) + "/tests/bench/worlds/";
-
-nlohmann::json sim_json(const std::string& args) {
-  int code = -1;
-  const std::string out = stride::test::run_command(
-      std::string(STRIDE_BIN_DIR) + "/stride sim " + args + " --json", code);
-  EXPECT_EQ(code, 0) << args << ": " << out;
-  return out.empty() ? nlohmann::json::object() : nlohmann::json::parse(out);
-}
-
-double stood_up_s(const nlohmann::json& r) {
-  return r.at("stood_up_s").is_null() ? 1e9 : r.at("stood_up_s").get<double>();
-}
 
 // Lying on the back, seeds 1-5, 20 s (the rules' time): the back's sit-up stops short
 // (get_up_back's frame-2 wait aborts it), the robot rolls onto its front (roll_to_front) and
