@@ -176,7 +176,12 @@ Status validation_worlds(const RobotTask& task, const ValidationOptions& options
   r.latency_probability = std::max(0.5, r.latency_probability);
   out.push_back(std::move(wider));
   // The robot as it may be (issue 54 point 2): worn or weak servos and a battery anywhere
-  // between flat and full, beside the run's randomisation.
+  // between flat and full, beside the run's randomisation. A run whose trials draw the servos
+  // already has this world in "fresh seeds": not run twice.
+  const sim::Randomisation& run = base.randomise;
+  const bool run_draws_servos = run.servo_friction_min != run.servo_friction_max ||
+                                run.servo_torque_min != run.servo_torque_max ||
+                                run.supply_max_v > 0.0;
   ValidationWorld servos{"servos off the model", base, seeds};
   sim::Randomisation& o = servos.world.randomise;
   o.servo_friction_min = kOffModelServos.servo_friction_min;
@@ -186,7 +191,7 @@ Status validation_worlds(const RobotTask& task, const ValidationOptions& options
   o.supply_min_v = kOffModelServos.supply_min_v;
   o.supply_max_v = kOffModelServos.supply_max_v;
   o.latency_probability = std::max(0.5, o.latency_probability);
-  out.push_back(std::move(servos));
+  if (!run_draws_servos) out.push_back(std::move(servos));
   ValidationWorld half{options.physics_step_ns > 0
                            ? "step " + std::to_string(step_ns / 1000) + " us"
                            : std::string("half step"),

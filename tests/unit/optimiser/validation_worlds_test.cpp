@@ -109,6 +109,30 @@ void expect_old_worlds(const nlohmann::json& config, const ValidationOptions& op
   }
 }
 
+// A run whose trials draw the servos already (getup.json) is not validated twice in that world.
+TEST(ValidationWorlds, ARunThatDrawsTheServosHasNoSeparateServoWorld) {
+  auto names = [](const nlohmann::json& config) {
+    TaskConfig c;
+    EXPECT_TRUE(parse_task_config(config, c));
+    std::vector<ValidationWorld> worlds;
+    EXPECT_TRUE(validation_worlds(RobotTask(c), ValidationOptions{}, worlds));
+    std::vector<std::string> out;
+    for (const ValidationWorld& w : worlds) out.push_back(w.name);
+    return out;
+  };
+  const auto has_servo_world = [](const std::vector<std::string>& n) {
+    return std::find(n.begin(), n.end(), "servos off the model") != n.end();
+  };
+  nlohmann::json plain = minimal_task_config();
+  plain["trials"] = 2;
+  EXPECT_TRUE(has_servo_world(names(plain)));
+  nlohmann::json drawing = plain;
+  drawing["randomisation"] = {{"supply_min", 12.0}, {"supply_max", 16.8}};
+  const std::vector<std::string> without = names(drawing);
+  EXPECT_FALSE(has_servo_world(without));
+  EXPECT_EQ(without.size() + 1, names(plain).size());
+}
+
 TEST(ValidationWorlds, EachWorldRunsTheOptionsTheOldMappingGave) {
   ValidationOptions options;
   options.seeds = 3;

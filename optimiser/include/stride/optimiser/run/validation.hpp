@@ -16,7 +16,8 @@
 //                       moves the whole robot's centre of mass only through the link masses.
 //   servos off the model every servo's friction x0.8-1.6 and motor torque x0.8-1.05, the supply
 //                       12.0-16.8 V, each drawn per seed (kOffModelServos, issue 54), one tick of
-//                       latency in half of the worlds, beside the run's randomisation
+//                       latency in half of the worlds, beside the run's randomisation; not
+//                       for a run whose trials draw the servos already (its fresh seeds are it)
 //   half step           the physics step halved (or --physics-step-us), the run's randomisation
 //   ground soft         the soft ground (deep turf, studs sink 4 mm; sim::ContactOptions::soft),
 //   ground hard         the hard one (carpet, 0.4 mm): the run's engine, friction and
