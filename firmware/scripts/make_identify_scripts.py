@@ -49,6 +49,20 @@ def pose(squat=0.0, shift_left=0.0, lean=0.0, lift_right=0.0, lift_left=0.0):
     return p
 
 
+def arms(forward_right=0.0, forward_left=0.0, out=0.0, elbow=None):
+    """The stand with the arms moved (identify_arms): forward_*: shoulder pitch towards the front
+    [rad] (negative: back); out: both shoulder rolls away from the body [rad]; elbow: both elbows'
+    absolute angle [rad] (None: the stand's)."""
+    p = dict(BASE)
+    p["r_shoulder_pitch"] -= forward_right
+    p["l_shoulder_pitch"] -= forward_left
+    p["r_shoulder_roll"] -= out
+    p["l_shoulder_roll"] += out
+    if elbow is not None:
+        p["r_elbow"] = p["l_elbow"] = elbow
+    return p
+
+
 def frame(duration_ms, p, leg_gain=LEG_GAIN):
     return {
         "duration_ms": duration_ms,
@@ -141,3 +155,44 @@ write("identify_steps",
       "shift back; right foot then left, twice. Legs gain %d, arms %d. "
       "Written by make_identify_scripts.py." %
       (STEP_SHIFT, SHIFT_MS, LIFT, LIFT / 2, LIFT_MS, LEG_GAIN, ARM_GAIN), frames)
+
+# Known loads on the arms (issue 56): the arms' links are light and free of contacts, so their
+# servos (MX-64) hold loads the URDF gives: the arm's weight at a lever that the shoulder angle
+# sets. Each angle is held after a move from below and after a move from above: the holding
+# error is (gravity torque +- friction) / (strength x gain), so the mean of the two tells the
+# torque scale and their difference the friction. The arms move in antiphase (one forward, one
+# back) so that the centre of mass stays over the feet. Then set-point steps: a step's rise is
+# shaped by the torque (its slope) and the friction (where it stops), differently.
+ARM_ELBOW = -1.2      # elbows bent 69 deg: the forearm adds a load on the elbow as well
+ARM_ANGLES = (0.5, 1.0, 1.4)  # shoulder pitch from the stand's, forward for one arm, back for the other
+ARM_OUT = (0.4, 0.8, 1.2)     # shoulder rolls away from the body
+ARM_MOVE_MS = 800
+ARM_HOLD_MS = 1200
+ARM_STEP = 0.4        # set-point steps of the shoulder pitch [rad], in 20 ms
+ARM_STEP_MS = 20
+
+bent = arms(elbow=ARM_ELBOW)
+frames = [frame(1000, stand), frame(1500, bent), frame(ARM_HOLD_MS, bent)]
+for sign in (1, -1):  # right arm forward and left back, then the other way round
+    angles = list(ARM_ANGLES) + list(reversed(ARM_ANGLES[:-1])) + [0.0]
+    for a in angles:  # up through each angle, then down through each: both approaches
+        p = arms(sign * a, -sign * a, elbow=ARM_ELBOW)
+        frames += [frame(ARM_MOVE_MS, p), frame(ARM_HOLD_MS, p)]
+for a in list(ARM_OUT) + list(reversed(ARM_OUT[:-1])) + [0.0]:
+    p = arms(out=a, elbow=ARM_ELBOW)
+    frames += [frame(ARM_MOVE_MS, p), frame(ARM_HOLD_MS, p)]
+level = arms(0.9, -0.9, elbow=ARM_ELBOW)  # steps around a loaded angle, both directions
+frames += [frame(ARM_MOVE_MS, level), frame(ARM_HOLD_MS, level)]
+for step in (ARM_STEP, -ARM_STEP, ARM_STEP, -ARM_STEP):
+    p = arms(0.9 + step, -0.9 - step, elbow=ARM_ELBOW)
+    frames += [frame(ARM_STEP_MS, p), frame(ARM_HOLD_MS, p), frame(ARM_STEP_MS, level),
+               frame(ARM_HOLD_MS, level)]
+frames += [frame(1500, bent), frame(1500, stand), frame(1000, stand)]
+write("identify_arms",
+      "Identification routine, known loads on the arms (issue 56, IDENTIFICATION.md): elbows at "
+      "%.1f rad; shoulder pitch holds at +-%s rad (one arm forward, the other back) approached "
+      "from below and from above, shoulder roll holds at %s rad, then set-point steps of +-%.1f "
+      "rad in %d ms around a loaded angle. Holds %d ms, moves %d ms. Legs gain %d, arms %d. "
+      "Written by make_identify_scripts.py." %
+      (ARM_ELBOW, "/".join("%.1f" % a for a in ARM_ANGLES), "/".join("%.1f" % a for a in ARM_OUT),
+       ARM_STEP, ARM_STEP_MS, ARM_HOLD_MS, ARM_MOVE_MS, LEG_GAIN, ARM_GAIN), frames)

@@ -17,8 +17,8 @@
 namespace stride::sim {
 
 const std::vector<std::string>& identification_parts() {
-  static const std::vector<std::string> parts = {"stand", "identify_stand", "identify_shift",
-                                                 "identify_steps", "walk"};
+  static const std::vector<std::string> parts = {
+      "stand", "identify_arms", "identify_stand", "identify_shift", "identify_steps", "walk"};
   return parts;
 }
 
@@ -87,8 +87,9 @@ Status check_run(const IdentificationRun& run) {
   const auto& known = identification_parts();
   for (const std::string& part : run.parts)
     if (std::find(known.begin(), known.end(), part) == known.end())
-      return Status::error("unknown part '" + part +
-                           "' (stand, identify_stand, identify_shift, identify_steps, walk)");
+      return Status::error(
+          "unknown part '" + part +
+          "' (stand, identify_arms, identify_stand, identify_shift, identify_steps, walk)");
   for (double s : {run.stand_s, run.pause_s, run.walk_in_place_s, run.walk_s, run.stop_s})
     if (!(s >= 0.0 && s <= 3600.0)) return Status::error("part durations must be in [0, 3600] s");
   if (!(run.walk_vx >= -1.0 && run.walk_vx <= 1.0))

@@ -78,7 +78,7 @@ int run_identify(int argc, char** argv) {
   args.option("help", "show this help", false);
   args.option("out", "the flight log to write (required)", true);
   args.option("parts", "comma-separated parts in order", true,
-              "stand,identify_stand,identify_shift,identify_steps,walk");
+              "stand,identify_arms,identify_stand,identify_shift,identify_steps,walk");
   args.option("stand-s", "part stand: seconds standing still", true, "20");
   args.option("walk-s", "part walk: seconds walking in place, and forward", true, "10");
   args.option("params", "walk parameter file the firmware runs with (default: its defaults)", true);
@@ -90,7 +90,8 @@ int run_identify(int argc, char** argv) {
         "usage: stride identify --out LOG [world options] [--parts LIST] [--params FILE]\n\n"
         "Plays the identification routine (firmware/scripts/IDENTIFICATION.md) in the simulated\n"
         "world and records its flight log, as `stride-fw --record` does on the robot: standing\n"
-        "still, the scripts identify_stand, identify_shift and identify_steps, walking in place\n"
+        "still, the scripts identify_arms, identify_stand, identify_shift and identify_steps,\n"
+        "walking in place "
         "and a short walk. A world file (--world FILE.json) simulates a perturbed robot.\n\n%s",
         args.help().c_str());
     return 0;

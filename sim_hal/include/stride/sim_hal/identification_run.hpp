@@ -1,8 +1,8 @@
 // The identification routine (firmware/scripts/IDENTIFICATION.md) played in the simulator as an
 // operator plays it on the robot, and recorded with the flight recorder exactly as
-// `stride-fw --record` does: standing still, the scripts identify_stand, identify_shift and
-// identify_steps (each requested from the stand, the next one once the robot stands again),
-// walking in place, a stop, a short forward walk and a stop. Its log is the input of
+// `stride-fw --record` does: standing still, the scripts identify_arms, identify_stand,
+// identify_shift and identify_steps (each requested from the stand, the next one once the robot
+// stands again), walking in place, a stop, a short forward walk and a stop. Its log is the input of
 // `stride replay` and `stride calibrate`, and the test data of issue 30 point 5
 // (`stride identify`).
 #pragma once
@@ -20,9 +20,10 @@
 namespace stride::sim {
 
 struct IdentificationRun {
-  /// The parts in order: "stand", "identify_stand", "identify_shift", "identify_steps", "walk".
-  std::vector<std::string> parts = {"stand", "identify_stand", "identify_shift", "identify_steps",
-                                    "walk"};
+  /// The parts in order: "stand", "identify_arms", "identify_stand", "identify_shift",
+  /// "identify_steps", "walk".
+  std::vector<std::string> parts = {"stand",          "identify_arms",  "identify_stand",
+                                    "identify_shift", "identify_steps", "walk"};
   double stand_s = 20.0;  ///< part "stand": standing still, torque on
   double pause_s = 1.0;   ///< standing between parts
   double walk_in_place_s = 10.0;
