@@ -368,6 +368,15 @@ std::size_t count_windows(const fw::FlightLog& log, double window_s) {
   return n == 0 ? 0 : window_starts(log, n).size();
 }
 
+std::vector<std::size_t> window_first_indices(const fw::FlightLog& log, double window_s,
+                                              std::size_t* ticks) {
+  std::int64_t period_ns = 0;
+  if (!log_period_ns(log, period_ns)) return {};
+  const std::size_t n = window_ticks(window_s, period_ns);
+  if (ticks != nullptr) *ticks = n;
+  return n == 0 ? std::vector<std::size_t>{} : window_starts(log, n);
+}
+
 Status replay_flight_log(const fw::FlightLog& log, const WorldOptions& world,
                          const ReplayOptions& options, ReplayResult& out) {
   out = {};

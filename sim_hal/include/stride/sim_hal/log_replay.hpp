@@ -118,6 +118,12 @@ Status check_window(const fw::FlightLog& log, double window_s);
 /// The number of windows of `window_s` in `log` (which check_window accepted).
 std::size_t count_windows(const fw::FlightLog& log, double window_s);
 
+/// The index in FlightLog::ticks of each window's starting state, in the windows' order (the
+/// numbers of ReplayOptions::only_windows); `ticks`, if given, is set to the window's length in
+/// control periods. Empty for a log without a period.
+std::vector<std::size_t> window_first_indices(const fw::FlightLog& log, double window_s,
+                                              std::size_t* ticks = nullptr);
+
 /// Replays `log` (which check_replayable and check_window accepted) in `world` (its control
 /// period is taken from the log). Fails only if the world cannot be built.
 Status replay_flight_log(const fw::FlightLog& log, const WorldOptions& world,

@@ -1,0 +1,40 @@
+// What each replay window of a flight log shows, read from the logged commands (issue 56 point
+// 2): the staged calibration fits each value on the windows that tell it best. The same rules
+// hold for a robot's log and a simulated one; no part names are needed in the log.
+//
+//   still: no servo's goal moves by more than kStillRad over the window and nothing walks:
+//          the IMU biases (the mean logged-minus-simulated reading is the bias);
+//   arms:  only the arms' goals move (shoulders and elbows, MX-64), the legs' stay: the arms
+//          hold loads the URDF gives, free of contacts (identify_arms): the MX-64 torque and
+//          the friction, from the arms' channels alone;
+//   legs:  the legs' goals move (sway, squats, weight shifts, steps, the stand's ramps): the
+//          MX-106 torque and the trunk's mass and centre of mass;
+//   walk:  the walk engine runs in the window: the latency (it shows most there).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "stride/firmware/recorder/flight_log_reader.hpp"
+
+namespace stride::calibration {
+
+enum class WindowPart { kStill, kArms, kLegs, kWalk };
+
+/// "still", "arms", "legs" or "walk".
+const char* window_part_name(WindowPart part);
+
+/// A goal that moves less than this over a window does not move [rad] (the stand's balance
+/// feedback moves the legs' goals by a few hundredths of a degree).
+constexpr double kStillRad = 0.005;
+
+/// The part of each window of `window_s` of `log` (sim::window_first_indices' order).
+std::vector<WindowPart> classify_windows(const fw::FlightLog& log, double window_s);
+
+/// The servos (hal::servo_index order) whose name in the log's servo table names an arm joint
+/// (shoulder, elbow), as a bit mask.
+std::uint32_t arm_servo_mask(const fw::FlightLog& log);
+
+}  // namespace stride::calibration
