@@ -52,6 +52,10 @@ void declare_options(core::CliArgs& args) {
               "re-fits without one of K subsets of the windows, for the uncertainty "
               "(0: none)",
               true, "3");
+  args.option("single-stage",
+              "fit every value on every window at once (default: in stages, each on the windows "
+              "that tell it best)",
+              false);
   args.option("resume", "continue a stopped run from OUT.progress.jsonl", false);
   args.option("identifiability",
               "print the values' sensitivity per routine part, standard errors and correlations "
@@ -131,6 +135,7 @@ Status read_fit_options(const core::CliArgs& args, calibration::CalibrationOptio
   options.replay.threads = static_cast<int>(jobs);
   options.max_evaluations = static_cast<int>(max_evals);
   options.subsets = static_cast<int>(subsets);
+  options.staged = !args.has("single-stage");
   if (args.has("push"))
     return Status::error("--push: not available (the logged commands are replayed)");
   return {};

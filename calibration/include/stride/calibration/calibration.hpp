@@ -78,10 +78,13 @@ double calibration_value(const sim::WorldFile& world, const std::string& name);
 void set_calibration_value(sim::WorldFile& world, const std::string& name, double value);
 
 struct CalibrationOptions {
-  std::vector<std::string> fit;         ///< parameter names (parse_fit_names)
-  sim::ReplayOptions replay;            ///< window length, threads (keep_traces unused)
-  int max_evaluations = 250;            ///< per fit of the continuous parameters
-  int subsets = 3;                      ///< K for the uncertainty (0: none)
+  std::vector<std::string> fit;  ///< parameter names (parse_fit_names)
+  sim::ReplayOptions replay;     ///< window length, threads (keep_traces unused)
+  int max_evaluations = 250;     ///< per fit of the continuous parameters
+  int subsets = 3;               ///< K for the uncertainty (0: none)
+  /// The staged fit (window_parts.hpp, fit_staged): each value on the windows and channels
+  /// that tell it best, from several starts; false: every value on every window at once.
+  bool staged = true;
   std::filesystem::path progress_file;  ///< evaluations, one JSON line each ("" none)
   bool resume = false;                  ///< read progress_file's evaluations first
   const std::atomic<bool>* stop = nullptr;
