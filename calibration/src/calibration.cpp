@@ -1,31 +1,21 @@
-// stride calibrate's fit (calibration.hpp): the objective over the replayed windows, the IMU
-// biases in closed form, NLopt's BOBYQA, the latency search, the jackknife and the progress file
-// (the parameters themselves: calibration_parameters.cpp).
+// stride calibrate's fit (calibration.hpp): the fit (staged or single, fit_engine.hpp) and its
+// jackknife, the supply from the logs and the trunk mass from the weighed robot (the objective,
+// the evaluator and the fit steps: fit_engine.cpp; the staged fit: staged_fit.cpp; the
+// parameters themselves: calibration_parameters.cpp).
 #include "stride/calibration/calibration.hpp"
-
-#include "fit_engine.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
-#include <fstream>
-#include <limits>
-#include <map>
-#include <set>
 
 #include <nlohmann/json.hpp>
 
-#include "stride/core/json_file.hpp"
+#include "fit_engine.hpp"
 
 namespace stride::calibration {
 
-using sim::count_windows;
-using sim::ReplayErrors;
-using sim::ReplayOptions;
 using sim::ReplayResult;
 using sim::ReplayWindow;
-using sim::RobotCalibration;
 using sim::RobotModel;
 using sim::WorldFile;
 using sim::WorldOptions;

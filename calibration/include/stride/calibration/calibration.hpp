@@ -23,6 +23,11 @@
 // contacts give J. The two alternate three times, because the accelerometer's x and y also
 // read the trunk's tilt, which the trunk's centre of mass moves through the servos'
 // compliance: the first bias update takes that tilt for a bias, and the rounds hand it back.
+// That is the single fit (CalibrationOptions::staged false). The default, staged fit (issue 56)
+// takes each value from the windows and channels that tell it (window_parts.hpp classifies
+// them): the latency with the MX-64 torque and the friction on the arms' channels of the arms'
+// windows, then the biases, the MX-106 torque and the trunk (fit_staged in
+// calibration/src/fit_engine.hpp); logs without arm windows get the single fit.
 // Uncertainty: the fit is repeated K times, each without one of
 // K interleaved subsets of the windows, started from the full fit (a delete-a-group jackknife:
 // sigma = sqrt((K-1)/K sum (theta_k - mean)^2), at least the subset fits' tolerance of 0.002
