@@ -10,6 +10,9 @@ on), its calibrated world (the nominal URDF with robotNN.fitted.json) and the no
                   displacement from 5 s to 20 s (walk_speed_per_direction.py's measure)
   push            the largest impulse the forward walk survives in single support, for each of
                   forward, backward, left and right (push_recovery.py's bisection) [N s]
+  get-up          `stride sim getup --lying front|back`, 20 s (issue 56 point 4): whether the
+                  default get-up stands within 10 s in most seeds (judged by agreement with the
+                  true robot), and its median time to stand [s]
 
 Each figure is the median over --seeds. A figure is predicted when the calibrated world's
 error against the true robot is within 5 % of the true value and within half the nominal
@@ -57,6 +60,15 @@ def walk_forward(stride, seed, world):
             "peak_accel": r["max_accel"]}
 
 
+def get_up(stride, seed, world, side):
+    cmd = ["nice", stride, "sim", "getup", "--lying", side, "--duration", "20", "--seed",
+           str(seed), "--json"] + world
+    out = subprocess.run(cmd, capture_output=True, text=True)
+    if out.returncode not in (0, 1):
+        raise RuntimeError(" ".join(cmd) + ": " + out.stderr.strip())
+    return json.loads(out.stdout.strip().splitlines()[-1]).get("stood_up_s")
+
+
 def median(values):
     values = [v for v in values if v is not None and not math.isnan(v)]
     return statistics.median(values) if values else None
@@ -75,6 +87,8 @@ def figures(args, world, pool):
                                      seeds)))
     pushes = {(d, s): pool.submit(push_recovery.largest, push_args, s, times[s][0], d)
               for d in PUSHES for s in seeds if times[s][0] is not None}
+    getups = {(side, s): pool.submit(get_up, args.stride, s, world, side)
+              for side in ("front", "back") for s in seeds}
     out = {"time_to_2.5m_s": median([w.result()["time_to_goal_s"] for w in walks]),
            "peak_accel_mps2": median([w.result()["peak_accel"] for w in walks])}
     for name, _, _, sign in speeds.DIRECTIONS:
@@ -83,11 +97,19 @@ def figures(args, world, pool):
     for d in PUSHES:
         out["push " + d + " N s"] = median([pushes[(d, s)].result() for s in seeds
                                             if (d, s) in pushes])
+    for side in ("front", "back"):
+        times = [getups[(side, s)].result() for s in seeds]
+        stood = [t for t in times if t is not None and t <= 10.0]
+        out["get-up " + side + " stands"] = 1.0 if 2 * len(stood) > len(times) else 0.0
+        out["get-up " + side + " s"] = median(times)
     return out
 
 
-def judge(true, calibrated, nominal):
-    """(predicted, calibrated error, nominal error) of one figure; None if a value is missing."""
+def judge(true, calibrated, nominal, agreement=False):
+    """(predicted, calibrated error, nominal error) of one figure; None if a value is missing.
+    For a yes/no figure (`agreement`), predicted means the same answer as the true robot."""
+    if agreement and None not in (true, calibrated, nominal):
+        return calibrated == true, float(calibrated != true), float(nominal != true)
     if true is None or calibrated is None or nominal is None or true == 0:
         return None
     e_cal, e_nom = abs(calibrated - true) / abs(true), abs(nominal - true) / abs(true)
@@ -138,8 +160,8 @@ def main():
     print("|---|---|---|---|")
     rows = {}
     for figure in names:
-        judged = [judge(done[r + " true"][figure], done[r + " calibrated"][figure],
-                        done["nominal"][figure]) for r in robots]
+        judged = [judge(done[r + " true"].get(figure), done[r + " calibrated"].get(figure),
+                        done["nominal"][figure], figure.endswith(" stands")) for r in robots]
         judged = [j for j in judged if j is not None]
         rows[figure] = judged
         if not judged:
@@ -150,8 +172,8 @@ def main():
             100 * statistics.median(j[1] for j in judged),
             100 * statistics.median(j[2] for j in judged)))
     missing = [r for r in robots for f in names
-               if judge(done[r + " true"][f], done[r + " calibrated"][f], done["nominal"][f])
-               is None]
+               if judge(done[r + " true"].get(f), done[r + " calibrated"].get(f),
+                        done["nominal"][f], f.endswith(" stands")) is None]
     if missing:
         print("\nnot judged (a world fell or never reached the goal in every seed): %d "
               "robot-figure pairs" % len(missing))
