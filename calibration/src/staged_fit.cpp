@@ -9,9 +9,10 @@
 //   2. the IMU biases in closed form over the still and the legs' windows (calibration.hpp says
 //      why not the still ones alone: the gyro's register steps need the motion to carry a
 //      reading across them; the walk's windows diverge);
-//   3. the MX-106 torque on the legs' windows, the friction and the MX-64 held; then the trunk
-//      (centre of mass, and the mass or supply if asked) on the same windows as the biases;
-//      then the biases; twice, because the legs' deflection and the trunk's tilt trade.
+//   3. the MX-106 torque and the trunk (centre of mass, and the mass or supply if asked)
+//      together, on the same windows, the friction and the MX-64 held, then the biases again;
+//      twice, because the accelerometer reads the trunk's tilt. Kept only if J over every
+//      window (the walk's too) is not worse than without them.
 // Each continuous stage starts BOBYQA from the present values and from two points kStartSteps
 // fit steps either side along every value at once, and keeps the best: J of the servo and trunk
 // values has shallow valleys the contacts make rough, where one start stops early. A log
@@ -29,7 +30,7 @@ using sim::WorldFile;
 namespace {
 
 constexpr double kStartSteps = 1.5;  ///< the other starts, in fit steps from the present values
-constexpr int kTrunkRounds = 2;      ///< MX-106, trunk and IMU biases, alternated
+constexpr int kTrunkRounds = 2;      ///< MX-106 and trunk, then IMU biases, alternated
 
 bool contains(const std::vector<std::string>& list, const std::string& name) {
   return std::find(list.begin(), list.end(), name) != list.end();
@@ -118,7 +119,6 @@ Status fit_staged(Evaluator& evaluator, const std::vector<const fw::FlightLog*>&
   const WindowSelection all = selection;
   const WindowSelection arm =
       restrict(selection, windows, {WindowPart::kArms}, arms, "arms/servos");
-  const WindowSelection legs = restrict(selection, windows, {WindowPart::kLegs}, 0, "legs");
   // The trunk and the biases on the windows that stand on both feet or move the legs: not the
   // walk (its contacts diverge within a window) nor the arms (fitted, and a third of the cost).
   const WindowSelection standing =
@@ -158,17 +158,29 @@ Status fit_staged(Evaluator& evaluator, const std::vector<const fw::FlightLog*>&
   if (Status s = fit_from_starts(evaluator, arm_values, arm, label + ", arms", world, j); !s)
     return s;
   if (Status s = fit_biases(evaluator, biases, standing, world); !s) return s;
+  // The MX-106 and the trunk together: on the legs' windows the legs' deflection under the
+  // trunk's weight and the trunk's lever trade, so one fitted before the other takes the
+  // other's part. Biases in between, which read the trunk's tilt.
+  std::vector<std::string> body_values = leg_values;
+  body_values.insert(body_values.end(), trunk_values.begin(), trunk_values.end());
+  const WorldFile before_body = world;
   for (int round = 0; round < kTrunkRounds; ++round) {
-    if (Status s = fit_from_starts(evaluator, leg_values, legs.use.empty() ? standing : legs,
-                                   label + ", legs", world, j);
-        !s)
-      return s;
-    if (Status s = fit_from_starts(evaluator, trunk_values, standing, label + ", trunk", world, j);
+    if (Status s =
+            fit_from_starts(evaluator, body_values, standing, label + ", legs and trunk", world, j);
         !s)
       return s;
     if (Status s = fit_biases(evaluator, biases, standing, world); !s) return s;
   }
-  return evaluator.evaluate(world, all, best);
+  // The stages above never replay the walk: a body that fits the standing windows but makes a
+  // walk window fall (J of a failed window is 1e4) is worse than none; keep the values before.
+  if (Status s = evaluator.evaluate(world, all, best); !s) return s;
+  double without = 0.0;
+  if (Status s = evaluator.evaluate(before_body, all, without); !s) return s;
+  if (without < best) {
+    world = before_body;
+    best = without;
+  }
+  return Status::ok();
 }
 
 }  // namespace stride::calibration::detail
