@@ -6,7 +6,7 @@
 //      contacts, with quick set-point steps (identify_arms), so the trunk's unknowns do not leak
 //      in. Each latency gets its own fit of the two, because a weaker arm looks like a tick more
 //      of delay; the best latency's is refined from several starts;
-//   2. the IMU biases in closed form over the still and the legs' windows (calibration.hpp says
+//   2. the IMU biases in closed form over the still, legs' and steps' windows (calibration.hpp says
 //      why not the still ones alone: the gyro's register steps need the motion to carry a
 //      reading across them; the walk's windows diverge);
 //   3. the MX-106 torque and the trunk (centre of mass, and the mass or supply if asked)
@@ -119,10 +119,12 @@ Status fit_staged(Evaluator& evaluator, const std::vector<const fw::FlightLog*>&
   const WindowSelection all = selection;
   const WindowSelection arm =
       restrict(selection, windows, {WindowPart::kArms}, arms, "arms/servos");
-  // The trunk and the biases on the windows that stand on both feet or move the legs: not the
-  // walk (its contacts diverge within a window) nor the arms (fitted, and a third of the cost).
-  const WindowSelection standing =
-      restrict(selection, windows, {WindowPart::kStill, WindowPart::kLegs}, 0, "stand");
+  // The trunk and the biases on the windows that stand or move the legs: not the walk (its
+  // contacts diverge within a window) nor the arms (fitted, and a third of the cost). The steps
+  // stay: left out, the MX-106 and the trunk's centre of mass were found on none and one of six
+  // study robots, against two and three with them (tests/bench/RESULTS.md).
+  const WindowSelection standing = restrict(
+      selection, windows, {WindowPart::kStill, WindowPart::kLegs, WindowPart::kSteps}, 0, "stand");
   std::vector<std::string> biases;
   for (const std::string& name : fit)
     if (closed_form_bias(name)) biases.push_back(name);

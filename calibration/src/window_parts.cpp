@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <limits>
 
 #include <nlohmann/json.hpp>
@@ -19,6 +20,8 @@ const char* window_part_name(WindowPart part) {
       return "arms";
     case WindowPart::kLegs:
       return "legs";
+    case WindowPart::kSteps:
+      return "steps";
     case WindowPart::kWalk:
       return "walk";
   }
@@ -37,10 +40,23 @@ std::uint32_t arm_servo_mask(const fw::FlightLog& log) {
   return mask;
 }
 
+namespace {
+
+/// The index of the servo named `name` in the log's servo table, or -1.
+int servo_named(const fw::FlightLog& log, const std::string& name) {
+  const nlohmann::json table = log.header.value("servo_table", nlohmann::json::array());
+  for (std::size_t i = 0; i < hal::kServoCount && i < table.size(); ++i)
+    if (table[i].is_object() && table[i].value("name", "") == name) return static_cast<int>(i);
+  return -1;
+}
+
+}  // namespace
+
 std::vector<WindowPart> classify_windows(const fw::FlightLog& log, double window_s) {
   std::size_t n = 0;
   const std::vector<std::size_t> firsts = sim::window_first_indices(log, window_s, &n);
   const std::uint32_t arms = arm_servo_mask(log);
+  const int right_knee = servo_named(log, "r_knee"), left_knee = servo_named(log, "l_knee");
   std::vector<WindowPart> parts;
   parts.reserve(firsts.size());
   for (std::size_t first : firsts) {
@@ -48,8 +64,13 @@ std::vector<WindowPart> classify_windows(const fw::FlightLog& log, double window
     lo.fill(std::numeric_limits<double>::infinity());
     hi.fill(-std::numeric_limits<double>::infinity());
     bool walking = false;
+    double knees_apart = 0.0;
     for (std::size_t t = first; t <= first + n && t < log.ticks.size(); ++t) {
       walking = walking || log.ticks[t].meta.motion == fw::MotionState::kWalk;
+      if (right_knee >= 0 && left_knee >= 0)
+        knees_apart =
+            std::max(knees_apart, std::abs(log.ticks[t].commands.servos[right_knee].position_rad -
+                                           log.ticks[t].commands.servos[left_knee].position_rad));
       for (std::size_t i = 0; i < hal::kServoCount; ++i) {
         const double goal = log.ticks[t].commands.servos[i].position_rad;
         lo[i] = std::min(lo[i], goal);
@@ -61,10 +82,11 @@ std::vector<WindowPart> classify_windows(const fw::FlightLog& log, double window
       if (hi[i] - lo[i] <= kStillRad) continue;
       ((arms >> i) & 1U ? arms_move : others_move) = true;
     }
-    parts.push_back(walking       ? WindowPart::kWalk
-                    : others_move ? WindowPart::kLegs
-                    : arms_move   ? WindowPart::kArms
-                                  : WindowPart::kStill);
+    parts.push_back(walking                                          ? WindowPart::kWalk
+                    : others_move && knees_apart > kSingleSupportRad ? WindowPart::kSteps
+                    : others_move                                    ? WindowPart::kLegs
+                    : arms_move                                      ? WindowPart::kArms
+                                                                     : WindowPart::kStill);
   }
   return parts;
 }

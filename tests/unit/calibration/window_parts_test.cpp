@@ -15,16 +15,18 @@
 namespace stride::calibration {
 namespace {
 
-constexpr std::size_t kArm = 0, kOtherArm = 5, kKnee = 12;
+constexpr std::size_t kArm = 0, kOtherArm = 5, kKnee = 12, kOtherKnee = 13;
 
-fw::FlightLog made_up_log() {
+/// `lift`: the legs' part bends the right knee alone by up to `lift` [rad], else both knees.
+fw::FlightLog made_up_log(double lift = 0.0) {
   fw::FlightLog log;
   nlohmann::json table = nlohmann::json::array();
   for (std::size_t i = 0; i < hal::kServoCount; ++i)
-    table.push_back({{"name", i == kArm        ? "r_shoulder_pitch"
-                              : i == kOtherArm ? "l_elbow"
-                              : i == kKnee     ? "r_knee"
-                                               : "servo " + std::to_string(i)}});
+    table.push_back({{"name", i == kArm         ? "r_shoulder_pitch"
+                              : i == kOtherArm  ? "l_elbow"
+                              : i == kKnee      ? "r_knee"
+                              : i == kOtherKnee ? "l_knee"
+                                                : "servo " + std::to_string(i)}});
   log.header = {{"period_ns", 10000000}, {"servo_table", table}};
   for (int t = 0; t < 1200; ++t) {
     fw::FlightLogTick tick;
@@ -34,7 +36,11 @@ fw::FlightLog made_up_log() {
     // Standing: a balance feedback's few hundredths of a degree on the knee.
     tick.commands.servos[kKnee].position_rad += 3e-4 * std::sin(t * 0.1);
     if (t >= 300 && t < 600) tick.commands.servos[kArm].position_rad += 0.002 * (t - 300);
-    if (t >= 600 && t < 900) tick.commands.servos[kKnee].position_rad += 0.001 * (t - 600);
+    if (t >= 600 && t < 900) {
+      const double bend = lift > 0.0 ? lift * (t - 600) / 300.0 : 0.001 * (t - 600);
+      tick.commands.servos[kKnee].position_rad += bend;
+      if (lift == 0.0) tick.commands.servos[kOtherKnee].position_rad += bend;
+    }
     log.ticks.push_back(tick);
   }
   return log;
@@ -55,6 +61,17 @@ TEST(WindowParts, ClassifiesStillArmsLegsAndWalkWindowsFromTheCommands) {
   const std::vector<std::string> expected = {"still", "still", "still", "arms", "arms", "arms",
                                              "legs",  "legs",  "walk",  "walk", "walk"};
   EXPECT_EQ(names(classify_windows(log, 1.0)), expected);
+}
+
+TEST(WindowParts, OneKneeBentFurtherThanTheOtherIsASingleSupportStep) {
+  // The right knee alone bends to 0.45 rad over 3 s: its goal passes 0.2 rad from the left's at
+  // tick 734, so the window from 700 steps; the one from 600 (0.15 rad apart) stands on both feet.
+  const std::vector<WindowPart> parts = classify_windows(made_up_log(0.45), 1.0);
+  ASSERT_EQ(parts.size(), 11U);
+  EXPECT_EQ(parts[6], WindowPart::kLegs);
+  EXPECT_EQ(parts[7], WindowPart::kSteps);
+  EXPECT_STREQ(window_part_name(parts[7]), "steps");
+  EXPECT_EQ(parts[8], WindowPart::kWalk);  // the walk wins over the steps
 }
 
 TEST(WindowParts, AGapStartsTheWindowsAgainAfterIt) {
