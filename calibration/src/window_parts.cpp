@@ -28,35 +28,42 @@ const char* window_part_name(WindowPart part) {
   return "?";
 }
 
-std::uint32_t arm_servo_mask(const fw::FlightLog& log) {
-  const nlohmann::json table = log.header.value("servo_table", nlohmann::json::array());
-  std::uint32_t mask = 0;
-  for (std::size_t i = 0; i < hal::kServoCount && i < table.size(); ++i) {
-    if (!table[i].is_object()) continue;
-    const std::string name = table[i].value("name", "");
-    if (name.find("shoulder") != std::string::npos || name.find("elbow") != std::string::npos)
-      mask |= 1U << i;
-  }
-  return mask;
-}
-
 namespace {
 
-/// The index of the servo named `name` in the log's servo table, or -1.
-int servo_named(const fw::FlightLog& log, const std::string& name) {
+/// The servos' names from the log's servo table, in hal::servo_index order ("" where absent).
+std::array<std::string, hal::kServoCount> servo_names(const fw::FlightLog& log) {
   const nlohmann::json table = log.header.value("servo_table", nlohmann::json::array());
+  std::array<std::string, hal::kServoCount> names{};
   for (std::size_t i = 0; i < hal::kServoCount && i < table.size(); ++i)
-    if (table[i].is_object() && table[i].value("name", "") == name) return static_cast<int>(i);
+    if (table[i].is_object()) names[i] = table[i].value("name", "");
+  return names;
+}
+
+/// The index of the servo named `name` in `names`, or -1.
+int servo_named(const std::array<std::string, hal::kServoCount>& names, const std::string& name) {
+  for (std::size_t i = 0; i < names.size(); ++i)
+    if (names[i] == name) return static_cast<int>(i);
   return -1;
 }
 
 }  // namespace
 
+std::uint32_t arm_servo_mask(const fw::FlightLog& log) {
+  std::uint32_t mask = 0;
+  const std::array<std::string, hal::kServoCount> names = servo_names(log);
+  for (std::size_t i = 0; i < names.size(); ++i)
+    if (names[i].find("shoulder") != std::string::npos ||
+        names[i].find("elbow") != std::string::npos)
+      mask |= 1U << i;
+  return mask;
+}
+
 std::vector<WindowPart> classify_windows(const fw::FlightLog& log, double window_s) {
   std::size_t n = 0;
   const std::vector<std::size_t> firsts = sim::window_first_indices(log, window_s, &n);
   const std::uint32_t arms = arm_servo_mask(log);
-  const int right_knee = servo_named(log, "r_knee"), left_knee = servo_named(log, "l_knee");
+  const std::array<std::string, hal::kServoCount> names = servo_names(log);
+  const int right_knee = servo_named(names, "r_knee"), left_knee = servo_named(names, "l_knee");
   std::vector<WindowPart> parts;
   parts.reserve(firsts.size());
   for (std::size_t first : firsts) {
